@@ -1,0 +1,22 @@
+#pragma once
+// The windplan subcommands. Each takes its arguments (after the subcommand name) and returns the
+// process exit code; user errors are thrown as windplan exceptions and mapped to exit codes in
+// main(). Each has a one-line summary and a --help text.
+#include <string>
+#include <vector>
+
+namespace windplan::cli {
+
+struct Command {
+  const char* name;
+  const char* summary;
+  const char* help;  // full usage text printed by "windplan <name> --help"
+  int (*run)(const std::vector<std::string>& args);
+};
+
+/// All subcommands, in the order --help lists them.
+const std::vector<Command>& commands();
+
+// One function per subcommand, each in its own cmd_<name>.cpp.
+
+}  // namespace windplan::cli

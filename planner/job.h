@@ -1,0 +1,49 @@
+#pragma once
+// A windplan job: one YAML file per mandrel maps to one Job struct made of the stages' Options
+// (house style rule 13). The schema, with units and defaults, is documented in docs/config.md.
+//
+// Each section is decoded by its own decode_* function in job.cpp, which reads the keys into the
+// stage's Options, rejects unknown keys (file, line and key named) and calls is_valid().
+#include <filesystem>
+#include <string>
+
+namespace windplan {
+
+/// Length unit of an input file; windplan works in millimetres internally.
+enum class LengthUnit { Millimetre, Metre, Inch };
+/// Factor that converts a length in `u` to millimetres.
+double to_millimetres(LengthUnit u);
+/// Parses "mm", "m" or "in". \throw InputError otherwise.
+LengthUnit parse_length_unit(const std::string& s);
+
+/// The `mandrel:` section (mesh files; CAD and parametric sources are added by their stage).
+struct MandrelOptions {
+  /// Where the mandrel comes from: "mesh" (a triangle-mesh file).
+  std::string source = "mesh";
+  /// Mesh file, resolved relative to the job file's directory when loaded from a job.
+  std::filesystem::path file;
+  /// Unit of the coordinates in `file`; converted to mm.
+  LengthUnit units = LengthUnit::Millimetre;
+  /// Repair what is safe (re-orient, drop degenerate/duplicate/unreferenced elements).
+  bool repair = true;
+
+  bool is_valid(std::string* why) const;
+};
+
+struct Job {
+  /// Job name: the `name:` key, or the job file's stem.
+  std::string name;
+  /// The job file itself (absolute); relative paths in the job resolve against its directory.
+  std::filesystem::path path;
+  MandrelOptions mandrel;
+};
+
+/// Loads and validates a job file.
+/// \throw IoError if the file is missing; ConfigError for malformed YAML, unknown or mistyped keys
+///        and invalid values, naming file, line and key.
+Job load_job(const std::filesystem::path& file);
+
+/// Same from YAML text; `file` is used for messages and relative paths.
+Job load_job_from_string(const std::string& yaml, const std::filesystem::path& file);
+
+}  // namespace windplan

@@ -1,0 +1,93 @@
+#pragma once
+// Meshes made in code, with known counts and closed-form geometry, for the core tests.
+#include <cmath>
+
+#include "geometry/mesh.h"
+
+namespace windplan::test {
+
+/// A regular octahedron inscribed in the unit sphere: V=6, E=12, F=8, closed, genus 0.
+inline TriangleSoup octahedron() {
+  TriangleSoup s;
+  s.points = {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0),
+              Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)};
+  s.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                 {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  return s;
+}
+
+/// A planar grid of nx by ny squares of size h, each split into two triangles, in z = 0.
+inline TriangleSoup grid(int nx, int ny, double h = 1.0) {
+  TriangleSoup s;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) s.points.emplace_back(i * h, j * h, 0.0);
+  auto id = [nx](int i, int j) { return j * (nx + 1) + i; };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return s;
+}
+
+/// An open cylinder (a tube without caps) of radius r and length len along z, with n vertices
+/// around and m rings of quads along the axis (m + 1 vertex rings), each quad split in two.
+/// Outward normals. Two boundary loops, genus 0, an annulus.
+inline TriangleSoup open_cylinder(double r, double len, int n, int m) {
+  TriangleSoup s;
+  for (int j = 0; j <= m; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double t = 2.0 * M_PI * i / n;
+      s.points.emplace_back(r * std::cos(t), r * std::sin(t), len * j / m);
+    }
+  auto id = [n](int i, int j) { return j * n + (i % n); };
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return s;
+}
+
+/// A torus (major radius R, minor radius r) with n by m quads: closed, genus 1, outward normals.
+inline TriangleSoup torus(double R, double r, int n, int m) {
+  TriangleSoup s;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double u = 2.0 * M_PI * i / n, v = 2.0 * M_PI * j / m;
+      s.points.emplace_back((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
+                            r * std::sin(v));
+    }
+  auto id = [n, m](int i, int j) { return (j % m) * n + (i % n); };
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return s;
+}
+
+/// A UV sphere of radius r with n segments around and m stacks, poles as single vertices.
+inline TriangleSoup uv_sphere(double r, int n, int m) {
+  TriangleSoup s;
+  s.points.emplace_back(0, 0, -r);
+  for (int j = 1; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double th = M_PI * j / m - M_PI / 2, ph = 2.0 * M_PI * i / n;
+      s.points.emplace_back(r * std::cos(th) * std::cos(ph), r * std::cos(th) * std::sin(ph),
+                            r * std::sin(th));
+    }
+  s.points.emplace_back(0, 0, r);
+  const int top = static_cast<int>(s.points.size()) - 1;
+  auto id = [n](int i, int j) { return 1 + (j - 1) * n + (i % n); };
+  for (int i = 0; i < n; ++i) s.triangles.push_back({0, id(i + 1, 1), id(i, 1)});
+  for (int j = 1; j < m - 1; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  for (int i = 0; i < n; ++i) s.triangles.push_back({id(i, m - 1), id(i + 1, m - 1), top});
+  return s;
+}
+
+}  // namespace windplan::test
