@@ -1,0 +1,106 @@
+#pragma once
+// The winding plan: what the planner hands to export/ (kinematics, G-code, CSV, reports).
+//
+// Units: lengths in mm, angles in degrees unless a field says radians, curvatures in 1/mm.
+// Frames: all positions and directions are in the mandrel frame (the frame of the mesh).
+// The spindle axis is a line (origin, unit direction) in that frame; "axial position" of a point
+// p is (p - origin) . direction, its "radius" the distance from the axis line.
+#include <string>
+#include <vector>
+
+#include "geometry/mesh.h"
+
+namespace windplan {
+
+/// The spindle (mandrel rotation) axis.
+struct SpindleAxis {
+  Vec3 origin = Vec3::Zero();
+  Vec3 direction = Vec3::UnitZ();  ///< unit vector
+  /// Axial coordinate of p (mm).
+  double axial(const Vec3& p) const { return (p - origin).dot(direction); }
+  /// Distance of p from the axis line (mm).
+  double radius(const Vec3& p) const {
+    const Vec3 d = p - origin;
+    return (d - d.dot(direction) * direction).norm();
+  }
+};
+
+/// The mandrel's radius as a function of the axial coordinate (the largest radius of the mesh at
+/// each station), sampled at increasing axial stations. Used for the clearance envelope.
+struct RadiusProfile {
+  std::vector<double> axial;   ///< mm, strictly increasing
+  std::vector<double> radius;  ///< mm, same size
+  /// Piecewise-linear interpolation, clamped at the ends; 0 for an empty profile.
+  double at(double x) const;
+  bool empty() const { return axial.empty(); }
+};
+
+/// One point of a fibre path with its differential geometry.
+struct FibrePoint {
+  Vec3 position = Vec3::Zero();  ///< on the mandrel surface (mm)
+  Vec3 normal = Vec3::UnitX();   ///< unit outward surface normal
+  Vec3 tangent = Vec3::UnitZ();  ///< unit fibre direction (direction of travel)
+  double s = 0.0;                ///< arc length from the circuit start (mm)
+  double winding_angle = 0.0;    ///< deg from the meridian: 0 axial, 90 hoop
+  double k_n = 0.0;              ///< normal curvature along the fibre (1/mm), > 0 convex
+  double k_g = 0.0;              ///< geodesic curvature (1/mm)
+  double slippage = 0.0;         ///< |k_g / k_n| (tendency to slip; compare with friction mu)
+  int face = -1;                 ///< mesh face containing the point (-1 if unknown)
+};
+
+/// A section of a circuit: a helical pass from one end to the other, or a turnaround (dwell) at
+/// a polar opening or tube end.
+struct CircuitSegment {
+  enum class Kind { Pass, Turnaround };
+  Kind kind = Kind::Pass;
+  int first = 0;  ///< index of the first point in Circuit::points
+  int last = 0;   ///< index of the last point (inclusive)
+};
+
+/// One continuous fibre circuit.
+struct Circuit {
+  int index = 0;
+  std::vector<FibrePoint> points;
+  std::vector<CircuitSegment> segments;
+};
+
+/// A planar cut-line (trim line) on the mandrel.
+struct CutLine {
+  std::string name;
+  std::vector<Vec3> points;  ///< closed loop (last != first) or open curve
+  bool closed = true;
+  Vec3 plane_normal = Vec3::UnitZ();
+  double plane_offset = 0.0;  ///< n . p = offset (mm)
+  double length = 0.0;        ///< mm
+  double residual = 0.0;      ///< max |n . p - offset| (mm)
+};
+
+/// Figures of a plan, reported in the summary, report.json and report.md.
+struct PlanMetrics {
+  double fibre_length = 0.0;       ///< mm, all circuits
+  int circuits = 0;
+  int turns_per_pass = 0;          ///< N
+  double band_width = 0.0;         ///< mm
+  int circuits_for_coverage = 0;   ///< circuits needed for full coverage
+  double cover_factor = 0.0;       ///< fraction of the surface covered (>= 1: full)
+  std::string pattern;             ///< e.g. "K=12, advance 1/12, coprime" (shapes of revolution)
+  double spacing_cv = 0.0;         ///< coefficient of variation of turn spacing along meridians
+  double spacing_mean = 0.0;       ///< mm
+  double max_slippage = 0.0;       ///< max |k_g/k_n|
+  double friction = 0.0;           ///< mu from the job
+  double slip_fraction = 0.0;      ///< fraction of path length with slippage > mu
+  double bridging_length = 0.0;    ///< mm of path with k_n <= 0 (fibre would bridge)
+  std::vector<std::string> warnings;
+};
+
+/// The complete plan handed to export/.
+struct WindingPlan {
+  std::string job_name;
+  SpindleAxis axis;
+  RadiusProfile profile;
+  std::vector<Circuit> circuits;
+  std::vector<CutLine> cutlines;
+  PlanMetrics metrics;
+};
+
+}  // namespace windplan
