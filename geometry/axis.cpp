@@ -1,4 +1,4 @@
-#include "planner/plan.h"
+#include "geometry/axis.h"
 
 #include <algorithm>
 
