@@ -1,5 +1,7 @@
 #include "planner/job.h"
 
+#include <cmath>
+
 #include "geometry/atomic_file.h"
 #include "geometry/errors.h"
 #include "planner/config_node.h"
@@ -45,6 +47,106 @@ void decode_mandrel(ConfigNode n, const std::filesystem::path& base, MandrelOpti
   n.check(*m);
 }
 
+// ---- machine: and output: (export/ reads them) ----
+
+/// Rejects keys of `n` outside `known` (for sections read partly by hand, like envelope.profile).
+void reject_unknown_keys(const ConfigNode& n, const std::vector<std::string>& known) {
+  if (!n.present()) return;
+  for (auto it = n.yaml().begin(); it != n.yaml().end(); ++it) {
+    const std::string k = it->first.as<std::string>();
+    bool ok = false;
+    for (const std::string& u : known) ok = ok || u == k;
+    if (!ok) {
+      std::string allowed;
+      for (const std::string& u : known) allowed += (allowed.empty() ? "" : ", ") + u;
+      throw ConfigError(n.file() + ":" + std::to_string(it->first.Mark().line + 1) +
+                        ": unknown key '" + (n.path().empty() ? k : n.path() + "." + k) +
+                        "' (known: " + allowed + ")");
+    }
+  }
+}
+
+void decode_envelope(ConfigNode n, EnvelopeOptions* e) {
+  reject_unknown_keys(n, {"clearance", "profile", "free_length"});
+  int modes = 0;
+  modes += n.has("clearance");
+  modes += n.has("profile");
+  modes += n.has("free_length");
+  if (modes > 1) n.fail_here("give only one of clearance, profile, free_length");
+  n.get("clearance", &e->clearance);
+  n.get("free_length", &e->free_length);
+  if (n.has("profile")) {
+    const YAML::Node p = n.yaml()["profile"];
+    if (!p.IsSequence()) n.fail("profile", "expected a list of [x, r] pairs (mm)");
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      std::array<double, 2> xr{};
+      bool ok = p[i].IsSequence() && p[i].size() == 2;
+      for (std::size_t j = 0; ok && j < 2; ++j) {
+        try {
+          xr[j] = p[i][j].as<double>();
+          ok = std::isfinite(xr[j]);
+        } catch (const YAML::Exception&) {
+          ok = false;
+        }
+      }
+      if (!ok) n.fail("profile", "element " + std::to_string(i) + " must be [x, r] in mm");
+      e->profile.push_back(xr);
+    }
+    if (e->profile.empty()) n.fail("profile", "the list is empty");
+  }
+  n.check(*e);
+}
+
+void decode_axis(ConfigNode n, AxisOptions* a) {
+  n.get("letter", &a->letter);
+  n.get("sign", &a->sign);
+  n.get("offset", &a->offset);
+  n.get("min", &a->min);
+  n.get("max", &a->max);
+  n.get("max_velocity", &a->max_velocity);
+  n.finish();
+  n.check(*a);
+}
+
+void decode_machine(ConfigNode n, MachineOptions* m) {
+  if (!n.present()) return;
+  n.get_choice("kind", {"lathe2", "lathe4", "robot"}, &m->kind);
+  n.get("chord_tolerance", &m->chord_tolerance);
+  n.get("max_fibre_speed", &m->max_fibre_speed);
+  decode_envelope(n.section("envelope"), &m->envelope);
+  ConfigNode axes = n.section("axes");
+  decode_axis(axes.section("A"), &m->a);
+  decode_axis(axes.section("X"), &m->x);
+  decode_axis(axes.section("Y"), &m->y);
+  decode_axis(axes.section("B"), &m->b);
+  axes.finish();
+  ConfigNode g = n.section("gcode");
+  g.get_choice("dialect", {"linuxcnc", "marlin", "fanuc"}, &m->gcode.dialect);
+  g.get_choice("feed", {"auto", "inverse_time", "per_minute"}, &m->gcode.feed);
+  g.get("program_number", &m->gcode.program_number);
+  g.finish();
+  g.check(m->gcode);
+  n.finish();
+  n.check(*m);
+}
+
+void decode_output(ConfigNode n, const std::filesystem::path& base, OutputOptions* o) {
+  if (!n.present()) return;
+  std::string dir;
+  if (n.get("directory", &dir)) {
+    if (dir.empty()) n.fail("directory", "must not be empty");
+    o->directory = (base / dir).lexically_normal();
+  }
+  n.get("csv", &o->csv);
+  n.get("gcode", &o->gcode);
+  n.get("report", &o->report);
+  n.get("ply", &o->ply);
+  n.get("svg", &o->svg);
+  n.get("timings", &o->timings);
+  n.finish();
+  n.check(*o);
+}
+
 Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   Job job;
   job.path = std::filesystem::absolute(file).lexically_normal();
@@ -52,6 +154,8 @@ Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   root.get("name", &job.name);
   const std::filesystem::path base = job.path.parent_path();
   decode_mandrel(root.section("mandrel"), base, &job.mandrel);
+  decode_machine(root.section("machine"), &job.machine);
+  decode_output(root.section("output"), base, &job.output);
   root.finish();
   return job;
 }

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <string>
 
+#include "planner/machine_options.h"
+
 namespace windplan {
 
 /// Length unit of an input file; windplan works in millimetres internally.
@@ -36,6 +38,8 @@ struct Job {
   /// The job file itself (absolute); relative paths in the job resolve against its directory.
   std::filesystem::path path;
   MandrelOptions mandrel;
+  MachineOptions machine;  ///< `machine:` (kinematics, axes, G-code)
+  OutputOptions output;    ///< `output:` (files written, directory)
 };
 
 /// Loads and validates a job file.
