@@ -53,6 +53,13 @@ struct CutLine {
   double residual = 0.0;      ///< max |n . p - offset| (mm)
 };
 
+/// Wall time of one pipeline stage (reported on stdout; in report.json/md only with
+/// output.timings, so that files stay byte-identical between runs).
+struct StageTiming {
+  std::string stage;
+  double seconds = 0.0;
+};
+
 /// Figures of a plan, reported in the summary, report.json and report.md.
 struct PlanMetrics {
   double fibre_length = 0.0;       ///< mm, all circuits
@@ -69,6 +76,7 @@ struct PlanMetrics {
   double slip_fraction = 0.0;      ///< fraction of path length with slippage > mu
   double bridging_length = 0.0;    ///< mm of path with k_n <= 0 (fibre would bridge)
   std::vector<std::string> warnings;
+  std::vector<StageTiming> timings;  ///< filled by the pipeline, in stage order
 };
 
 /// The complete plan handed to export/.
