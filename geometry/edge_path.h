@@ -1,0 +1,68 @@
+#pragma once
+// Initial paths for the geodesic core: shortest paths along mesh edges (A* with the straight-line
+// distance as heuristic, or plain Dijkstra) and their conversion into a face strip with edge
+// crossings (a SurfacePath), for open paths between two surface points, for closed vertex cycles
+// and for curves given as points near the surface.
+#include <vector>
+
+#include "geometry/mesh.h"
+#include "geometry/path_metric.h"
+#include "geometry/surface_path.h"
+
+namespace windplan {
+
+/// The vertex graph of a mesh in compressed rows, with edge weights under a metric
+/// (precompute once per mesh and metric; query many times).
+struct EdgeGraph {
+  std::vector<int> offsets;    ///< #V + 1
+  std::vector<int> neighbors;  ///< 2 #E
+  std::vector<double> weights; ///< 2 #E: length (mm) times the smaller adjacent density
+  double min_density = 1.0;    ///< keeps the A* heuristic admissible under a density metric
+  bool anisotropic = false;    ///< A* is disabled (no cheap admissible heuristic)
+};
+
+/// Builds the graph. Anisotropic metrics weigh each edge by its metric length in the
+/// adjacent face where it is smallest.
+EdgeGraph build_edge_graph(const Mesh& mesh, const PathMetric& metric = {});
+
+struct EdgePathOptions {
+  bool use_astar = true;  ///< A* (early exit, straight-line heuristic) or plain Dijkstra
+};
+
+struct EdgePath {
+  std::vector<int> vertices;  ///< from a vertex of the start's face to one of the end's face
+  double length = 0.0;        ///< weighted graph length incl. the legs to the points (mm)
+  int settled = 0;            ///< vertices settled by the search (diagnostics)
+  bool found = false;
+};
+
+/// Shortest edge path between two surface points. Sources are the vertices of the faces that
+/// contain `a` (weighted by the straight distance to a), targets those of `b`.
+EdgePath shortest_edge_path(const Mesh& mesh, const EdgeGraph& graph, const SurfacePoint& a,
+                            const SurfacePoint& b, const EdgePathOptions& options = {});
+
+/// Face strip along a vertex path from a to b (a's face contains vertices.front(), b's face
+/// contains vertices.back()); at every vertex the strip turns on the side of the smaller angle.
+/// The crossings start close to the vertices (lambda 0.25 from them).
+SurfacePath strip_from_vertex_path(const Mesh& mesh, const SurfacePoint& a,
+                                   const std::vector<int>& vertices, const SurfacePoint& b);
+
+/// Closed face strip along a closed vertex cycle (the first vertex is not repeated at the end).
+/// \throw InputError when the cycle has fewer than 3 vertices or is not connected by edges.
+SurfacePath strip_from_vertex_cycle(const Mesh& mesh, const std::vector<int>& cycle);
+
+/// Initial open path: shortest edge path, then strip. \throw InputError if b is unreachable
+/// from a (different components), naming both points.
+SurfacePath initial_open_path(const Mesh& mesh, const EdgeGraph& graph, const SurfacePoint& a,
+                              const SurfacePoint& b, const EdgePathOptions& options = {},
+                              EdgePath* diagnostics = nullptr);
+
+/// Initial path from a curve given as points on or near the surface: each point is snapped to
+/// the closest surface point (error if farther than max_distance), consecutive snapped points
+/// are joined by shortest edge paths, and the result is turned into a strip. A closed curve
+/// gives a loop; an open one a path from the first to the last point.
+/// \throw InputError naming the first point that is too far, or a curve with < 2 points.
+SurfacePath path_from_curve(const Mesh& mesh, const EdgeGraph& graph,
+                            const std::vector<Vec3>& points, bool closed, double max_distance);
+
+}  // namespace windplan

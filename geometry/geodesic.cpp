@@ -1,0 +1,873 @@
+#include "geometry/geodesic.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <sstream>
+#include <unordered_map>
+
+#include "geometry/errors.h"
+
+namespace windplan {
+
+const char* to_string(GeodesicTermination t) {
+  switch (t) {
+    case GeodesicTermination::Converged: return "converged";
+    case GeodesicTermination::ObjectiveStalled: return "objective_stalled";
+    case GeodesicTermination::MaxIterations: return "max_iterations";
+    case GeodesicTermination::MaxReroutes: return "max_reroutes";
+    case GeodesicTermination::LineSearchFailed: return "line_search_failed";
+  }
+  return "unknown";
+}
+
+bool GeodesicOptions::is_valid(std::string* why) const {
+  auto fail = [&](const char* m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (!(gradient_tolerance > 0.0)) return fail("gradient_tolerance must be > 0");
+  if (!(objective_tolerance >= 0.0)) return fail("objective_tolerance must be >= 0");
+  if (max_iterations < 1) return fail("max_iterations must be >= 1");
+  if (max_reroutes < 0) return fail("max_reroutes must be >= 0");
+  if (lbfgs_memory < 1) return fail("lbfgs_memory must be >= 1");
+  if (!(constraint_tolerance > 0.0)) return fail("constraint_tolerance must be > 0");
+  if (max_outer_iterations < 1) return fail("max_outer_iterations must be >= 1");
+  if (!(penalty_weight >= 0.0) || !std::isfinite(penalty_weight))
+    return fail("penalty_weight must be finite and >= 0");
+  return true;
+}
+
+std::string GeodesicSummary::brief_report() const {
+  std::ostringstream s;
+  s.precision(10);
+  s << "geodesic: " << to_string(termination) << ", length " << initial_length << " -> "
+    << final_length << ", " << iterations << " iterations, " << evaluations << " evaluations, "
+    << reroutes << " reroutes, " << lifts << " lifts, " << pinned_vertices << " pinned vertices";
+  if (outer_iterations > 0) s << ", residual " << constraint_residual;
+  s.precision(4);
+  s << ", " << time_ms << " ms";
+  if (!message.empty()) s << " (" << message << ")";
+  return s.str();
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double angle_between(const Vec3& a, const Vec3& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+int outgoing_in_face(const Mesh& mesh, int f, int v) {
+  for (int k = 0; k < 3; ++k)
+    if (mesh.from(3 * f + k) == v) return 3 * f + k;
+  return -1;
+}
+
+// Solves a symmetric (cyclic) tridiagonal system in place: diag d, off-diagonal e (e[i] couples
+// i and i+1; when cyclic, e[n-1] couples n-1 and 0). rhs is overwritten with the solution.
+// Returns false when a pivot vanishes.
+bool thomas(const std::vector<double>& d, const std::vector<double>& e, std::vector<double>* x,
+            int n, std::vector<double>* work) {
+  std::vector<double>& c = *work;
+  c.resize(n);
+  double beta = d[0];
+  if (!(std::fabs(beta) > 0.0)) return false;
+  (*x)[0] /= beta;
+  for (int i = 1; i < n; ++i) {
+    c[i] = e[i - 1] / beta;
+    beta = d[i] - e[i - 1] * c[i];
+    if (!(std::fabs(beta) > 0.0)) return false;
+    (*x)[i] = ((*x)[i] - e[i - 1] * (*x)[i - 1]) / beta;
+  }
+  for (int i = n - 2; i >= 0; --i) (*x)[i] -= c[i + 1] * (*x)[i + 1];
+  return true;
+}
+
+class TridiagonalSolver {
+ public:
+  // Prepares diag/off for solving; cyclic uses Sherman-Morrison on the corner element.
+  void set(const std::vector<double>& diag, const std::vector<double>& off, int n, bool cyclic) {
+    n_ = n;
+    cyclic_ = cyclic && n >= 3 && off[n - 1] != 0.0;
+    d_.assign(diag.begin(), diag.begin() + n);
+    e_.assign(off.begin(), off.begin() + n);
+    if (cyclic && n == 2) {
+      // Both off-diagonal entries couple the same pair.
+      e_[0] = off[0] + off[1];
+    }
+    if (cyclic_) {
+      alpha_ = off[n - 1];
+      gamma_ = -d_[0];
+      d_[0] -= gamma_;
+      d_[n - 1] -= alpha_ * alpha_ / gamma_;
+      zvec_.assign(n, 0.0);
+      zvec_[0] = gamma_;
+      zvec_[n - 1] = alpha_;
+      ok_ = thomas(d_, e_, &zvec_, n, &work_);
+    } else {
+      ok_ = true;
+    }
+  }
+  bool solve(std::vector<double>* x) {
+    if (!ok_) return false;
+    if (!thomas(d_, e_, x, n_, &work_)) return false;
+    if (cyclic_) {
+      const double vy = (*x)[0] + alpha_ / gamma_ * (*x)[n_ - 1];
+      const double vz = zvec_[0] + alpha_ / gamma_ * zvec_[n_ - 1];
+      const double f = vy / (1.0 + vz);
+      for (int i = 0; i < n_; ++i) (*x)[i] -= f * zvec_[i];
+    }
+    return true;
+  }
+
+ private:
+  int n_ = 0;
+  bool cyclic_ = false, ok_ = false;
+  double alpha_ = 0.0, gamma_ = 1.0;
+  std::vector<double> d_, e_, zvec_, work_;
+};
+
+// The optimisation state of one refinement.
+class Refiner {
+ public:
+  Refiner(const Mesh& mesh, const SurfacePath& path, const PathMetric& metric,
+          const GeodesicOptions& options, PathConstraint* constraint)
+      : mesh_(mesh), metric_(metric), opt_(options), con_(constraint), path_(path) {
+    m_ = con_ ? con_->num_variables() : 0;
+    z_.assign(m_, 0.0);
+    if (con_ && m_ > 0) con_->initial_variables(z_.data());
+    const auto stats = mesh.edge_length_stats();
+    scale_ = stats[1] > 0.0 ? stats[1] : 1.0;
+    if (!path_.closed) {
+      ps_ = position(mesh, path_.start);
+      pt_ = position(mesh, path_.end);
+    }
+    rebuild();
+  }
+
+  GeodesicResult run();
+
+ private:
+  // ---- strip data ----
+  void rebuild() {
+    k_ = path_.num_crossings();
+    a_.resize(k_);
+    d_.resize(k_);
+    fixed_.assign(k_, 0);
+    for (int i = 0; i < k_; ++i) {
+      const int h = path_.halfedges[i];
+      a_[i] = mesh_.position(mesh_.from(h));
+      d_[i] = mesh_.position(mesh_.to(h)) - a_[i];
+    }
+    const int nres = path_.closed ? k_ : k_ + 2;
+    if (static_cast<int>(mu_.size()) != nres) mu_.assign(nres, 0.0);
+  }
+  Vec3 point(int i, const std::vector<double>& l) const { return a_[i] + l[i] * d_[i]; }
+  int num_segments() const { return path_.closed ? k_ : k_ + 1; }
+  // Segment j: endpoints as variable indices (-1: start, -2: end) and its face.
+  void segment(int j, int* left, int* right, int* face) const {
+    if (path_.closed) {
+      *left = j;
+      *right = (j + 1) % k_;
+      *face = mesh_.face(mesh_.twin(path_.halfedges[j]));
+    } else {
+      *left = j == 0 ? -1 : j - 1;
+      *right = j == k_ ? -2 : j;
+      *face = j < k_ ? mesh_.face(path_.halfedges[j])
+                     : (k_ == 0 ? path_.start_face : mesh_.face(mesh_.twin(path_.halfedges[k_ - 1])));
+    }
+  }
+  Vec3 endpoint(int idx, const std::vector<double>& l) const {
+    return idx == -1 ? ps_ : idx == -2 ? pt_ : point(idx, l);
+  }
+
+  // ---- objective ----
+  struct Eval {
+    double value = 0.0, length = 0.0;
+    std::vector<double> g;            // k + m
+    std::vector<double> hd, ho;       // k, k
+    std::vector<double> B;            // k * m (row major: i*m + c)
+    std::vector<double> C;            // m * m
+    std::vector<char> zero_adjacent;  // k: touches a zero-length segment
+  };
+  void evaluate(const std::vector<double>& l, const std::vector<double>& z, bool hessian,
+                Eval* ev);
+  double value_only(const std::vector<double>& l, const std::vector<double>& z);
+  double max_residual() const;
+
+  // ---- steps ----
+  bool newton_direction(const Eval& ev, std::vector<double>* dir);
+  void lbfgs_direction(const Eval& ev, std::vector<double>* dir);
+  bool line_search(const Eval& ev, const std::vector<double>& dir, double* new_value);
+  double projected_gradient(const Eval& ev) const;
+  bool is_active(const Eval& ev, int i) const {
+    if (fixed_[i]) return true;
+    return (lambda_[i] <= 0.0 && ev.g[i] > 0.0) || (lambda_[i] >= 1.0 && ev.g[i] < 0.0);
+  }
+
+  // ---- vertex events ----
+  enum class Action { None, Lifted, Rerouted, Pinned, Collapsed };
+  bool process_vertex_events(const Eval& ev);
+  Action handle_vertex(int idx, int v);
+  bool fan_lift(const std::vector<int>& run, int v, const Vec3& P, const Vec3& Q, bool apply,
+                double* theta);
+  void rotate_closed(int shift);
+  void replace_run(int i, int j, const std::vector<int>& hs, const std::vector<double>& ls);
+
+  bool inner_solve(GeodesicSummary* summary, Clock::time_point t0);
+
+  const Mesh& mesh_;
+  const PathMetric& metric_;
+  GeodesicOptions opt_;
+  PathConstraint* con_;
+  SurfacePath path_;
+  int k_ = 0, m_ = 0;
+  double scale_ = 1.0;
+  Vec3 ps_ = Vec3::Zero(), pt_ = Vec3::Zero();
+  std::vector<Vec3> a_, d_;
+  std::vector<double>& lambda_ = path_.lambdas;
+  std::vector<double> z_, mu_;
+  std::vector<char> fixed_;
+  double M_ = 0.0;
+  bool penalty_on_ = false;
+  int evaluations_ = 0, iterations_ = 0, reroutes_ = 0, lifts_ = 0, max_reroutes_ = 0;
+  std::unordered_map<int, int> lifts_at_;
+  // L-BFGS memory
+  std::deque<std::vector<double>> s_mem_, y_mem_;
+  TridiagonalSolver tri_;
+  GeodesicTermination termination_ = GeodesicTermination::Converged;
+};
+
+void Refiner::evaluate(const std::vector<double>& l, const std::vector<double>& z, bool hessian,
+                       Eval* ev) {
+  ++evaluations_;
+  const int n = k_ + m_;
+  ev->value = 0.0;
+  ev->length = 0.0;
+  ev->g.assign(n, 0.0);
+  ev->zero_adjacent.assign(k_, 0);
+  if (hessian) {
+    ev->hd.assign(k_, 0.0);
+    ev->ho.assign(k_, 0.0);
+    ev->B.assign(static_cast<std::size_t>(k_) * m_, 0.0);
+    ev->C.assign(static_cast<std::size_t>(m_) * m_, 0.0);
+  }
+  const double tiny = 1e-13 * scale_;
+  const int ns = num_segments();
+  for (int j = 0; j < ns; ++j) {
+    int L, R, f;
+    segment(j, &L, &R, &f);
+    const Vec3 w = endpoint(R, l) - endpoint(L, l);
+    const double c = metric_.cost(f, w);
+    ev->length += c;
+    if (c <= tiny * (metric_.kind() == PathMetric::Kind::Density ? metric_.densities()[f] : 1.0)) {
+      if (L >= 0) ev->zero_adjacent[L] = 1;
+      if (R >= 0) ev->zero_adjacent[R] = 1;
+      continue;
+    }
+    const Vec3 gw = metric_.apply(f, w) / c;  // d cost / d w
+    if (R >= 0) ev->g[R] += d_[R].dot(gw);
+    if (L >= 0) ev->g[L] -= d_[L].dot(gw);
+    if (hessian) {
+      // Hessian of c wrt w: (G - gw gw^T) / c, pulled back through w = P_R - P_L.
+      auto quad = [&](const Vec3& x, const Vec3& y) {
+        return (metric_.inner(f, x, y) - x.dot(gw) * y.dot(gw)) / c;
+      };
+      if (R >= 0) ev->hd[R] += quad(d_[R], d_[R]);
+      if (L >= 0) ev->hd[L] += quad(d_[L], d_[L]);
+      if (R >= 0 && L >= 0) {
+        const double hlr = -quad(d_[L], d_[R]);
+        // Off-diagonal slot: e[i] couples i and i+1 (cyclic: e[k-1] couples k-1 and 0).
+        if (R == L + 1) ev->ho[L] += hlr;
+        else if (L == R + 1) ev->ho[R] += hlr;
+        else ev->ho[k_ - 1] += hlr;  // the closing pair (k-1, 0)
+      }
+    }
+  }
+  ev->value = ev->length;
+  if (penalty_on_ && con_) {
+    std::vector<double> drdz(m_);
+    const int nres = path_.closed ? k_ : k_ + 2;
+    for (int q = 0; q < nres; ++q) {
+      int var;
+      Vec3 p;
+      if (path_.closed) {
+        var = q;
+        p = point(q, l);
+      } else if (q < k_) {
+        var = q;
+        p = point(q, l);
+      } else {
+        var = -1;
+        p = q == k_ ? ps_ : pt_;
+      }
+      Vec3 drdp;
+      const double r = con_->evaluate(p, z.data(), &drdp, m_ > 0 ? drdz.data() : nullptr);
+      ev->value += mu_[q] * r + 0.5 * M_ * r * r;
+      const double coef = mu_[q] + M_ * r;
+      const double gp = var >= 0 ? drdp.dot(d_[var]) : 0.0;
+      if (var >= 0) ev->g[var] += coef * gp;
+      for (int c = 0; c < m_; ++c) ev->g[k_ + c] += coef * drdz[c];
+      if (hessian) {
+        if (var >= 0) {
+          ev->hd[var] += M_ * gp * gp;
+          for (int c = 0; c < m_; ++c) ev->B[var * m_ + c] += M_ * gp * drdz[c];
+        }
+        for (int c = 0; c < m_; ++c)
+          for (int e = 0; e < m_; ++e) ev->C[c * m_ + e] += M_ * drdz[c] * drdz[e];
+      }
+    }
+  }
+}
+
+double Refiner::value_only(const std::vector<double>& l, const std::vector<double>& z) {
+  Eval ev;
+  evaluate(l, z, false, &ev);
+  return ev.value;
+}
+
+double Refiner::max_residual() const {
+  if (!con_) return 0.0;
+  double worst = 0.0;
+  std::vector<double> drdz(m_);
+  Vec3 drdp;
+  const int nres = path_.closed ? k_ : k_ + 2;
+  for (int q = 0; q < nres; ++q) {
+    const Vec3 p = q < k_ ? point(q, lambda_) : (q == k_ ? ps_ : pt_);
+    worst = std::max(worst, std::fabs(con_->evaluate(p, z_.data(), &drdp,
+                                                     m_ > 0 ? drdz.data() : nullptr)));
+  }
+  return worst;
+}
+
+double Refiner::projected_gradient(const Eval& ev) const {
+  double worst = 0.0;
+  for (int i = 0; i < k_; ++i) {
+    if (is_active(ev, i)) continue;
+    worst = std::max(worst, std::fabs(ev.g[i]) / d_[i].norm());
+  }
+  for (int c = 0; c < m_; ++c) worst = std::max(worst, std::fabs(ev.g[k_ + c]) / scale_);
+  return worst;
+}
+
+bool Refiner::newton_direction(const Eval& ev, std::vector<double>* dir) {
+  const int n = k_ + m_;
+  dir->assign(n, 0.0);
+  if (k_ == 0 && m_ == 0) return true;
+  std::vector<double> hd(k_), ho(k_, 0.0);
+  std::vector<char> act(k_);
+  for (int i = 0; i < k_; ++i) act[i] = is_active(ev, i);
+  for (int i = 0; i < k_; ++i) {
+    if (act[i]) {
+      hd[i] = 1.0;
+    } else {
+      // Levenberg-style safeguard: the Hessian is only positive semi-definite.
+      const double floor = 1e-12 * d_[i].squaredNorm() / scale_;
+      hd[i] = ev.hd[i] * (1.0 + 1e-10) + floor;
+    }
+  }
+  for (int i = 0; i < k_; ++i) {
+    const int j = (i + 1) % k_;
+    if (!path_.closed && i == k_ - 1) break;
+    if (!act[i] && !act[j]) ho[i] = ev.ho[i];
+  }
+  tri_.set(hd, ho, k_, path_.closed);
+  std::vector<double> x(k_);
+  for (int i = 0; i < k_; ++i) x[i] = act[i] ? 0.0 : -ev.g[i];
+  if (k_ > 0 && !tri_.solve(&x)) return false;
+  if (m_ > 0) {
+    // Bordered system [T B; B^T C] [x; y] = [-g_l; -g_z] via the Schur complement.
+    std::vector<std::vector<double>> X(m_, std::vector<double>(k_));
+    for (int c = 0; c < m_; ++c) {
+      for (int i = 0; i < k_; ++i) X[c][i] = act[i] ? 0.0 : ev.B[i * m_ + c];
+      if (k_ > 0 && !tri_.solve(&X[c])) return false;
+    }
+    Eigen::MatrixXd S(m_, m_);
+    Eigen::VectorXd r(m_);
+    double trace = 0.0;
+    for (int c = 0; c < m_; ++c) trace += ev.C[c * m_ + c];
+    for (int c = 0; c < m_; ++c) {
+      double bx = 0.0;
+      for (int i = 0; i < k_; ++i)
+        if (!act[i]) bx += ev.B[i * m_ + c] * x[i];
+      r[c] = -ev.g[k_ + c] - bx;
+      for (int e = 0; e < m_; ++e) {
+        double bX = 0.0;
+        for (int i = 0; i < k_; ++i)
+          if (!act[i]) bX += ev.B[i * m_ + c] * X[e][i];
+        S(c, e) = ev.C[c * m_ + e] - bX;
+      }
+      S(c, c) += 1e-12 * trace + 1e-300;
+    }
+    const Eigen::VectorXd y = S.ldlt().solve(r);
+    if (!y.allFinite()) return false;
+    for (int i = 0; i < k_; ++i)
+      for (int c = 0; c < m_; ++c) x[i] -= X[c][i] * y[c];
+    for (int c = 0; c < m_; ++c) (*dir)[k_ + c] = y[c];
+  }
+  for (int i = 0; i < k_; ++i) (*dir)[i] = act[i] ? 0.0 : x[i];
+  double slope = 0.0;
+  for (int i = 0; i < n; ++i) slope += ev.g[i] * (*dir)[i];
+  for (double v : *dir)
+    if (!std::isfinite(v)) return false;
+  return slope < 0.0;
+}
+
+void Refiner::lbfgs_direction(const Eval& ev, std::vector<double>* dir) {
+  const int n = k_ + m_;
+  std::vector<double> q(n);
+  std::vector<char> act(n, 0);
+  for (int i = 0; i < k_; ++i) act[i] = is_active(ev, i);
+  for (int i = 0; i < n; ++i) q[i] = act[i] ? 0.0 : ev.g[i];
+  const int mem = static_cast<int>(s_mem_.size());
+  std::vector<double> alpha(mem), rho(mem);
+  auto dot = [&](const std::vector<double>& u, const std::vector<double>& v) {
+    double s = 0.0;
+    for (int i = 0; i < n; ++i)
+      if (!act[i]) s += u[i] * v[i];
+    return s;
+  };
+  for (int t = mem - 1; t >= 0; --t) {
+    const double sy = dot(s_mem_[t], y_mem_[t]);
+    rho[t] = sy > 0.0 ? 1.0 / sy : 0.0;
+    alpha[t] = rho[t] * dot(s_mem_[t], q);
+    for (int i = 0; i < n; ++i)
+      if (!act[i]) q[i] -= alpha[t] * y_mem_[t][i];
+  }
+  double gamma = 0.0;
+  if (mem > 0) {
+    const double yy = dot(y_mem_[mem - 1], y_mem_[mem - 1]);
+    const double sy = dot(s_mem_[mem - 1], y_mem_[mem - 1]);
+    if (yy > 0.0 && sy > 0.0) gamma = sy / yy;
+  }
+  if (!(gamma > 0.0)) {
+    // First step: a diagonal scaling by the edge lengths (a crossing moves ~ a fraction of it).
+    double gmax = 0.0;
+    for (int i = 0; i < n; ++i) gmax = std::max(gmax, std::fabs(q[i]));
+    gamma = gmax > 0.0 ? 0.05 / gmax : 1.0;
+  }
+  for (int i = 0; i < n; ++i) q[i] *= gamma;
+  for (int t = 0; t < mem; ++t) {
+    const double beta = rho[t] * dot(y_mem_[t], q);
+    for (int i = 0; i < n; ++i)
+      if (!act[i]) q[i] += s_mem_[t][i] * (alpha[t] - beta);
+  }
+  dir->assign(n, 0.0);
+  double slope = 0.0;
+  for (int i = 0; i < n; ++i) {
+    (*dir)[i] = act[i] ? 0.0 : -q[i];
+    slope += (*dir)[i] * ev.g[i];
+  }
+  if (!(slope < 0.0)) {
+    s_mem_.clear();
+    y_mem_.clear();
+    double gmax = 0.0;
+    for (int i = 0; i < n; ++i) gmax = std::max(gmax, act[i] ? 0.0 : std::fabs(ev.g[i]));
+    const double s = gmax > 0.0 ? 0.05 / gmax : 0.0;
+    for (int i = 0; i < n; ++i) (*dir)[i] = act[i] ? 0.0 : -s * ev.g[i];
+  }
+}
+
+bool Refiner::line_search(const Eval& ev, const std::vector<double>& dir, double* new_value) {
+  const int n = k_ + m_;
+  std::vector<double> l(k_), z(m_);
+  double alpha = 1.0;
+  for (int attempt = 0; attempt < 40; ++attempt) {
+    double decrease = 0.0;
+    for (int i = 0; i < k_; ++i) {
+      l[i] = std::clamp(lambda_[i] + alpha * dir[i], 0.0, 1.0);
+      decrease += ev.g[i] * (l[i] - lambda_[i]);
+    }
+    for (int c = 0; c < m_; ++c) {
+      z[c] = z_[c] + alpha * dir[k_ + c];
+      decrease += ev.g[k_ + c] * (z[c] - z_[c]);
+    }
+    const double f = value_only(l, z);
+    if (f <= ev.value + 1e-4 * decrease || (decrease == 0.0 && f <= ev.value)) {
+      if (opt_.solver == GeodesicSolver::Lbfgs) {
+        // Store the pair before the variables change.
+        std::vector<double> s(n), y(n, 0.0);
+        for (int i = 0; i < k_; ++i) s[i] = l[i] - lambda_[i];
+        for (int c = 0; c < m_; ++c) s[k_ + c] = z[c] - z_[c];
+        s_mem_.push_back(std::move(s));
+        y_mem_.push_back(std::move(y));  // completed after the next evaluation
+      }
+      lambda_ = l;
+      z_ = z;
+      *new_value = f;
+      return true;
+    }
+    alpha *= 0.5;
+  }
+  return false;
+}
+
+bool Refiner::fan_lift(const std::vector<int>& run, int v, const Vec3& P, const Vec3& Q,
+                       bool apply, double* theta) {
+  // Unfold the fan of strip faces around v crossed by `run` (consecutive crossings, all spokes of
+  // v) into the plane; angles are measured from the direction v -> P.
+  const Vec3& pv = mesh_.position(v);
+  const Vec3 dP = P - pv, dQ = Q - pv;
+  const double rP = dP.norm(), rQ = dQ.norm();
+  const int n = static_cast<int>(run.size());
+  std::vector<double> phi(n);
+  auto spoke = [&](int m) {
+    const int h = path_.halfedges[m];
+    return mesh_.position(mesh_.from(h) == v ? mesh_.to(h) : mesh_.from(h)) - pv;
+  };
+  phi[0] = angle_between(dP, spoke(run[0]));
+  for (int q = 1; q < n; ++q) {
+    const int f = mesh_.face(path_.halfedges[run[q]]);  // strip face between run[q-1] and run[q]
+    phi[q] = phi[q - 1] + mesh_.corner_angle(outgoing_in_face(mesh_, f, v));
+  }
+  *theta = phi.back() + angle_between(spoke(run.back()), dQ);
+  if (!apply) return true;
+  if (!(rP > 0.0) || !(rQ > 0.0)) return false;
+  // The straight segment P'Q' in the unfolding crosses every spoke when theta < pi.
+  const Vec2 Pp(rP, 0.0), Qp(rQ * std::cos(*theta), rQ * std::sin(*theta));
+  const Vec2 D = Qp - Pp;
+  const double cPD = Pp.x() * D.y() - Pp.y() * D.x();
+  for (int q = 0; q < n; ++q) {
+    const int m = run[q];
+    const Vec2 u(std::cos(phi[q]), std::sin(phi[q]));
+    const double cuD = u.x() * D.y() - u.y() * D.x();
+    double r = cuD != 0.0 ? cPD / cuD : 0.0;
+    r = std::clamp(r / d_[m].norm(), 0.0, 1.0);
+    lambda_[m] = mesh_.from(path_.halfedges[m]) == v ? r : 1.0 - r;
+  }
+  return true;
+}
+
+void Refiner::rotate_closed(int shift) {
+  if (shift == 0) return;
+  std::rotate(path_.halfedges.begin(), path_.halfedges.begin() + shift, path_.halfedges.end());
+  std::rotate(path_.lambdas.begin(), path_.lambdas.begin() + shift, path_.lambdas.end());
+  std::rotate(mu_.begin(), mu_.begin() + shift, mu_.end());
+  rebuild();
+}
+
+void Refiner::replace_run(int i, int j, const std::vector<int>& hs, const std::vector<double>& ls) {
+  path_.halfedges.erase(path_.halfedges.begin() + i, path_.halfedges.begin() + j + 1);
+  path_.lambdas.erase(path_.lambdas.begin() + i, path_.lambdas.begin() + j + 1);
+  path_.halfedges.insert(path_.halfedges.begin() + i, hs.begin(), hs.end());
+  path_.lambdas.insert(path_.lambdas.begin() + i, ls.begin(), ls.end());
+  // Multipliers are per point (crossings first, then the two endpoints of an open path); the
+  // replaced run's points restart at zero.
+  std::vector<double> mu_new;
+  mu_new.reserve(mu_.size() - (j - i + 1) + hs.size());
+  mu_new.insert(mu_new.end(), mu_.begin(), mu_.begin() + i);
+  mu_new.insert(mu_new.end(), hs.size(), 0.0);
+  mu_new.insert(mu_new.end(), mu_.begin() + j + 1, mu_.end());
+  mu_ = std::move(mu_new);
+  rebuild();
+}
+
+Refiner::Action Refiner::handle_vertex(int idx, int v) {
+  auto incident = [&](int m) {
+    const int h = path_.halfedges[m];
+    return mesh_.from(h) == v || mesh_.to(h) == v;
+  };
+  // The maximal run of consecutive crossings on spokes of v around idx.
+  int i = idx, j = idx, count = 1;
+  if (path_.closed) {
+    while (count < k_ && incident((i - 1 + k_) % k_)) {
+      i = (i - 1 + k_) % k_;
+      ++count;
+    }
+    while (count < k_ && incident((j + 1) % k_)) {
+      j = (j + 1) % k_;
+      ++count;
+    }
+    if (count >= k_ - 1) return Action::Pinned;  // the whole loop circles one vertex
+  } else {
+    while (i > 0 && incident(i - 1)) --i;
+    while (j + 1 < k_ && incident(j + 1)) ++j;
+    count = j - i + 1;
+  }
+  std::vector<int> run(count);
+  for (int q = 0; q < count; ++q) run[q] = (i + q) % k_;
+  const Vec3& pv = mesh_.position(v);
+  const double eps_d = 1e-12 * scale_;
+  // Endpoint at the vertex: drop the crossings around it (the path starts/ends at v).
+  if (!path_.closed) {
+    const bool start_at_v = i == 0 && (ps_ - pv).norm() <= eps_d;
+    const bool end_at_v = j == k_ - 1 && (pt_ - pv).norm() <= eps_d;
+    if (start_at_v || end_at_v) {
+      const int new_start_face =
+          start_at_v ? mesh_.face(mesh_.twin(path_.halfedges[j])) : path_.start_face;
+      replace_run(i, j, {}, {});
+      path_.start_face = k_ > 0 ? mesh_.face(path_.halfedges[0]) : new_start_face;
+      return Action::Collapsed;
+    }
+  }
+  const int before = path_.closed ? (i - 1 + k_) % k_ : i - 1;
+  const int after = path_.closed ? (j + 1) % k_ : j + 1;
+  const Vec3 P = before >= 0 ? point(before, lambda_) : ps_;
+  const Vec3 Q = after < k_ ? point(after, lambda_) : pt_;
+  if ((P - pv).norm() <= eps_d || (Q - pv).norm() <= eps_d) return Action::Pinned;
+
+  constexpr double kAngleTol = 1e-12;
+  double theta = 0.0;
+  fan_lift(run, v, P, Q, false, &theta);
+  int& tries = lifts_at_[v];
+  if (theta < M_PI - kAngleTol && tries < 8) {
+    ++tries;
+    fan_lift(run, v, P, Q, true, &theta);
+    ++lifts_;
+    return Action::Lifted;
+  }
+  if (mesh_.is_boundary_vertex(v) || tries >= 8) return Action::Pinned;
+  const double other = mesh_.cone_angle(v) - theta;
+  if (!(other < M_PI - kAngleTol)) return Action::Pinned;
+  // Reroute: the fan on the other side of v, from f_i to f_{j+1}.
+  const int f_in = mesh_.face(path_.halfedges[i]);
+  const int f_out = mesh_.face(mesh_.twin(path_.halfedges[j]));
+  int hv = outgoing_in_face(mesh_, f_in, v);
+  const bool current_ccw = path_.halfedges[i] != hv;  // crossing prev(hv) rotates CCW
+  const bool ccw = !current_ccw;
+  std::vector<int> hs;
+  std::vector<double> ls;
+  int face = f_in;
+  const int limit = 2 * mesh_.valence(v) + 2;
+  for (int step = 0; step < limit && face != f_out; ++step) {
+    const int c = ccw ? mesh_.prev(hv) : hv;
+    const int t = mesh_.twin(c);
+    if (mesh_.is_boundary_halfedge(t)) return Action::Pinned;
+    hs.push_back(c);
+    ls.push_back(ccw ? 1.0 : 0.0);
+    face = mesh_.face(t);
+    hv = ccw ? t : mesh_.next(t);
+  }
+  if (face != f_out || hs.empty()) return Action::Pinned;
+  if (path_.closed && i + count > k_) {
+    // The run wraps around the end of the arrays: rotate so that it starts at index 0.
+    rotate_closed(i);
+    i = 0;
+    j = count - 1;
+  }
+  replace_run(i, j, hs, ls);
+  ++tries;
+  std::vector<int> new_run(hs.size());
+  for (std::size_t q = 0; q < hs.size(); ++q) new_run[q] = i + static_cast<int>(q);
+  fan_lift(new_run, v, P, Q, true, &theta);
+  ++reroutes_;
+  return Action::Rerouted;
+}
+
+bool Refiner::process_vertex_events(const Eval& ev) {
+  std::fill(fixed_.begin(), fixed_.end(), 0);
+  for (int i = 0; i < k_; ++i) {
+    const double l = lambda_[i];
+    if (fixed_[i] || (l > 0.0 && l < 1.0)) continue;
+    const bool out = (l <= 0.0 && ev.g[i] > 0.0) || (l >= 1.0 && ev.g[i] < 0.0);
+    if (!out && !ev.zero_adjacent[i]) continue;
+    const int h = path_.halfedges[i];
+    const int v = l <= 0.0 ? mesh_.from(h) : mesh_.to(h);
+    const Action a = handle_vertex(i, v);
+    if (a == Action::Pinned) {
+      // Fix every crossing of the run at v (re-tested next iteration).
+      for (int m = 0; m < k_; ++m) {
+        const int hm = path_.halfedges[m];
+        if ((lambda_[m] <= 0.0 && mesh_.from(hm) == v) || (lambda_[m] >= 1.0 && mesh_.to(hm) == v))
+          fixed_[m] = 1;
+      }
+      continue;
+    }
+    if (a != Action::None) return true;
+  }
+  return false;
+}
+
+bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
+  (void)t0;
+  Eval ev;
+  evaluate(lambda_, z_, opt_.solver == GeodesicSolver::Newton, &ev);
+  s_mem_.clear();
+  y_mem_.clear();
+  int stalls = 0;
+  std::vector<double> dir;
+  while (true) {
+    if (iterations_ >= opt_.max_iterations) {
+      termination_ = GeodesicTermination::MaxIterations;
+      break;
+    }
+    if (reroutes_ + lifts_ > max_reroutes_) {
+      termination_ = GeodesicTermination::MaxReroutes;
+      break;
+    }
+    if (process_vertex_events(ev)) {
+      s_mem_.clear();
+      y_mem_.clear();
+      evaluate(lambda_, z_, opt_.solver == GeodesicSolver::Newton, &ev);
+      stalls = 0;
+      continue;
+    }
+    const double pg = projected_gradient(ev);
+    summary->projected_gradient = pg;
+    if (pg <= opt_.gradient_tolerance) {
+      termination_ = GeodesicTermination::Converged;
+      break;
+    }
+    ++iterations_;
+    bool have_dir = false;
+    if (opt_.solver == GeodesicSolver::Newton) have_dir = newton_direction(ev, &dir);
+    if (!have_dir) lbfgs_direction(ev, &dir);
+    const std::vector<double> g_old = ev.g;
+    double f_new = 0.0;
+    if (!line_search(ev, dir, &f_new)) {
+      termination_ = GeodesicTermination::LineSearchFailed;
+      summary->message = "no decrease along the search direction";
+      break;
+    }
+    const double f_old = ev.value;
+    evaluate(lambda_, z_, opt_.solver == GeodesicSolver::Newton, &ev);
+    if (opt_.solver == GeodesicSolver::Lbfgs && !y_mem_.empty()) {
+      auto& y = y_mem_.back();
+      for (int i = 0; i < k_ + m_; ++i) y[i] = ev.g[i] - g_old[i];
+      if (static_cast<int>(s_mem_.size()) > opt_.lbfgs_memory) {
+        s_mem_.pop_front();
+        y_mem_.pop_front();
+      }
+    }
+    if (std::fabs(f_old - ev.value) <= opt_.objective_tolerance * std::max(1.0, std::fabs(f_old))) {
+      if (++stalls >= 2) {
+        termination_ = GeodesicTermination::ObjectiveStalled;
+        // Still process pending vertex events before stopping.
+        if (process_vertex_events(ev)) {
+          evaluate(lambda_, z_, opt_.solver == GeodesicSolver::Newton, &ev);
+          stalls = 0;
+          continue;
+        }
+        break;
+      }
+    } else {
+      stalls = 0;
+    }
+  }
+  return true;
+}
+
+GeodesicResult Refiner::run() {
+  const auto t0 = Clock::now();
+  GeodesicSummary summary;
+  max_reroutes_ = opt_.max_reroutes > 0 ? opt_.max_reroutes : 50 + 10 * k_;
+  {
+    Eval ev;
+    evaluate(lambda_, z_, false, &ev);
+    summary.initial_length = ev.length;
+  }
+  if (!con_) {
+    inner_solve(&summary, t0);
+  } else {
+    // Penalty weight: the initial penalty at a residual of one mean edge length per point is
+    // about 10x the length (the paper's rule of thumb), unless given.
+    const double L0 = std::max(summary.initial_length, scale_);
+    const int npts = path_.closed ? k_ : k_ + 2;
+    if (opt_.penalty_weight > 0.0) {
+      M_ = opt_.penalty_weight;
+    } else if (opt_.penalty_mode == PenaltyMode::Paper) {
+      double h2 = 0.0;
+      std::vector<double> drdz(m_);
+      Vec3 drdp;
+      for (int q = 0; q < npts; ++q) {
+        const Vec3 p = q < k_ ? point(q, lambda_) : (q == k_ ? ps_ : pt_);
+        const double r = con_->evaluate(p, z_.data(), &drdp, m_ > 0 ? drdz.data() : nullptr);
+        h2 += r * r;
+      }
+      h2 = std::max(h2, npts * 1e-6 * scale_ * scale_);
+      M_ = 2.0 * 10.0 * L0 / h2;
+    } else {
+      M_ = 2.0 * 10.0 * L0 / (npts * scale_ * scale_);
+    }
+    penalty_on_ = true;
+    double last = std::numeric_limits<double>::infinity();
+    for (int outer = 0; outer < opt_.max_outer_iterations; ++outer) {
+      summary.outer_iterations = outer + 1;
+      inner_solve(&summary, t0);
+      const double res = max_residual();
+      Eval ev;
+      evaluate(lambda_, z_, false, &ev);
+      const double tol = opt_.constraint_tolerance * std::max(ev.length, scale_);
+      if (opt_.penalty_mode == PenaltyMode::Paper || res <= tol) break;
+      // Augmented Lagrangian multiplier update, and a stiffer penalty if progress is slow.
+      std::vector<double> drdz(m_);
+      Vec3 drdp;
+      for (int q = 0; q < npts && q < static_cast<int>(mu_.size()); ++q) {
+        const Vec3 p = q < k_ ? point(q, lambda_) : (q == k_ ? ps_ : pt_);
+        mu_[q] += M_ * con_->evaluate(p, z_.data(), &drdp, m_ > 0 ? drdz.data() : nullptr);
+      }
+      if (res > 0.25 * last) M_ *= 10.0;
+      last = res;
+      con_->recentre(z_.data());
+    }
+    if (m_ > 0) con_->recentre(z_.data());
+  }
+  Eval ev;
+  penalty_on_ = false;
+  evaluate(lambda_, z_, false, &ev);
+  summary.final_length = ev.length;
+  summary.constraint_residual = max_residual();
+  if (con_ && termination_ == GeodesicTermination::Converged &&
+      summary.constraint_residual >
+          opt_.constraint_tolerance * std::max(summary.final_length, scale_) * 10.0) {
+    summary.message = "constraint residual above tolerance";
+  }
+  summary.termination = termination_;
+  summary.iterations = iterations_;
+  summary.evaluations = evaluations_;
+  summary.reroutes = reroutes_;
+  summary.lifts = lifts_;
+  int pinned = 0;
+  for (int i = 0; i < k_; ++i)
+    if (fixed_[i] && (i == 0 || !fixed_[i - 1])) ++pinned;
+  summary.pinned_vertices = pinned;
+  GeodesicResult result;
+  result.path = path_;
+  if (!result.path.closed && result.path.num_crossings() > 0)
+    result.path.start_face = mesh_.face(result.path.halfedges[0]);
+  summary.euclidean_length = euclidean_length(mesh_, result.path);
+  summary.time_ms = ms_since(t0);
+  result.summary = summary;
+  result.constraint_variables = z_;
+  return result;
+}
+
+}  // namespace
+
+GeodesicResult refine_path(const Mesh& mesh, const SurfacePath& initial, const PathMetric& metric,
+                           const GeodesicOptions& options, PathConstraint* constraint) {
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("geodesic options: " + why);
+  if (!is_valid_path(mesh, initial, &why)) throw InputError("initial path: " + why);
+  Refiner refiner(mesh, initial, metric, options, constraint);
+  return refiner.run();
+}
+
+GeodesicContext::GeodesicContext(const Mesh& mesh, PathMetric metric)
+    : mesh_(mesh), metric_(std::move(metric)), graph_(build_edge_graph(mesh, metric_)) {}
+
+OpenGeodesicResult geodesic_between(const GeodesicContext& context, const SurfacePoint& a,
+                                    const SurfacePoint& b, const GeodesicOptions& options,
+                                    const EdgePathOptions& edge_options) {
+  OpenGeodesicResult result;
+  const auto t0 = Clock::now();
+  const SurfacePath init =
+      initial_open_path(context.mesh(), context.graph(), a, b, edge_options, &result.edge_path);
+  result.init_ms = ms_since(t0);
+  const auto t1 = Clock::now();
+  GeodesicResult r = refine_path(context.mesh(), init, context.metric(), options);
+  result.refine_ms = ms_since(t1);
+  result.path = std::move(r.path);
+  result.summary = r.summary;
+  result.constraint_variables = std::move(r.constraint_variables);
+  return result;
+}
+
+}  // namespace windplan

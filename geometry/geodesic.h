@@ -1,0 +1,132 @@
+#pragma once
+// The geodesic core: refines a surface path into an as-short-as-possible path.
+//
+// After Liu, Chen, Xin, He, Liu, Zhao, "An Optimization-Driven Approach for Computing Geodesic
+// Paths on Triangle Meshes" (eq. 1-8, Algorithm 1). The path is the sequence of edges it crosses
+// (geometry/surface_path.h); the crossing parameters l_i in [0, 1] minimise the total length under
+// a per-face metric (geometry/path_metric.h: Euclidean, density, anisotropic) plus penalty terms
+// for constraints (geometry/path_constraint.h). When l_i reaches 0 or 1 the path touches a vertex;
+// the face strip is then rerouted around that vertex when the path wants to pass it on the other
+// side (for the Euclidean metric: the angle on the current side is >= pi and the angle on the
+// other side is < pi), lifted off the vertex when the current side's angle is < pi, and otherwise
+// pinned there (a geodesic through a saddle vertex).
+//
+// Beyond the paper: inside a fixed strip the objective is convex with a tridiagonal Hessian
+// (cyclic for loops; bordered by the constraint's extra variables), so a projected Newton step
+// costs O(k) for k crossings and converges quadratically. Solver::Newton is the default;
+// Solver::Lbfgs is the paper's projected L-BFGS.
+#include <string>
+#include <vector>
+
+#include "geometry/edge_path.h"
+#include "geometry/mesh.h"
+#include "geometry/path_constraint.h"
+#include "geometry/path_metric.h"
+#include "geometry/surface_path.h"
+
+namespace windplan {
+
+enum class GeodesicSolver { Newton, Lbfgs };
+
+/// How the penalty weight M is chosen for constraints.
+enum class PenaltyMode {
+  /// The paper's rule: M fixed so that the initial penalty is about 10x the length.
+  Paper,
+  /// Augmented Lagrangian with an increasing M until the residual is below tolerance (default).
+  AugmentedLagrangian,
+};
+
+struct GeodesicOptions {
+  GeodesicSolver solver = GeodesicSolver::Newton;
+  /// Stop when every free crossing's projected gradient, divided by its edge length, is below
+  /// this (dimensionless: the sine of the kink angle, times the density).
+  double gradient_tolerance = 1e-10;
+  /// Stop also when the relative objective change of an iteration is below this, twice in a row.
+  double objective_tolerance = 1e-15;
+  int max_iterations = 2000;
+  /// Upper bound on strip changes (reroutes) before giving up (0: 20 + 4 * crossings).
+  int max_reroutes = 0;
+  /// L-BFGS memory (pairs).
+  int lbfgs_memory = 10;
+  // Constraints:
+  PenaltyMode penalty_mode = PenaltyMode::AugmentedLagrangian;
+  /// Required max |r| relative to the path length for constraints.
+  double constraint_tolerance = 1e-9;
+  int max_outer_iterations = 30;
+  /// Fixed penalty weight (> 0 overrides the automatic choice; units 1/mm).
+  double penalty_weight = 0.0;
+
+  bool is_valid(std::string* why) const;
+};
+
+enum class GeodesicTermination {
+  Converged,             ///< gradient (and constraint residual) below tolerance
+  ObjectiveStalled,      ///< the objective stopped changing before the gradient test passed
+  MaxIterations,
+  MaxReroutes,
+  LineSearchFailed,
+};
+const char* to_string(GeodesicTermination t);
+
+struct GeodesicSummary {
+  GeodesicTermination termination = GeodesicTermination::Converged;
+  std::string message;
+  double initial_length = 0.0;     ///< metric-weighted length of the initial path (mm)
+  double final_length = 0.0;       ///< metric-weighted length of the result (mm)
+  double euclidean_length = 0.0;   ///< plain length of the result (mm)
+  int iterations = 0;
+  int evaluations = 0;
+  int reroutes = 0;                ///< strip changes around a vertex
+  int lifts = 0;                   ///< collapsed vertex runs lifted off a vertex
+  int pinned_vertices = 0;         ///< vertices the final path passes through
+  int outer_iterations = 0;        ///< constraint (augmented Lagrangian) rounds
+  double constraint_residual = 0.0;///< max |r| over the path points (mm for planes)
+  double projected_gradient = 0.0; ///< final max normalised projected gradient
+  double time_ms = 0.0;
+  bool converged() const {
+    return termination == GeodesicTermination::Converged ||
+           termination == GeodesicTermination::ObjectiveStalled;
+  }
+  std::string brief_report() const;
+};
+
+struct GeodesicResult {
+  SurfacePath path;
+  GeodesicSummary summary;
+  std::vector<double> constraint_variables;  ///< final z of the constraint (e.g. the plane)
+};
+
+/// Refines `initial` (open or closed) into a locally shortest path under `metric`, subject to an
+/// optional penalty constraint. Endpoints of open paths stay fixed.
+/// \throw InputError when the initial path is invalid (see is_valid_path).
+GeodesicResult refine_path(const Mesh& mesh, const SurfacePath& initial,
+                           const PathMetric& metric = {}, const GeodesicOptions& options = {},
+                           PathConstraint* constraint = nullptr);
+
+/// Reusable state for many queries on one mesh and metric (precompute / query split).
+class GeodesicContext {
+ public:
+  GeodesicContext(const Mesh& mesh, PathMetric metric = {});
+  const Mesh& mesh() const { return mesh_; }
+  const PathMetric& metric() const { return metric_; }
+  const EdgeGraph& graph() const { return graph_; }
+
+ private:
+  const Mesh& mesh_;
+  PathMetric metric_;
+  EdgeGraph graph_;
+};
+
+struct OpenGeodesicResult : GeodesicResult {
+  double init_ms = 0.0;    ///< initial edge path and strip
+  double refine_ms = 0.0;  ///< refinement
+  EdgePath edge_path;      ///< diagnostics of the initial search
+};
+
+/// Geodesic between two surface points: A* edge path, strip, refinement.
+/// \throw InputError if the points lie on different components.
+OpenGeodesicResult geodesic_between(const GeodesicContext& context, const SurfacePoint& a,
+                                    const SurfacePoint& b, const GeodesicOptions& options = {},
+                                    const EdgePathOptions& edge_options = {});
+
+}  // namespace windplan
