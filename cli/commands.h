@@ -19,4 +19,8 @@ const std::vector<Command>& commands();
 
 // One function per subcommand, each in its own cmd_<name>.cpp.
 
+/// cmd_mesh.cpp: load, check, repair and write a mesh file or a job's mesh mandrel.
+int run_mesh(const std::vector<std::string>& args);
+extern const char* const kMeshHelp;
+
 }  // namespace windplan::cli
