@@ -1,0 +1,108 @@
+#include "export/export_plan.h"
+
+#include "export/gcode.h"
+#include "export/ply_polylines.h"
+#include "export/report.h"
+#include "export/svg.h"
+#include "geometry/atomic_file.h"
+#include "geometry/errors.h"
+
+namespace windplan {
+
+CsvTable fibre_path_table(const WindingPlan& plan) {
+  CsvTable t;
+  t.header = {"circuit", "index",     "x [mm]",     "y [mm]",     "z [mm]",
+              "nx",      "ny",        "nz",         "tx",         "ty",
+              "tz",      "s [mm]",    "winding_angle [deg]",      "k_n [1/mm]",
+              "k_g [1/mm]", "slippage"};
+  for (const Circuit& c : plan.circuits) {
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      const FibrePoint& p = c.points[i];
+      t.rows.push_back({double(c.index), double(i), p.position.x(), p.position.y(),
+                        p.position.z(), p.normal.x(), p.normal.y(), p.normal.z(), p.tangent.x(),
+                        p.tangent.y(), p.tangent.z(), p.s, p.winding_angle, p.k_n, p.k_g,
+                        p.slippage});
+    }
+  }
+  return t;
+}
+
+CsvTable payout_table(const Motion& motion) {
+  CsvTable t;
+  t.header = {"circuit",          "index",
+              "eye_x [mm]",       "eye_y [mm]",
+              "eye_z [mm]",       "free_length [mm]",
+              "fibre_length [mm]"};
+  for (const MachineState& s : motion.states) {
+    t.rows.push_back({double(s.circuit), double(s.index), s.eye.x(), s.eye.y(), s.eye.z(),
+                      s.free_length, s.paid_out});
+  }
+  return t;
+}
+
+CsvTable axes_table(const Motion& motion) {
+  CsvTable t;
+  t.header = {"circuit", "index",  "t_s [s]", "A_deg [deg]", "X_mm [mm]",
+              "Y_mm [mm]", "B_deg [deg]",
+              motion.inverse_time ? "F [1/min]" : "F [units/min]"};
+  for (const MachineState& s : motion.states) {
+    t.rows.push_back({double(s.circuit), double(s.index), s.t_s, s.a_deg, s.x_mm, s.y_mm,
+                      s.b_deg, s.feed});
+  }
+  return t;
+}
+
+CsvTable eye_pose_table(const Motion& motion) {
+  CsvTable t;
+  t.header = {"circuit",    "index",      "t_s [s]",    "A_deg [deg]", "eye_x [mm]",
+              "eye_y [mm]", "eye_z [mm]", "dir_x",      "dir_y",       "dir_z"};
+  for (const MachineState& s : motion.states) {
+    t.rows.push_back({double(s.circuit), double(s.index), s.t_s, s.a_deg, s.eye.x(), s.eye.y(),
+                      s.eye.z(), s.direction.x(), s.direction.y(), s.direction.z()});
+  }
+  return t;
+}
+
+ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
+                         const MachineOptions& machine, const OutputOptions& output,
+                         const std::filesystem::path& dir) {
+  ExportResult r;
+  r.directory = dir;
+  r.machine = machine;
+  r.timings = output.timings;
+  r.motion = compute_motion(plan, machine);
+  const bool robot = machine.kind == "robot";
+
+  // The list first, so that the reports can name every file (themselves included).
+  if (output.csv) {
+    r.files.insert(r.files.end(), {"fibre_path.csv", "payout.csv", "axes.csv"});
+    if (robot) r.files.push_back("eye_pose.csv");
+  }
+  const std::string gcode_name = "toolpath" + gcode_extension(machine.gcode.dialect);
+  if (output.gcode && !robot) r.files.push_back(gcode_name);
+  if (output.ply) r.files.insert(r.files.end(), {"mesh.ply", "paths.ply"});
+  if (output.svg) r.files.push_back("development.svg");
+  if (output.report) r.files.insert(r.files.end(), {"report.json", "report.md"});
+
+  if (output.csv) {
+    write_csv_file(dir / "fibre_path.csv", fibre_path_table(plan));
+    write_csv_file(dir / "payout.csv", payout_table(r.motion));
+    write_csv_file(dir / "axes.csv", axes_table(r.motion));
+    if (robot) write_csv_file(dir / "eye_pose.csv", eye_pose_table(r.motion));
+  }
+  if (output.gcode && !robot) {
+    write_text_atomically(dir / gcode_name, gcode_program(r.motion, plan.job_name, machine));
+  }
+  if (output.ply) {
+    write_text_atomically(dir / "mesh.ply", mesh_ply(mandrel_mesh));
+    write_text_atomically(dir / "paths.ply", paths_ply(plan));
+  }
+  if (output.svg) write_text_atomically(dir / "development.svg", development_svg(plan));
+  if (output.report) {
+    write_text_atomically(dir / "report.json", report_json(plan, r));
+    write_text_atomically(dir / "report.md", report_markdown(plan, r));
+  }
+  return r;
+}
+
+}  // namespace windplan

@@ -1,0 +1,52 @@
+#pragma once
+// Writes every output file of a plan into a directory (all through write_file_atomically, so an
+// interrupted run never leaves a partial file under a real name; temporaries are "*.tmp.<pid>").
+// Two exports of the same plan and options give byte-identical files: no timestamps, fixed number
+// formats, stage timings only with output.timings (default off).
+//
+// Files (each group switched by OutputOptions):
+//   csv:    fibre_path.csv  circuit, index, x, y, z, nx, ny, nz, tx, ty, tz, s, winding angle,
+//                           k_n, k_g, slippage (every dense plan point)
+//           payout.csv      circuit, index, eye x, y, z, free length, cumulative fibre length
+//                           (resampled points; cumulative = laid length so far + free length)
+//           axes.csv        circuit, index, t_s, A_deg, X_mm, Y_mm, B_deg, F (resampled points)
+//           eye_pose.csv    (machine.kind robot only) circuit, index, t_s, A, eye position and
+//                           unit fibre direction in the mandrel frame
+//   gcode:  toolpath.ngc | toolpath.gcode | toolpath.nc (lathe2/lathe4; see export/gcode.h)
+//   report: report.json, report.md (see export/report.h)
+//   ply:    mesh.ply (the mandrel), paths.ply (see export/ply_polylines.h)
+//   svg:    development.svg (see export/svg.h)
+// "index" is always the index of the point in its circuit's dense points.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "export/csv.h"
+#include "export/kinematics.h"
+#include "geometry/mesh.h"
+#include "planner/machine_options.h"
+#include "planner/plan.h"
+
+namespace windplan {
+
+struct ExportResult {
+  std::filesystem::path directory;
+  std::vector<std::string> files;  ///< names written, in order (relative to directory)
+  Motion motion;                   ///< eye, axes, times (from compute_motion)
+  MachineOptions machine;          ///< as used
+  bool timings = false;            ///< output.timings
+};
+
+/// Computes the motion and writes the files.
+/// \throw InputError (bad envelope, axis limits; see compute_motion), IoError (cannot write).
+ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
+                         const MachineOptions& machine, const OutputOptions& output,
+                         const std::filesystem::path& dir);
+
+/// The CSV tables, for tests and other writers.
+CsvTable fibre_path_table(const WindingPlan& plan);
+CsvTable payout_table(const Motion& motion);
+CsvTable axes_table(const Motion& motion);
+CsvTable eye_pose_table(const Motion& motion);
+
+}  // namespace windplan

@@ -1,0 +1,128 @@
+#pragma once
+// Machine kinematics of a winding plan: the payout eye and the machine axes.
+//
+// Payout eye (the convention of Cadfil's payout files): for a fibre point P with unit tangent t
+// (the direction of travel), the eye is E = P + L t, the point where the tangent line first
+// leaves the clearance envelope; L >= 0 is the free fibre length between eye and mandrel. The
+// envelope is a surface of revolution about the spindle axis, R_env(x) of the axial coordinate x:
+//   - clearance mode: the plan's RadiusProfile plus `clearance`;
+//   - profile mode:   the explicit (x, r) polyline, clamped beyond its ends;
+//   - free_length:    no envelope, L is the configured constant.
+// L solves f(L) = r(E(L)) - R_env(x(E(L))) = 0 for the first root: f is Lipschitz with constant
+// 1 + S (S = the largest |dR_env/dx|), so marching by -f/(1+S) never steps over a root (sphere
+// tracing); the last bracket is refined by bisection to 1e-10 mm.
+//
+// Axis frame: the spindle axis (origin o, unit d) with a fixed orthonormal pair (u, v), u the
+// normalised projection of the world axis least aligned with d (ties: x before y before z), v =
+// d x u. Angular position theta(p) = atan2((p-o).v, (p-o).u), counter-clockwise about d.
+//
+// Lathe axes, for each resampled point (machine frame: the mandrel turned by A about d; the eye
+// moves in the half-plane through the axis spanned by d and u):
+//   A [deg]: spindle angle = -theta(E), unwrapped (continuous over the whole plan), so that the
+//            turned eye lies at angle 0, i.e. on +u;
+//   X [mm]:  carriage = axial coordinate of E;
+//   Y [mm]:  cross-feed = radial distance of E from the axis (lathe2: reported, not a machine axis);
+//   B [deg]: eye rotation about its radial direction (lathe4; 0 for lathe2): with the fibre
+//            direction t resolved at E into axial t_x = t.d and circumferential t_c = t.(d x r_E)
+//            (r_E the unit radial direction of E), B = atan2(t_c, t_x), unwrapped: 0 when the
+//            fibre runs along +d, +90 when it runs circumferentially counter-clockwise about d.
+// Times: each move's duration is the max over the machine's axes of |delta| / max_velocity, and
+// at least delta_s / max_fibre_speed when that is set; t_s accumulates durations from 0 at the
+// first point; the move into the first point of a circuit (c > 0) links it to the previous one.
+// Feed F (the G-code dialect's convention): inverse time F = 60 / duration (1/min, G93), or per
+// minute F = 60 * |(delta of each machine axis)| / duration with degrees counted as mm (G94).
+// The first point of the plan has duration 0 and F 0 (a rapid positioning move).
+#include <array>
+#include <string>
+#include <vector>
+
+#include "geometry/axis.h"
+#include "geometry/mesh.h"
+#include "planner/machine_options.h"
+#include "planner/plan.h"
+
+namespace windplan {
+
+/// The spindle axis with a fixed angular reference (see the header comment).
+struct AxisFrame {
+  Vec3 origin = Vec3::Zero();
+  Vec3 d = Vec3::UnitZ();
+  Vec3 u = Vec3::UnitX();
+  Vec3 v = Vec3::UnitY();
+  double axial(const Vec3& p) const { return (p - origin).dot(d); }
+  double radius(const Vec3& p) const {
+    const Vec3 q = p - origin;
+    return (q - q.dot(d) * d).norm();
+  }
+  /// Angle about d in (-pi, pi] (radians); 0 on the axis.
+  double angle(const Vec3& p) const;
+};
+
+AxisFrame make_axis_frame(const SpindleAxis& axis);
+
+/// The clearance envelope R_env(x) (or the fixed free-length mode).
+struct Envelope {
+  bool fixed_length = false;
+  double free_length = 0.0;   ///< mm, fixed_length mode
+  std::vector<double> x;      ///< mm, strictly increasing
+  std::vector<double> r;      ///< mm
+  double max_slope = 0.0;     ///< max |dr/dx|
+  double radius_at(double ax) const;
+};
+
+/// Builds the envelope from the machine options and the plan's mandrel profile.
+/// \throw InputError when clearance mode has an empty mandrel profile.
+Envelope make_envelope(const RadiusProfile& mandrel, const EnvelopeOptions& opts);
+
+struct EyeSolution {
+  Vec3 eye = Vec3::Zero();
+  double free_length = 0.0;  ///< mm
+  int iterations = 0;
+};
+
+/// Solves the payout eye of point p with unit tangent t.
+/// \throw InputError when p is on or outside the envelope (envelope inside the mandrel) or the
+///        tangent never leaves it (parallel to the axis); `where` names the point in the message.
+EyeSolution solve_payout_eye(const AxisFrame& frame, const Envelope& env, const Vec3& p,
+                             const Vec3& t, const std::string& where = "");
+
+/// The machine's state at one resampled point of the plan.
+struct MachineState {
+  int circuit = 0;
+  int index = 0;            ///< index into the circuit's dense points
+  double t_s = 0.0;         ///< s since the first point
+  double duration = 0.0;    ///< s, of the move into this point
+  double a_deg = 0.0, x_mm = 0.0, y_mm = 0.0, b_deg = 0.0;
+  double feed = 0.0;        ///< F in the dialect's convention
+  Vec3 position = Vec3::Zero();   ///< fibre point (mandrel frame)
+  Vec3 eye = Vec3::Zero();        ///< payout eye (mandrel frame)
+  Vec3 direction = Vec3::UnitZ(); ///< unit fibre direction at the eye (mandrel frame)
+  double free_length = 0.0;       ///< mm
+  double paid_out = 0.0;          ///< mm of fibre through the eye: laid length so far + free length
+};
+
+/// Min and max of one quantity.
+struct Range {
+  double min = 0.0, max = 0.0;
+};
+
+struct Motion {
+  std::vector<MachineState> states;  ///< resampled points of all circuits, in order
+  bool inverse_time = false;         ///< F convention: true G93 (1/min), false G94 (units/min)
+  double wind_time = 0.0;            ///< s, final t_s
+  int dense_points = 0;
+  double max_chord_deviation = 0.0;  ///< mm (fibre and eye polylines)
+  Range a, x, y, b, free_length;     ///< deg, mm, mm, deg, mm
+  int max_eye_iterations = 0;
+};
+
+/// True when the G-code feed convention is inverse time (G93).
+bool uses_inverse_time(const GcodeOptions& g);
+
+/// Computes eye, axes, times and feeds of a plan. Circuits with no points are skipped.
+/// \throw InputError for an envelope inside the mandrel, a tangent that never leaves the
+///        envelope, or a machine value outside an axis's travel limits (naming the axis, the
+///        value and the point as circuit/index).
+Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts);
+
+}  // namespace windplan

@@ -1,0 +1,246 @@
+#include "export/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "geometry/json.h"
+#include "windplan_version.h"
+
+namespace windplan {
+
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v + 0.0);
+  return buf;
+}
+
+/// Per-circuit figures.
+struct CircuitFigures {
+  int index = 0;
+  int points = 0;
+  int machine_points = 0;
+  double length = 0.0;
+  double time = 0.0;
+  double min_angle = 0.0, max_angle = 0.0;
+  double max_slippage = 0.0;
+};
+
+std::vector<CircuitFigures> circuit_figures(const WindingPlan& plan, const Motion& motion) {
+  std::vector<CircuitFigures> out;
+  for (const Circuit& c : plan.circuits) {
+    CircuitFigures f;
+    f.index = c.index;
+    f.points = static_cast<int>(c.points.size());
+    if (!c.points.empty()) {
+      f.length = c.points.back().s - c.points.front().s;
+      f.min_angle = f.max_angle = c.points.front().winding_angle;
+    }
+    for (const FibrePoint& p : c.points) {
+      f.min_angle = std::min(f.min_angle, p.winding_angle);
+      f.max_angle = std::max(f.max_angle, p.winding_angle);
+      f.max_slippage = std::max(f.max_slippage, p.slippage);
+    }
+    for (const MachineState& s : motion.states) {
+      if (s.circuit != c.index) continue;
+      ++f.machine_points;
+      f.time += s.duration;
+    }
+    out.push_back(f);
+  }
+  return out;
+}
+
+void range_json(JsonWriter& j, const std::string& key, const Range& r) {
+  j.key(key).begin_object().field("min", r.min).field("max", r.max).end_object();
+}
+
+std::string feed_name(const Motion& m) {
+  return m.inverse_time ? "G93 inverse time (F = 1/min)" : "G94 per minute (deg counted as mm)";
+}
+
+}  // namespace
+
+std::string report_json(const WindingPlan& plan, const ExportResult& r) {
+  const PlanMetrics& m = plan.metrics;
+  const Motion& mo = r.motion;
+  JsonWriter j(2, 10);
+  j.begin_object();
+  j.field("windplan_version", WINDPLAN_VERSION);
+  j.field("job", plan.job_name);
+  j.key("summary").begin_object();
+  j.field("fibre_length_mm", m.fibre_length);
+  j.field("wind_time_s", mo.wind_time);
+  j.field("circuits", static_cast<int>(plan.circuits.size()));
+  j.field("turns_per_pass", m.turns_per_pass);
+  j.field("band_width_mm", m.band_width);
+  j.field("circuits_for_coverage", m.circuits_for_coverage);
+  j.field("cover_factor", m.cover_factor);
+  j.field("pattern", m.pattern);
+  j.field("spacing_cv", m.spacing_cv);
+  j.field("spacing_mean_mm", m.spacing_mean);
+  j.field("max_slippage", m.max_slippage);
+  j.field("friction", m.friction);
+  j.field("slip_fraction", m.slip_fraction);
+  j.field("bridging_length_mm", m.bridging_length);
+  j.end_object();
+  j.key("machine").begin_object();
+  j.field("kind", r.machine.kind);
+  j.field("dialect", r.machine.gcode.dialect);
+  j.field("feed", feed_name(mo));
+  j.field("envelope", r.machine.envelope.mode());
+  j.field("chord_tolerance_mm", r.machine.chord_tolerance);
+  j.field("dense_points", mo.dense_points);
+  j.field("machine_points", static_cast<int>(mo.states.size()));
+  j.field("max_chord_deviation_mm", mo.max_chord_deviation);
+  range_json(j, "free_length_mm", mo.free_length);
+  j.end_object();
+  j.key("axis_ranges").begin_object();
+  range_json(j, "A_deg", mo.a);
+  range_json(j, "X_mm", mo.x);
+  range_json(j, "Y_mm", mo.y);
+  range_json(j, "B_deg", mo.b);
+  j.end_object();
+  j.key("circuits").begin_array();
+  for (const CircuitFigures& f : circuit_figures(plan, mo)) {
+    j.begin_object();
+    j.field("index", f.index);
+    j.field("points", f.points);
+    j.field("machine_points", f.machine_points);
+    j.field("length_mm", f.length);
+    j.field("time_s", f.time);
+    j.field("min_winding_angle_deg", f.min_angle);
+    j.field("max_winding_angle_deg", f.max_angle);
+    j.field("max_slippage", f.max_slippage);
+    j.end_object();
+  }
+  j.end_array();
+  j.key("cutlines").begin_array();
+  for (const CutLine& c : plan.cutlines) {
+    j.begin_object();
+    j.field("name", c.name);
+    j.field("closed", c.closed);
+    j.field("points", static_cast<int>(c.points.size()));
+    j.field("length_mm", c.length);
+    j.field_array("plane_normal", {c.plane_normal.x(), c.plane_normal.y(), c.plane_normal.z()});
+    j.field("plane_offset_mm", c.plane_offset);
+    j.field("residual_mm", c.residual);
+    j.end_object();
+  }
+  j.end_array();
+  j.key("warnings").begin_array();
+  for (const std::string& w : m.warnings) j.value(w);
+  j.end_array();
+  j.key("files").begin_array();
+  for (const std::string& f : r.files) j.value(f);
+  j.end_array();
+  if (r.timings) {
+    j.key("timings_s").begin_object();
+    for (const StageTiming& t : m.timings) j.field(t.stage, t.seconds);
+    j.end_object();
+  }
+  j.end_object();
+  return j.str() + "\n";
+}
+
+std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
+  const PlanMetrics& m = plan.metrics;
+  const Motion& mo = r.motion;
+  std::ostringstream o;
+  o << "# Winding plan: " << plan.job_name << "\n\n"
+    << "windplan " << WINDPLAN_VERSION << "\n\n"
+    << "## Summary\n\n| figure | value |\n|---|---|\n"
+    << "| fibre length | " << fmt("%.3f", m.fibre_length) << " mm |\n"
+    << "| wind time | " << fmt("%.3f", mo.wind_time) << " s |\n"
+    << "| circuits | " << plan.circuits.size() << " |\n"
+    << "| turns per pass | " << m.turns_per_pass << " |\n"
+    << "| band width | " << fmt("%.3f", m.band_width) << " mm |\n"
+    << "| circuits for coverage | " << m.circuits_for_coverage << " |\n"
+    << "| cover factor | " << fmt("%.4f", m.cover_factor) << " |\n"
+    << "| pattern | " << m.pattern << " |\n"
+    << "| spacing CV | " << fmt("%.4f", m.spacing_cv) << " |\n"
+    << "| mean spacing | " << fmt("%.3f", m.spacing_mean) << " mm |\n"
+    << "| max slippage | " << fmt("%.4f", m.max_slippage) << " (friction " << fmt("%.3f", m.friction)
+    << ") |\n"
+    << "| slip fraction | " << fmt("%.4f", m.slip_fraction) << " |\n"
+    << "| bridging length | " << fmt("%.3f", m.bridging_length) << " mm |\n\n"
+    << "## Machine\n\n| figure | value |\n|---|---|\n"
+    << "| kind | " << r.machine.kind << " |\n"
+    << "| G-code dialect | " << r.machine.gcode.dialect << " |\n"
+    << "| feed | " << feed_name(mo) << " |\n"
+    << "| envelope | " << r.machine.envelope.mode() << " |\n"
+    << "| chord tolerance | " << fmt("%.4f", r.machine.chord_tolerance) << " mm |\n"
+    << "| points (dense / machine) | " << mo.dense_points << " / " << mo.states.size() << " |\n"
+    << "| max chord deviation | " << fmt("%.4f", mo.max_chord_deviation) << " mm |\n"
+    << "| free fibre length | " << fmt("%.3f", mo.free_length.min) << " .. "
+    << fmt("%.3f", mo.free_length.max) << " mm |\n\n"
+    << "## Axis ranges\n\n| axis | min | max |\n|---|---|---|\n"
+    << "| A [deg] | " << fmt("%.4f", mo.a.min) << " | " << fmt("%.4f", mo.a.max) << " |\n"
+    << "| X [mm] | " << fmt("%.4f", mo.x.min) << " | " << fmt("%.4f", mo.x.max) << " |\n"
+    << "| Y [mm] | " << fmt("%.4f", mo.y.min) << " | " << fmt("%.4f", mo.y.max) << " |\n"
+    << "| B [deg] | " << fmt("%.4f", mo.b.min) << " | " << fmt("%.4f", mo.b.max) << " |\n\n"
+    << "## Circuits\n";
+  for (const CircuitFigures& f : circuit_figures(plan, mo)) {
+    o << "\n### Circuit " << f.index << "\n\n| figure | value |\n|---|---|\n"
+      << "| points (dense / machine) | " << f.points << " / " << f.machine_points << " |\n"
+      << "| length | " << fmt("%.3f", f.length) << " mm |\n"
+      << "| time | " << fmt("%.3f", f.time) << " s |\n"
+      << "| winding angle | " << fmt("%.3f", f.min_angle) << " .. " << fmt("%.3f", f.max_angle)
+      << " deg |\n"
+      << "| max slippage | " << fmt("%.4f", f.max_slippage) << " |\n";
+  }
+  if (!plan.cutlines.empty()) {
+    o << "\n## Cut-lines\n\n| name | closed | length [mm] | plane normal | offset [mm] | "
+         "residual [mm] |\n|---|---|---|---|---|---|\n";
+    for (const CutLine& c : plan.cutlines) {
+      o << "| " << c.name << " | " << (c.closed ? "yes" : "no") << " | "
+        << fmt("%.3f", c.length) << " | (" << fmt("%.6f", c.plane_normal.x()) << ", "
+        << fmt("%.6f", c.plane_normal.y()) << ", " << fmt("%.6f", c.plane_normal.z()) << ") | "
+        << fmt("%.4f", c.plane_offset) << " | " << fmt("%.2e", c.residual) << " |\n";
+    }
+  }
+  if (!m.warnings.empty()) {
+    o << "\n## Warnings\n\n";
+    for (const std::string& w : m.warnings) o << "- " << w << "\n";
+  }
+  o << "\n## Files\n\n";
+  for (const std::string& f : r.files) o << "- `" << f << "`\n";
+  if (r.timings && !m.timings.empty()) {
+    o << "\n## Timings\n\n| stage | s |\n|---|---|\n";
+    for (const StageTiming& t : m.timings) o << "| " << t.stage << " | " << fmt("%.3f", t.seconds) << " |\n";
+  }
+  return o.str();
+}
+
+std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
+  const PlanMetrics& m = plan.metrics;
+  const Motion& mo = r.motion;
+  std::ostringstream o;
+  o << "job " << plan.job_name << "\n"
+    << "  fibre length     " << fmt("%.1f", m.fibre_length) << " mm\n"
+    << "  wind time        " << fmt("%.1f", mo.wind_time) << " s\n"
+    << "  circuits         " << plan.circuits.size() << " (coverage needs "
+    << m.circuits_for_coverage << ")\n"
+    << "  cover factor     " << fmt("%.3f", m.cover_factor) << "\n"
+    << "  spacing CV       " << fmt("%.4f", m.spacing_cv) << "\n"
+    << "  max slippage     " << fmt("%.4f", m.max_slippage) << "\n"
+    << "  axis A           " << fmt("%.2f", mo.a.min) << " .. " << fmt("%.2f", mo.a.max) << " deg\n"
+    << "  axis X           " << fmt("%.2f", mo.x.min) << " .. " << fmt("%.2f", mo.x.max) << " mm\n"
+    << "  axis Y           " << fmt("%.2f", mo.y.min) << " .. " << fmt("%.2f", mo.y.max) << " mm\n"
+    << "  axis B           " << fmt("%.2f", mo.b.min) << " .. " << fmt("%.2f", mo.b.max) << " deg\n"
+    << "  machine points   " << mo.states.size() << " of " << mo.dense_points
+    << " (chord deviation " << fmt("%.4f", mo.max_chord_deviation) << " mm)\n";
+  for (const StageTiming& t : m.timings) {
+    o << "  time " << t.stage << std::string(t.stage.size() < 12 ? 12 - t.stage.size() : 1, ' ')
+      << fmt("%.3f", t.seconds) << " s\n";
+  }
+  o << "  files in " << r.directory.string() << ":";
+  for (const std::string& f : r.files) o << " " << f;
+  o << "\n";
+  return o.str();
+}
+
+}  // namespace windplan

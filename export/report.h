@@ -1,0 +1,20 @@
+#pragma once
+// The plan's figures in three forms: report.json (machine-readable), report.md (human-readable,
+// with a table per circuit) and the stdout summary. All three carry the same figures: fibre
+// length, wind time, circuits, coverage, spacing CV, max slippage, axis ranges, cut-line planes
+// and the files written. Stage timings (PlanMetrics::timings) appear in the files only when
+// ExportResult::timings (output.timings) is set, so that files stay byte-identical between runs;
+// the stdout summary always shows them. Numbers have fixed formats (deterministic).
+#include <string>
+
+#include "export/export_plan.h"
+#include "planner/plan.h"
+
+namespace windplan {
+
+std::string report_json(const WindingPlan& plan, const ExportResult& result);
+std::string report_markdown(const WindingPlan& plan, const ExportResult& result);
+/// The summary printed on stdout by `windplan`.
+std::string summary_text(const WindingPlan& plan, const ExportResult& result);
+
+}  // namespace windplan

@@ -1,0 +1,249 @@
+#include "export/export_plan.h"
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "export/report.h"
+#include "geometry/atomic_file.h"
+#include "geometry/errors.h"
+#include "tests/export/gcode_parser.h"
+#include "tests/export/plan_fixtures.h"
+#include "tests/mesh_fixtures.h"
+
+namespace windplan {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("windplan_export_" + name + "_" +
+                                                  std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+WindingPlan sample_plan(int n = 500, int circuits = 3) {
+  WindingPlan plan = test::helix_plan(50, 40, 1.5, n, circuits);
+  CutLine cl;
+  cl.name = "trim \"A\" <1>";
+  for (int i = 0; i < 72; ++i) {
+    const double t = 2 * M_PI * i / 72;
+    cl.points.emplace_back(50 * std::cos(t), 50 * std::sin(t), 30.0);
+  }
+  cl.plane_normal = Vec3::UnitZ();
+  cl.plane_offset = 30;
+  cl.length = 2 * M_PI * 50;
+  plan.cutlines.push_back(cl);
+  plan.metrics.pattern = "K=3";
+  plan.metrics.warnings = {"a warning"};
+  plan.metrics.timings = {{"girth", 1.25}, {"helices", 2.5}};
+  return plan;
+}
+
+Mesh sample_mesh() { return Mesh(test::open_cylinder(50, 700, 24, 10)); }
+
+// Tag balance of an XML document (test-only): every element opened is closed in order.
+bool xml_balanced(const std::string& s, std::string* why) {
+  std::vector<std::string> stack;
+  std::size_t i = 0;
+  while ((i = s.find('<', i)) != std::string::npos) {
+    const std::size_t j = s.find('>', i);
+    if (j == std::string::npos) return *why = "unterminated tag", false;
+    const std::string tag = s.substr(i + 1, j - i - 1);
+    i = j + 1;
+    if (tag.empty()) return *why = "empty tag", false;
+    if (tag[0] == '?' || tag[0] == '!') continue;
+    if (tag.back() == '/') continue;
+    std::string name = tag.substr(tag[0] == '/' ? 1 : 0);
+    name = name.substr(0, name.find_first_of(" \t\n"));
+    if (tag[0] == '/') {
+      if (stack.empty() || stack.back() != name) return *why = "mismatched </" + name + ">", false;
+      stack.pop_back();
+    } else {
+      stack.push_back(name);
+    }
+  }
+  if (!stack.empty()) return *why = "unclosed <" + stack.back() + ">", false;
+  return true;
+}
+
+std::vector<std::string> lines_of(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  std::string l;
+  while (std::getline(in, l)) out.push_back(l);
+  return out;
+}
+
+TEST(ExportPlan, WritesEveryFileConsistently) {
+  const fs::path d = temp_dir("all");
+  const WindingPlan plan = sample_plan();
+  MachineOptions m;
+  m.kind = "lathe4";
+  const ExportResult r = export_plan(plan, sample_mesh(), m, OutputOptions{}, d);
+  const std::vector<std::string> expect = {"fibre_path.csv", "payout.csv",   "axes.csv",
+                                           "toolpath.ngc",   "mesh.ply",     "paths.ply",
+                                           "development.svg", "report.json", "report.md"};
+  EXPECT_EQ(r.files, expect);
+  for (const std::string& f : expect) EXPECT_TRUE(fs::exists(d / f)) << f;
+  // CSV row counts: dense points, resampled points.
+  EXPECT_EQ(lines_of(read_text_file(d / "fibre_path.csv")).size(), 1u + 3 * 500);
+  const auto axes = lines_of(read_text_file(d / "axes.csv"));
+  EXPECT_EQ(axes.size(), 1 + r.motion.states.size());
+  EXPECT_EQ(axes[0], "circuit,index,t_s [s],A_deg [deg],X_mm [mm],Y_mm [mm],B_deg [deg],F [1/min]");
+  EXPECT_EQ(lines_of(read_text_file(d / "payout.csv")).size(), 1 + r.motion.states.size());
+  // The G-code reproduces axes.csv's rows.
+  const test::ParsedGcode g = test::parse_gcode(read_text_file(d / "toolpath.ngc"));
+  ASSERT_EQ(g.moves.size() + 1, axes.size());
+  for (std::size_t i = 1; i < axes.size(); ++i) {
+    std::vector<double> v;
+    std::istringstream row(axes[i]);
+    std::string cell;
+    while (std::getline(row, cell, ',')) v.push_back(std::stod(cell));
+    ASSERT_EQ(v.size(), 8u);
+    EXPECT_NEAR(g.moves[i - 1].pos.at('A'), v[3], 0.5e-4 + 1e-8);
+    EXPECT_NEAR(g.moves[i - 1].pos.at('X'), v[4], 0.5e-4 + 1e-8);
+    EXPECT_NEAR(g.moves[i - 1].pos.at('Y'), v[5], 0.5e-4 + 1e-8);
+    EXPECT_NEAR(g.moves[i - 1].pos.at('B'), v[6], 0.5e-4 + 1e-8);
+  }
+  // SVG: well-formed, one group per circuit and cut-line, the name escaped.
+  const std::string svg = read_text_file(d / "development.svg");
+  std::string why;
+  EXPECT_TRUE(xml_balanced(svg, &why)) << why;
+  EXPECT_NE(svg.find("id=\"circuit-2\""), std::string::npos);
+  EXPECT_NE(svg.find("id=\"cutline-0\""), std::string::npos);
+  EXPECT_NE(svg.find("axial position x [mm]"), std::string::npos);
+  // paths.ply: header counts match the body.
+  const auto ply = lines_of(read_text_file(d / "paths.ply"));
+  std::size_t nv = 0, ne = 0, body = 0;
+  bool in_body = false;
+  for (const std::string& l : ply) {
+    if (in_body) {
+      ++body;
+    } else if (l.rfind("element vertex ", 0) == 0) {
+      nv = std::stoul(l.substr(15));
+    } else if (l.rfind("element edge ", 0) == 0) {
+      ne = std::stoul(l.substr(13));
+    } else if (l == "end_header") {
+      in_body = true;
+    }
+  }
+  EXPECT_EQ(nv, 3u * 500 + 72);
+  EXPECT_EQ(ne, 3u * 499 + 72);
+  EXPECT_EQ(body, nv + ne);
+  // Reports: figures and files; no timings by default.
+  const std::string json = read_text_file(d / "report.json");
+  EXPECT_NE(json.find("\"wind_time_s\""), std::string::npos);
+  EXPECT_NE(json.find("\"axis_ranges\""), std::string::npos);
+  EXPECT_NE(json.find("\"development.svg\""), std::string::npos);
+  EXPECT_NE(json.find("\"plane_offset_mm\": 30"), std::string::npos);
+  EXPECT_EQ(json.find("timings"), std::string::npos);
+  const std::string md = read_text_file(d / "report.md");
+  EXPECT_NE(md.find("### Circuit 2"), std::string::npos);
+  EXPECT_EQ(md.find("Timings"), std::string::npos);
+  const std::string summary = summary_text(plan, r);
+  EXPECT_NE(summary.find("wind time"), std::string::npos);
+  EXPECT_NE(summary.find("time girth"), std::string::npos);
+  EXPECT_NE(summary.find("report.md"), std::string::npos);
+}
+
+TEST(ExportPlan, TwoExportsAreByteIdentical) {
+  const WindingPlan plan = sample_plan();
+  const Mesh mesh = sample_mesh();
+  for (const std::string dialect : {"linuxcnc", "marlin", "fanuc"}) {
+    MachineOptions m;
+    m.gcode.dialect = dialect;
+    const fs::path a = temp_dir("det_a"), b = temp_dir("det_b");
+    const ExportResult ra = export_plan(plan, mesh, m, OutputOptions{}, a);
+    export_plan(plan, mesh, m, OutputOptions{}, b);
+    for (const std::string& f : ra.files) {
+      EXPECT_EQ(read_text_file(a / f), read_text_file(b / f)) << dialect << " " << f;
+    }
+  }
+}
+
+TEST(ExportPlan, TimingsOnlyWhenAsked) {
+  const fs::path d = temp_dir("timings");
+  OutputOptions o;
+  o.timings = true;
+  o.ply = o.svg = o.csv = o.gcode = false;
+  const ExportResult r = export_plan(sample_plan(), sample_mesh(), MachineOptions{}, o, d);
+  EXPECT_EQ(r.files, (std::vector<std::string>{"report.json", "report.md"}));
+  EXPECT_NE(read_text_file(d / "report.json").find("\"girth\": 1.25"), std::string::npos);
+  EXPECT_NE(read_text_file(d / "report.md").find("| helices | 2.500 |"), std::string::npos);
+  EXPECT_FALSE(fs::exists(d / "axes.csv"));
+}
+
+TEST(ExportPlan, RobotWritesEyePoseAndNoGcode) {
+  const fs::path d = temp_dir("robot");
+  MachineOptions m;
+  m.kind = "robot";
+  const ExportResult r = export_plan(sample_plan(), sample_mesh(), m, OutputOptions{}, d);
+  EXPECT_TRUE(fs::exists(d / "eye_pose.csv"));
+  EXPECT_FALSE(fs::exists(d / "toolpath.ngc"));
+  const auto rows = lines_of(read_text_file(d / "eye_pose.csv"));
+  EXPECT_EQ(rows.size(), 1 + r.motion.states.size());
+}
+
+TEST(ExportPlan, KilledExportLeavesOnlyCompleteFiles) {
+  // A large plan (about 40 MB of files) so that the kill lands mid-export.
+  const WindingPlan plan = sample_plan(40000, 12);
+  const Mesh mesh = sample_mesh();
+  MachineOptions m;
+  m.kind = "lathe4";
+  m.gcode.dialect = "fanuc";
+  const fs::path ref = temp_dir("kill_ref");
+  const auto t0 = std::chrono::steady_clock::now();
+  const ExportResult r = export_plan(plan, mesh, m, OutputOptions{}, ref);
+  const double full_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> delay(0.0, full_ms * 1.2);
+  int complete_seen = 0, absent_seen = 0;
+  for (int rep = 0; rep < 6; ++rep) {
+    const fs::path d = temp_dir("kill_" + std::to_string(rep));
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      try {
+        export_plan(plan, mesh, m, OutputOptions{}, d);
+      } catch (...) {
+        ::_exit(1);
+      }
+      ::_exit(0);
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(static_cast<long>(delay(rng) * 1000)));
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    for (const std::string& f : r.files) {
+      if (fs::exists(d / f)) {
+        // A real name always holds the complete file.
+        EXPECT_EQ(read_text_file(d / f), read_text_file(ref / f)) << "rep " << rep << " " << f;
+        ++complete_seen;
+      } else {
+        ++absent_seen;
+      }
+    }
+    for (const auto& e : fs::directory_iterator(d)) {
+      const std::string name = e.path().filename().string();
+      const bool real = std::find(r.files.begin(), r.files.end(), name) != r.files.end();
+      EXPECT_TRUE(real || name.find(".tmp.") != std::string::npos) << name;
+    }
+  }
+  std::cout << "[ info ] full export " << full_ms << " ms; files complete " << complete_seen
+            << ", absent " << absent_seen << "\n";
+}
+
+}  // namespace
+}  // namespace windplan
