@@ -6,6 +6,7 @@
 #include "export/svg.h"
 #include "geometry/atomic_file.h"
 #include "geometry/errors.h"
+#include "geometry/mesh_io.h"
 
 namespace windplan {
 
@@ -94,7 +95,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     write_text_atomically(dir / gcode_name, gcode_program(r.motion, plan.job_name, machine));
   }
   if (output.ply) {
-    write_text_atomically(dir / "mesh.ply", mesh_ply(mandrel_mesh));
+    write_mesh(dir / "mesh.ply", mandrel_mesh);
     write_text_atomically(dir / "paths.ply", paths_ply(plan));
   }
   if (output.svg) write_text_atomically(dir / "development.svg", development_svg(plan));

@@ -66,19 +66,4 @@ std::string paths_ply(const WindingPlan& plan) {
   return out.str();
 }
 
-std::string mesh_ply(const Mesh& mesh) {
-  std::ostringstream out;
-  out << "ply\nformat ascii 1.0\ncomment windplan mandrel mesh, units mm\n"
-      << "element vertex " << mesh.num_vertices() << "\n"
-      << "property double x\nproperty double y\nproperty double z\n"
-      << "element face " << mesh.num_faces() << "\n"
-      << "property list uchar int vertex_indices\nend_header\n";
-  for (const Vec3& p : mesh.points()) {
-    put_point(out, p);
-    out << "\n";
-  }
-  for (const Tri& t : mesh.triangles()) out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
-  return out.str();
-}
-
 }  // namespace windplan

@@ -1,6 +1,6 @@
 #pragma once
-// PLY output of the plan's paths (paths.ply) and, until geometry/mesh_io.h's writer is used,
-// of the mandrel mesh (mesh.ply). ASCII PLY 1.0, fixed number formatting (deterministic).
+// PLY output of the plan's paths (paths.ply; mesh.ply is written by geometry/mesh_io.h's
+// write_mesh). ASCII PLY 1.0, fixed number formatting (deterministic).
 //
 // paths.ply: element vertex (double x, y, z in mm, int circuit) and element edge (int vertex1,
 // vertex2, circuit). Circuits keep their index (>= 0); cut-line k is stored with circuit = -1 - k.
@@ -15,8 +15,5 @@ namespace windplan {
 
 /// The paths.ply text.
 std::string paths_ply(const WindingPlan& plan);
-
-/// The mesh as ASCII PLY text (vertex x y z, face vertex_indices).
-std::string mesh_ply(const Mesh& mesh);
 
 }  // namespace windplan

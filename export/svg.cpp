@@ -115,11 +115,17 @@ std::string development_svg(const WindingPlan& plan, const SvgOptions& opts) {
     << "<rect x=\"" << f2(ml) << "\" y=\"" << f2(mt) << "\" width=\"" << f2(pw) << "\" height=\""
     << f2(ph) << "\" fill=\"none\" stroke=\"#333\" stroke-width=\"1\"/>\n";
   const double step = nice_step(xmax - xmin, 10);
+  const int decimals = std::max(0, -static_cast<int>(std::floor(std::log10(step) + 1e-9)));
+  auto tick_label = [&](double x) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, std::fabs(x) < 1e-9 * step ? 0.0 : x);
+    return std::string(buf);
+  };
   for (double x = std::ceil(xmin / step) * step; x <= xmax + 1e-9 * step; x += step) {
     o << "<line x1=\"" << f2(px(x)) << "\" y1=\"" << f2(mt) << "\" x2=\"" << f2(px(x))
       << "\" y2=\"" << f2(mt + ph) << "\" stroke=\"#e4e4e4\" stroke-width=\"0.5\"/>\n"
       << "<text x=\"" << f2(px(x)) << "\" y=\"" << f2(mt + ph + 16)
-      << "\" text-anchor=\"middle\">" << f2(x) << "</text>\n";
+      << "\" text-anchor=\"middle\">" << tick_label(x) << "</text>\n";
   }
   for (int d = 0; d <= 360; d += 45) {
     o << "<line x1=\"" << f2(ml) << "\" y1=\"" << f2(py(d)) << "\" x2=\"" << f2(ml + pw)
@@ -134,16 +140,21 @@ std::string development_svg(const WindingPlan& plan, const SvgOptions& opts) {
     << "</text>\n</g>\n";
 
   // Mandrel ends and turnaround zones.
-  auto vline = [&](double x, const std::string& style, const std::string& label) {
+  // Labels of the right half are anchored at their end so that they stay inside the image.
+  auto vline = [&](double x, const std::string& style, const std::string& label, double ty) {
+    const bool right = px(x) > ml + pw / 2;
     o << "<line x1=\"" << f2(px(x)) << "\" y1=\"" << f2(mt) << "\" x2=\"" << f2(px(x))
       << "\" y2=\"" << f2(mt + ph) << "\" " << style << "/>\n"
-      << "<text x=\"" << f2(px(x) + 3) << "\" y=\"" << f2(mt - 6)
-      << "\" font-family=\"sans-serif\" font-size=\"10\" fill=\"#555\">" << escape(label)
-      << "</text>\n";
+      << "<text x=\"" << f2(px(x) + (right ? -3 : 3)) << "\" y=\"" << f2(ty)
+      << "\" font-family=\"sans-serif\" font-size=\"10\" fill=\"#555\" text-anchor=\""
+      << (right ? "end" : "start") << "\">" << escape(label) << "</text>\n";
   };
   if (!plan.profile.empty()) {
-    vline(plan.profile.axial.front(), "stroke=\"#888\" stroke-width=\"1.5\"", "end");
-    vline(plan.profile.axial.back(), "stroke=\"#888\" stroke-width=\"1.5\"", "end");
+    const std::string solid = "stroke=\"#888\" stroke-width=\"1.5\"";
+    vline(plan.profile.axial.front(), solid, "mandrel end " + f2(plan.profile.axial.front()) + " mm",
+          mt + ph - 6);
+    vline(plan.profile.axial.back(), solid, "mandrel end " + f2(plan.profile.axial.back()) + " mm",
+          mt + ph - 6);
   }
   double tmin = std::numeric_limits<double>::infinity(), tmax = -tmin;
   bool any_turn = false;
@@ -168,8 +179,9 @@ std::string development_svg(const WindingPlan& plan, const SvgOptions& opts) {
   }
   if (std::isfinite(tmin)) {
     const std::string dash = "stroke=\"#999\" stroke-width=\"1\" stroke-dasharray=\"6 4\"";
-    vline(tmin, dash, "turnaround / opening " + f2(tmin) + " mm");
-    if (tmax > tmin) vline(tmax, dash, "turnaround / opening " + f2(tmax) + " mm");
+    const std::string what = any_turn ? "turnaround " : "fibre end ";
+    vline(tmin, dash, what + f2(tmin) + " mm", mt - 6);
+    if (tmax > tmin) vline(tmax, dash, what + f2(tmax) + " mm", mt - 6);
   }
 
   // A polyline in the (x, theta) plane, split at the seam and thinned to half a pixel.

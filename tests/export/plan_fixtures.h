@@ -8,12 +8,14 @@ namespace windplan::test {
 
 /// A point of the exact helix x = R cos(phi), y = R sin(phi), z = c phi on the cylinder of
 /// radius R about the z axis, with exact normal, tangent, arc length and winding angle.
-inline FibrePoint helix_point(double R, double c, double phi) {
+/// `psi` turns the whole helix about the axis (x = R cos(phi + psi), ...).
+inline FibrePoint helix_point(double R, double c, double phi, double psi = 0.0) {
   FibrePoint p;
   const double w = std::sqrt(R * R + c * c);
-  p.position = Vec3(R * std::cos(phi), R * std::sin(phi), c * phi);
-  p.normal = Vec3(std::cos(phi), std::sin(phi), 0.0);
-  p.tangent = Vec3(-R * std::sin(phi), R * std::cos(phi), c) / w;
+  const double q = phi + psi;
+  p.position = Vec3(R * std::cos(q), R * std::sin(q), c * phi);
+  p.normal = Vec3(std::cos(q), std::sin(q), 0.0);
+  p.tangent = Vec3(-R * std::sin(q), R * std::cos(q), c) / w;
   p.s = w * phi;
   p.winding_angle = std::atan2(R, std::fabs(c)) * 180.0 / M_PI;
   p.k_n = R / (w * w);  // curvature of the helix, all normal (a geodesic)
@@ -23,24 +25,21 @@ inline FibrePoint helix_point(double R, double c, double phi) {
 }
 
 /// A plan of `circuits` helices on a cylinder of radius R along z (axis = z, profile = constant R
-/// over [z_lo, z_hi]); circuit k spans phi in [2 pi k / circuits, that + turns * 2 pi] with
-/// `n` points per circuit. c = R / tan(alpha).
+/// over [-10, z_hi + 10]); circuit k is the helix turned by 2 pi k / circuits about the axis,
+/// phi in [0, turns * 2 pi], `n` points per circuit. c = R / tan(alpha).
 inline WindingPlan helix_plan(double R, double alpha_deg, double turns, int n, int circuits = 1) {
   WindingPlan plan;
   plan.job_name = "helix test";
   const double c = R / std::tan(alpha_deg * M_PI / 180.0);
-  const double z_hi = c * (turns * 2.0 * M_PI + 2.0 * M_PI);
+  const double z_hi = c * turns * 2.0 * M_PI;
   plan.profile.axial = {-10.0, z_hi + 10.0};
   plan.profile.radius = {R, R};
   for (int k = 0; k < circuits; ++k) {
     Circuit ci;
     ci.index = k;
-    const double phi0 = 2.0 * M_PI * k / circuits;
+    const double psi = 2.0 * M_PI * k / circuits;
     for (int i = 0; i < n; ++i) {
-      const double phi = phi0 + turns * 2.0 * M_PI * i / (n - 1);
-      FibrePoint p = helix_point(R, c, phi);
-      p.s -= std::sqrt(R * R + c * c) * phi0;  // s from the circuit start
-      ci.points.push_back(p);
+      ci.points.push_back(helix_point(R, c, turns * 2.0 * M_PI * i / (n - 1), psi));
     }
     ci.segments.push_back({CircuitSegment::Kind::Pass, 0, n - 1});
     plan.circuits.push_back(ci);
