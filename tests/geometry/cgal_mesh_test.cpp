@@ -1,0 +1,82 @@
+#include "geometry/cgal_mesh.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "geometry/errors.h"
+#include "tests/mesh_fixtures.h"
+
+namespace windplan {
+namespace {
+
+// Triangles equal as cyclic orders (the starting corner is CGAL's choice).
+bool same_cycle(const Tri& a, const Tri& b) {
+  for (int k = 0; k < 3; ++k) {
+    if (a[0] == b[k] && a[1] == b[(k + 1) % 3] && a[2] == b[(k + 2) % 3]) return true;
+  }
+  return false;
+}
+
+void expect_round_trip(const Mesh& m) {
+  const CgalMesh c(m);
+  EXPECT_EQ(c.num_vertices(), m.num_vertices());
+  EXPECT_EQ(c.num_faces(), m.num_faces());
+  EXPECT_EQ(c.num_edges(), m.num_edges());
+  EXPECT_TRUE(c.is_valid());
+  EXPECT_EQ(c.is_closed(), m.is_closed());
+  EXPECT_NEAR(c.area(), m.total_area(), 1e-12 * m.total_area());
+  const Mesh back = c.to_mesh();
+  ASSERT_EQ(back.num_vertices(), m.num_vertices());
+  ASSERT_EQ(back.num_faces(), m.num_faces());
+  EXPECT_EQ(back.points(), m.points());
+  for (int f = 0; f < m.num_faces(); ++f) {
+    EXPECT_TRUE(same_cycle(back.triangle(f), m.triangle(f))) << "face " << f;
+  }
+  EXPECT_EQ(back.genus(), m.genus());
+  EXPECT_EQ(back.boundary_loops().size(), m.boundary_loops().size());
+}
+
+TEST(CgalMesh, OctahedronRoundTripAndClosedFormMeasures) {
+  const Mesh m(test::octahedron());
+  expect_round_trip(m);
+  const CgalMesh c(m);
+  EXPECT_NEAR(c.area(), 4.0 * std::sqrt(3.0), 1e-12);  // 8 equilateral triangles of side sqrt 2
+  EXPECT_NEAR(c.volume(), 4.0 / 3.0, 1e-12);          // |x| + |y| + |z| <= 1
+}
+
+TEST(CgalMesh, TorusRoundTrip) { expect_round_trip(Mesh(test::torus(3.0, 1.0, 24, 12))); }
+
+TEST(CgalMesh, OpenCylinderRoundTripAndVolumeNeedsAClosedMesh) {
+  const Mesh m(test::open_cylinder(50.0, 200.0, 32, 8));
+  expect_round_trip(m);
+  const CgalMesh c(m);
+  EXPECT_FALSE(c.is_closed());
+  EXPECT_THROW(c.volume(), TopologyError);
+}
+
+TEST(CgalMesh, UnreferencedVerticesKeepTheIndices) {
+  TriangleSoup s = test::octahedron();
+  s.points.insert(s.points.begin(), Vec3(5, 5, 5));
+  for (Tri& t : s.triangles)
+    for (int& v : t) ++v;
+  const Mesh m(s);
+  const CgalMesh c(m);
+  EXPECT_EQ(c.num_vertices(), 7);
+  const Mesh back = c.to_mesh();
+  EXPECT_EQ(back.points(), m.points());
+  EXPECT_EQ(back.num_unreferenced_vertices(), 1);
+}
+
+TEST(CgalMesh, CopyAndMove) {
+  CgalMesh a(Mesh(test::octahedron()));
+  CgalMesh b = a;
+  CgalMesh c = std::move(a);
+  EXPECT_EQ(b.num_faces(), 8);
+  EXPECT_EQ(c.num_faces(), 8);
+  CgalMesh empty;
+  EXPECT_EQ(empty.num_vertices(), 0);
+}
+
+}  // namespace
+}  // namespace windplan
