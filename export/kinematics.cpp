@@ -99,6 +99,7 @@ EyeSolution solve_payout_eye(const AxisFrame& frame, const Envelope& env, const 
     throw InputError(at + "the fibre tangent is zero or not finite");
   }
   const Vec3 t = t_in / tn;
+  if (!p.allFinite()) throw InputError(at + "the fibre point is not finite");
   EyeSolution s;
   if (env.fixed_length) {
     s.free_length = env.free_length;
@@ -185,9 +186,13 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts) {
     std::vector<EyeSolution> sol(n);
     for (int i = 0; i < n; ++i) {
       const FibrePoint& fp = c.points[i];
-      sol[i] = solve_payout_eye(frame, env, fp.position, fp.tangent,
-                                "circuit " + std::to_string(c.index) + ", point " +
-                                    std::to_string(i));
+      try {
+        sol[i] = solve_payout_eye(frame, env, fp.position, fp.tangent);
+      } catch (const InputError& e) {
+        // The point is named only on failure (no string per point on the hot path).
+        throw InputError("circuit " + std::to_string(c.index) + ", point " + std::to_string(i) +
+                         ": " + e.what());
+      }
       fibre[i] = fp.position;
       eyes[i] = sol[i].eye;
       m.max_eye_iterations = std::max(m.max_eye_iterations, sol[i].iterations);

@@ -196,8 +196,8 @@ TEST(ExportPlan, RobotWritesEyePoseAndNoGcode) {
 }
 
 TEST(ExportPlan, KilledExportLeavesOnlyCompleteFiles) {
-  // A large plan (about 40 MB of files) so that the kill lands mid-export.
-  const WindingPlan plan = sample_plan(40000, 12);
+  // A large plan (about 35 MB of files) so that the kill lands mid-export.
+  const WindingPlan plan = sample_plan(20000, 12);
   const Mesh mesh = sample_mesh();
   MachineOptions m;
   m.kind = "lathe4";
@@ -241,6 +241,8 @@ TEST(ExportPlan, KilledExportLeavesOnlyCompleteFiles) {
       EXPECT_TRUE(real || name.find(".tmp.") != std::string::npos) << name;
     }
   }
+  for (int rep = 0; rep < 6; ++rep) fs::remove_all(temp_dir("kill_" + std::to_string(rep)));
+  fs::remove_all(ref);
   std::cout << "[ info ] full export " << full_ms << " ms; files complete " << complete_seen
             << ", absent " << absent_seen << "\n";
 }
