@@ -109,6 +109,10 @@ int run_mesh(const std::vector<std::string>& argv) {
     const Job job = load_job(input);
     mandrel = job.mandrel;
     repair = repair || job.mandrel.repair;
+    if (mandrel.source != "mesh") {
+      throw InputError(input.string() + ": the mandrel's source is '" + mandrel.source +
+                       "'; windplan mesh reads mesh files only (see windplan mandrel)");
+    }
   } else {
     mandrel.file = input;
   }
@@ -135,12 +139,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     if (!health.is_valid_mesh() || !refused.empty()) {
       std::string why = refused;
       if (why.empty()) {
-        for (const std::string& p : health.problems()) {
-          if (p.rfind("open:", 0) == 0 || p.find("unreferenced") != std::string::npos ||
-              p.find("duplicate") != std::string::npos || p.find("zero-area") != std::string::npos)
-            continue;
-          why += (why.empty() ? "" : "; ") + p;
-        }
+        for (const std::string& p : health.blocking_problems()) why += (why.empty() ? "" : "; ") + p;
       }
       throw TopologyError(mandrel.file.string() + ": cannot write " + out +
                           ": the mesh is not a valid oriented 2-manifold: " + why +

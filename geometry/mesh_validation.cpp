@@ -407,7 +407,7 @@ bool MeshCheckOptions::is_valid(std::string* why) const {
 
 bool RepairOptions::is_valid(std::string* why) const { return check.is_valid(why); }
 
-std::vector<std::string> MeshHealth::problems() const {
+std::vector<std::string> MeshHealth::blocking_problems() const {
   std::vector<std::string> p;
   auto edges = [](const std::vector<std::array<int, 2>>& v, int n) {
     return list_str(v, n, pair_str);
@@ -436,6 +436,14 @@ std::vector<std::string> MeshHealth::problems() const {
     p.push_back(plural(num_degenerate_triangles, "degenerate triangle", "degenerate triangles") +
                 " (repeated vertex index): " + ints(degenerate_triangles, num_degenerate_triangles));
   }
+  return p;
+}
+
+std::vector<std::string> MeshHealth::problems() const {
+  std::vector<std::string> p = blocking_problems();
+  auto ints = [](const std::vector<int>& v, int n) {
+    return list_str(v, n, [](int i) { return std::to_string(i); });
+  };
   if (num_zero_area_triangles > 0) {
     p.push_back(plural(num_zero_area_triangles, "zero-area triangle", "zero-area triangles") +
                 ": " + ints(zero_area_triangles, num_zero_area_triangles));
@@ -738,12 +746,7 @@ Mesh build_mesh(TriangleSoup soup, bool repair, MeshHealth* health_out,
     if (health_out) *health_out = h;
     if (!h.is_valid_mesh()) {
       std::string msg;
-      for (const std::string& p : h.problems()) {
-        if (p.rfind("open:", 0) == 0 || p.find("unreferenced") != std::string::npos ||
-            p.find("zero-area") != std::string::npos || p.find("duplicate") != std::string::npos)
-          continue;
-        msg += (msg.empty() ? "" : "; ") + p;
-      }
+      for (const std::string& p : h.blocking_problems()) msg += (msg.empty() ? "" : "; ") + p;
       throw TopologyError("the mesh is not a valid oriented 2-manifold: " + msg +
                           " (repair: true fixes orientation and degenerate triangles)");
     }

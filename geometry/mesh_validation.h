@@ -79,6 +79,10 @@ struct MeshHealth {
   /// The problems in plain words, one per line (empty for a clean closed mesh). Open boundaries
   /// and unreferenced vertices are listed too, as facts rather than errors.
   std::vector<std::string> problems() const;
+  /// The subset of problems() that stops the soup from becoming a Mesh (non-manifold edges or
+  /// vertices, inconsistent orientation, degenerate or invalid triangles); empty iff
+  /// is_valid_mesh().
+  std::vector<std::string> blocking_problems() const;
   /// A multi-line human-readable report.
   std::string brief_report() const;
 };

@@ -152,6 +152,13 @@ TEST_F(Cli, MissingFileIsExit1NamingIt) {
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
 }
 
+TEST_F(Cli, AJobWithAParametricMandrelIsRedirected) {
+  const fs::path job = write("pipe.yaml", "mandrel:\n  source: pipe\n  pipe: {radius: 5, length: 20}\n");
+  const RunResult r = run({"mesh", job.string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("'pipe'"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, UnknownFlagIsExit2) {
   const RunResult r = run({"mesh", kTube, "--frobnicate"});
   EXPECT_EQ(r.code, 2);

@@ -136,6 +136,20 @@ TEST_F(MeshIo, ObjNegativeIndicesQuadsSlashFormsAndIgnoredStatements) {
   EXPECT_EQ(s.triangles, expected);
 }
 
+TEST_F(MeshIo, WindowsLineEndings) {
+  const TriangleSoup o = read_mesh(write("crlf.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 1.5 0\r\nf 1 2 3\r\n"));
+  ASSERT_EQ(o.points.size(), 3u);
+  EXPECT_EQ(o.points[2], Vec3(0, 1.5, 0));
+  const TriangleSoup f = read_mesh(write("crlf.off", "OFF\r\n3 1 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n"));
+  EXPECT_EQ(f.triangles.size(), 1u);
+  const TriangleSoup p = read_mesh(write(
+      "crlf.ply", "ply\r\nformat ascii 1.0\r\nelement vertex 3\r\nproperty float x\r\n"
+                  "property float y\r\nproperty float z\r\nelement face 1\r\n"
+                  "property list uchar int vertex_indices\r\nend_header\r\n"
+                  "0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n"));
+  EXPECT_EQ(p.triangles.size(), 1u);
+}
+
 TEST_F(MeshIo, OffWithCommentsAndPolygons) {
   const auto p = write("q.off",
                        "OFF\n"

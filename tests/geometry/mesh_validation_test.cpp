@@ -152,6 +152,9 @@ TEST(CheckMesh, CountsEachKindOfProblem) {
   EXPECT_FALSE(h.manifold);
   EXPECT_EQ(h.genus, -1);
   EXPECT_EQ(h.bbox.max, Vec3(1, 1, 1));  // unreferenced (7,7,7) is not in the box
+  // Blocking: the non-manifold edges and the degenerate triangle; not the unreferenced vertices.
+  EXPECT_EQ(h.blocking_problems().size(), 2u);
+  EXPECT_EQ(h.problems().size(), 5u);
 }
 
 TEST(CheckMesh, InconsistentOrientationCountsEdges) {
