@@ -77,10 +77,10 @@ void check_signature(const std::filesystem::path& file, const std::string& forma
     ok = body.rfind("DBRep_DrawableShape", 0) == 0 || body.rfind("CASCADE Topology", 0) == 0;
   }
   if (!ok) {
-    throw IoError(file.string() + ": not a " +
-                  (format == "step" ? std::string("STEP (ISO-10303-21)")
-                                    : format == "iges" ? std::string("IGES") : std::string("BREP")) +
-                  " file (its header does not match the extension)");
+    const char* kind = format == "step"   ? "not a STEP (ISO-10303-21)"
+                       : format == "iges" ? "not an IGES"
+                                          : "not a BREP";
+    throw IoError(file.string() + ": " + kind + " file (its header does not match the extension)");
   }
 }
 

@@ -16,6 +16,7 @@
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
 #include <GeomAPI_Interpolate.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_Circle.hxx>
@@ -300,6 +301,12 @@ CadShape make_pipe(const PipeParams& p) {
   return make_cad_shape(BRepPrimAPI_MakeCylinder(gp_Ax2(gp::Origin(), gp::DZ()), p.radius,
                                                  p.length)
                             .Shape());
+}
+
+CadShape make_sphere(double radius) {
+  if (!positive(radius)) throw ConfigError("sphere: radius must be > 0 mm (got " + num(radius) + ")");
+  silence_occt_messages();
+  return make_cad_shape(BRepPrimAPI_MakeSphere(gp::Origin(), radius).Shape());
 }
 
 CadShape make_cone(const ConeParams& p) {

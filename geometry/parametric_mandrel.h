@@ -68,7 +68,7 @@ struct BendParams {
 struct BentTubeParams {
   double radius = 25.0;                    ///< tube radius (mm), > 0
   std::vector<double> segments{200, 200};  ///< straight lengths (mm, >= 0), at least one
-  std::vector<BendParams> bends{BendParams{}};  ///< segments.size() - 1 bends between them
+  std::vector<BendParams> bends = std::vector<BendParams>(1);  ///< segments.size() - 1 bends
   bool is_valid(std::string* why) const;
 };
 
@@ -81,6 +81,11 @@ CadShape make_vessel(const VesselParams& p);
 /// A closed bent tube (circular section swept along the centreline, flat end caps).
 /// \throw ConfigError for invalid parameters (each make_* does).
 CadShape make_bent_tube(const BentTubeParams& p);
+
+/// A closed sphere centred at the origin (two poles on the z axis: degenerate B-rep edges). A
+/// reference shape for tests of the tessellation's pole handling. \throw ConfigError for
+/// radius <= 0.
+CadShape make_sphere(double radius);
 
 /// The meridian of one dome as (r, h) points from the equator (R, 0) to the opening (r_open,
 /// height), h measured from the equator away from the cylinder; `n` >= 2 points.
