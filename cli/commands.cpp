@@ -4,6 +4,8 @@ namespace windplan::cli {
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> list = {
+      {"mandrel", "build a job's mandrel (mesh, CAD or parametric) and report it", kMandrelHelp,
+       run_mandrel},
       {"mesh", "check a mesh (or a job's mesh mandrel), repair it, convert it", kMeshHelp,
        run_mesh},
   };

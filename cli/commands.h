@@ -19,6 +19,10 @@ const std::vector<Command>& commands();
 
 // One function per subcommand, each in its own cmd_<name>.cpp.
 
+/// cmd_mandrel.cpp: build a job's mandrel and report it.
+int run_mandrel(const std::vector<std::string>& args);
+extern const char* const kMandrelHelp;
+
 /// cmd_mesh.cpp: load, check, repair and write a mesh file or a job's mesh mandrel.
 int run_mesh(const std::vector<std::string>& args);
 extern const char* const kMeshHelp;

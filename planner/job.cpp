@@ -25,24 +25,118 @@ LengthUnit parse_length_unit(const std::string& s) {
 }
 
 bool MandrelOptions::is_valid(std::string* why) const {
-  if (source == "mesh" && file.empty()) {
-    if (why) *why = "source: mesh needs a 'file:'";
+  if ((source == "mesh" || source == "cad") && file.empty()) {
+    if (why) *why = "source: " + source + " needs a 'file:'";
     return false;
   }
+  if (!tessellation.is_valid(why)) return false;
+  if (!(remesh >= 0.0) || !std::isfinite(remesh)) {
+    if (why) *why = "remesh must be >= 0 mm (0 = off)";
+    return false;
+  }
+  if (has_axis && !(axis.direction.norm() > 1e-12)) {
+    if (why) *why = "axis.direction must be a non-zero vector";
+    return false;
+  }
+  if (source == "pipe") return pipe.is_valid(why);
+  if (source == "cone") return cone.is_valid(why);
+  if (source == "vessel") return vessel.is_valid(why);
+  if (source == "bent_tube") return bent_tube.is_valid(why);
   return true;
 }
 
 namespace {
 
+// One dome: `type`, `aspect`, `polar_opening`, each optional (keeps *d's values when absent).
+void decode_dome(ConfigNode n, DomeParams* d) {
+  if (!n.present()) return;
+  std::string type;
+  if (n.get_choice("type", {"hemispherical", "elliptical", "isotensoid"}, &type)) {
+    d->type = parse_dome_type(type);
+  }
+  n.get("aspect", &d->aspect);
+  n.get("polar_opening", &d->polar_opening);
+  n.finish();
+}
+
 void decode_mandrel(ConfigNode n, const std::filesystem::path& base, MandrelOptions* m) {
   if (!n.present()) n.fail_here("the job needs a 'mandrel:' section");
-  n.get_choice("source", {"mesh"}, &m->source);
+  n.get_choice("source", {"mesh", "cad", "pipe", "cone", "vessel", "bent_tube"}, &m->source);
   std::string file;
-  if (m->source == "mesh") n.require("file", &file);
+  if (m->source == "mesh" || m->source == "cad") n.require("file", &file);
   if (!file.empty()) m->file = (base / file).lexically_normal();
   std::string units;
   if (n.get_choice("units", {"mm", "m", "in"}, &units)) m->units = parse_length_unit(units);
   n.get("repair", &m->repair);
+  n.get("solid", &m->solid);
+  n.get("linear_deflection", &m->tessellation.linear_deflection);
+  n.get("angular_deflection", &m->tessellation.angular_deflection);
+  n.get("remesh", &m->remesh);
+  if (ConfigNode a = n.section("axis"); a.present()) {
+    std::array<double, 3> origin{0.0, 0.0, 0.0}, direction{0.0, 0.0, 1.0};
+    a.get("origin", &origin);
+    a.require("direction", &direction);
+    a.finish();
+    m->has_axis = true;
+    m->axis.origin = Vec3(origin[0], origin[1], origin[2]);
+    const Vec3 d(direction[0], direction[1], direction[2]);
+    if (!(d.norm() > 1e-12)) a.fail("direction", "must be a non-zero vector");
+    m->axis.direction = d.normalized();
+  }
+  // The section of the chosen parametric shape; the others are rejected as unknown keys.
+  if (m->source == "pipe") {
+    ConfigNode p = n.section("pipe");
+    if (!p.present()) n.fail("pipe", "source: pipe needs a 'pipe:' section (radius, length)");
+    p.require("radius", &m->pipe.radius);
+    p.require("length", &m->pipe.length);
+    p.finish();
+    p.check(m->pipe);
+  } else if (m->source == "cone") {
+    ConfigNode p = n.section("cone");
+    if (!p.present()) {
+      n.fail("cone", "source: cone needs a 'cone:' section (radius_start, radius_end, length)");
+    }
+    p.require("radius_start", &m->cone.radius_start);
+    p.require("radius_end", &m->cone.radius_end);
+    p.require("length", &m->cone.length);
+    p.finish();
+    p.check(m->cone);
+  } else if (m->source == "vessel") {
+    ConfigNode p = n.section("vessel");
+    if (!p.present()) {
+      n.fail("vessel", "source: vessel needs a 'vessel:' section (radius, length, dome)");
+    }
+    VesselParams& v = m->vessel;
+    p.require("radius", &v.radius);
+    p.require("length", &v.length);
+    // `dome:` sets both domes; `dome_start:` / `dome_end:` override it per key.
+    DomeParams both = v.dome_end;
+    decode_dome(p.section("dome"), &both);
+    v.dome_start = v.dome_end = both;
+    decode_dome(p.section("dome_start"), &v.dome_start);
+    decode_dome(p.section("dome_end"), &v.dome_end);
+    p.finish();
+    p.check(v);
+  } else if (m->source == "bent_tube") {
+    ConfigNode p = n.section("bent_tube");
+    if (!p.present()) {
+      n.fail("bent_tube", "source: bent_tube needs a 'bent_tube:' section (radius, segments, bends)");
+    }
+    BentTubeParams& b = m->bent_tube;
+    p.require("radius", &b.radius);
+    p.require("segments", &b.segments);
+    b.bends.clear();
+    for (ConfigNode bn : p.list("bends")) {
+      BendParams bend;
+      bn.require("angle", &bend.angle);
+      bn.require("radius", &bend.radius);
+      bn.get("plane_angle", &bend.plane_angle);
+      bn.finish();
+      b.bends.push_back(bend);
+    }
+    p.finish();
+    p.check(b);
+  }
   n.finish();
   n.check(*m);
 }

@@ -7,6 +7,9 @@
 #include <filesystem>
 #include <string>
 
+#include "geometry/axis.h"
+#include "geometry/parametric_mandrel.h"
+#include "geometry/tessellate.h"
 #include "planner/machine_options.h"
 
 namespace windplan {
@@ -18,16 +21,32 @@ double to_millimetres(LengthUnit u);
 /// Parses "mm", "m" or "in". \throw InputError otherwise.
 LengthUnit parse_length_unit(const std::string& s);
 
-/// The `mandrel:` section (mesh files; CAD and parametric sources are added by their stage).
+/// The `mandrel:` section: a mesh file, a CAD file or a parametric shape (docs/config.md).
 struct MandrelOptions {
-  /// Where the mandrel comes from: "mesh" (a triangle-mesh file).
+  /// Where the mandrel comes from: "mesh" (a triangle-mesh file), "cad" (STEP/IGES/BREP),
+  /// or a parametric shape: "pipe", "cone", "vessel", "bent_tube".
   std::string source = "mesh";
-  /// Mesh file, resolved relative to the job file's directory when loaded from a job.
+  /// Mesh or CAD file, resolved relative to the job file's directory when loaded from a job.
   std::filesystem::path file;
-  /// Unit of the coordinates in `file`; converted to mm.
+  /// Unit of the coordinates in `file` (mesh and BREP files; STEP/IGES carry their own unit);
+  /// converted to mm. Parametric dimensions are always in mm.
   LengthUnit units = LengthUnit::Millimetre;
   /// Repair what is safe (re-orient, drop degenerate/duplicate/unreferenced elements).
   bool repair = true;
+  /// cad: the body to take from a file with several: its name or 1-based index ("" = largest).
+  std::string solid;
+  /// cad and parametric: tessellation deflections (linear mm, angular degrees).
+  TessellateOptions tessellation;
+  /// Isotropic remeshing target edge length (mm); 0 = off.
+  double remesh = 0.0;
+  /// The spindle axis, when given (`axis: {origin, direction}`); otherwise it is inferred.
+  bool has_axis = false;
+  SpindleAxis axis;
+  /// Parameters of the parametric sources (mm, degrees).
+  PipeParams pipe;
+  ConeParams cone;
+  VesselParams vessel;
+  BentTubeParams bent_tube;
 
   bool is_valid(std::string* why) const;
 };

@@ -1,0 +1,167 @@
+#include "planner/mandrel_builder.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "geometry/cad_import.h"
+#include "geometry/errors.h"
+#include "geometry/parametric_mandrel.h"
+#include "geometry/tessellate.h"
+#include "planner/mandrel_mesh.h"
+
+namespace windplan {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+std::string describe(const MandrelOptions& m, const std::string& selected) {
+  std::ostringstream s;
+  if (m.source == "mesh") {
+    s << "mesh file " << m.file.filename().string();
+  } else if (m.source == "cad") {
+    s << "CAD file " << m.file.filename().string() << ", body '" << selected << "'";
+  } else if (m.source == "pipe") {
+    s << "pipe R=" << m.pipe.radius << " L=" << m.pipe.length << " mm";
+  } else if (m.source == "cone") {
+    s << "cone R=" << m.cone.radius_start << ".." << m.cone.radius_end << " L=" << m.cone.length
+      << " mm";
+  } else if (m.source == "vessel") {
+    const VesselParams& v = m.vessel;
+    auto dome = [&](const DomeParams& d) {
+      std::ostringstream o;
+      o << to_string(d.type);
+      if (d.type == DomeType::Elliptical) o << " (aspect " << d.aspect << ")";
+      o << " dome, opening r=" << dome_opening_radius(d, v.radius);
+      return o.str();
+    };
+    s << "vessel R=" << v.radius << " L=" << v.length << " mm, start: " << dome(v.dome_start)
+      << ", end: " << dome(v.dome_end);
+  } else if (m.source == "bent_tube") {
+    s << "bent tube R=" << m.bent_tube.radius << " mm, " << m.bent_tube.segments.size()
+      << " segment(s), " << m.bent_tube.bends.size() << " bend(s), centreline "
+      << bent_tube_length(m.bent_tube) << " mm";
+  }
+  return s.str();
+}
+
+}  // namespace
+
+CadShape mandrel_shape(const MandrelOptions& m, std::vector<std::string>* warnings) {
+  if (m.source == "pipe") return make_pipe(m.pipe);
+  if (m.source == "cone") return make_cone(m.cone);
+  if (m.source == "vessel") return make_vessel(m.vessel);
+  if (m.source == "bent_tube") return make_bent_tube(m.bent_tube);
+  if (m.source == "cad") {
+    CadImportOptions io;
+    io.solid = m.solid;
+    io.brep_unit_to_mm = to_millimetres(m.units);
+    CadImport imp = import_cad(m.file, io);
+    if (warnings) warnings->insert(warnings->end(), imp.warnings.begin(), imp.warnings.end());
+    return imp.shape;
+  }
+  throw ConfigError("mandrel.source: " + m.source + " has no CAD shape (only cad and parametric)");
+}
+
+Mandrel build_mandrel(const MandrelOptions& m) {
+  std::string why;
+  if (!m.is_valid(&why)) throw ConfigError("mandrel: " + why);
+  const auto t0 = Clock::now();
+  Mandrel out;
+  std::string selected;
+  TriangleSoup soup;
+  std::vector<char> keep;
+  const bool parametric =
+      m.source == "pipe" || m.source == "cone" || m.source == "vessel" || m.source == "bent_tube";
+
+  if (m.source == "mesh") {
+    std::vector<std::string> changes;
+    out.mesh = load_mandrel_mesh(m, nullptr, &changes);
+    for (const std::string& c : changes) out.warnings.push_back("repaired: " + c);
+  } else if (parametric || m.source == "cad") {
+    if (m.source == "cad") {
+      CadImportOptions io;
+      io.solid = m.solid;
+      io.brep_unit_to_mm = to_millimetres(m.units);
+      CadImport imp = import_cad(m.file, io);
+      out.warnings.insert(out.warnings.end(), imp.warnings.begin(), imp.warnings.end());
+      out.shape = imp.shape;
+      selected = imp.selected;
+    } else {
+      out.shape = mandrel_shape(m);
+    }
+    Tessellation tess = tessellate(out.shape, m.tessellation);
+    out.tessellation_ms = tess.time_ms;
+    out.brep_faces = static_cast<int>(tess.faces.size());
+    keep.resize(tess.soup.triangles.size());
+    for (std::size_t t = 0; t < keep.size(); ++t) {
+      keep[t] = tess.faces[tess.triangle_face[t]].kind != CadSurfaceKind::Plane;
+    }
+    soup = std::move(tess.soup);
+  } else {
+    throw ConfigError("mandrel.source: unknown source '" + m.source + "'");
+  }
+
+  if (out.mesh.num_faces() == 0) {
+    // B-rep sources: the welded soup must already be a valid oriented manifold.
+    out.health = check_mesh(soup);
+    if (!out.health.is_valid_mesh()) {
+      std::string problems;
+      for (const std::string& p : out.health.problems()) problems += (problems.empty() ? "" : "; ") + p;
+      throw TopologyError("mandrel (" + describe(m, selected) +
+                          "): the tessellation is not a valid mesh: " + problems);
+    }
+    out.mesh = Mesh(soup);
+  } else {
+    out.health = check_mesh(TriangleSoup{out.mesh.points(), out.mesh.triangles()});
+  }
+  if (m.remesh > 0.0) {
+    out.warnings.push_back("mandrel.remesh is not available in this build; mesh kept as tessellated");
+  }
+
+  // Axis.
+  if (m.has_axis) {
+    out.axis = m.axis;
+    out.axis.direction.normalize();
+    out.axis_source = "job";
+    out.revolution = radius_spread(out.mesh, out.axis) <= AxisInferenceOptions{}.revolution_tolerance;
+  } else if (m.source == "pipe" || m.source == "cone" || m.source == "vessel") {
+    out.axis = SpindleAxis{};
+    out.axis_source = "parametric";
+    out.revolution = true;
+  } else {
+    const AxisInference inf = infer_spindle_axis(out.mesh);
+    out.axis = inf.axis;
+    out.axis_source = inf.method;
+    out.revolution = inf.revolution;
+    if (!inf.revolution) {
+      std::ostringstream w;
+      w << "the mandrel is not a surface of revolution (radius spread " << inf.radius_spread * 100
+        << "% of its radius): using its principal axis; set mandrel.axis to choose";
+      out.warnings.push_back(w.str());
+    }
+  }
+
+  // Wound region.
+  if (m.source == "mesh") {
+    keep.assign(out.mesh.num_faces(), 1);
+    if (out.mesh.is_closed()) {
+      const double c = std::cos(M_PI / 180.0);
+      for (int f = 0; f < out.mesh.num_faces(); ++f) {
+        keep[f] = std::abs(out.mesh.face_normal(f).dot(out.axis.direction)) < c;
+      }
+    }
+  }
+  out.winding = extract_winding_surface(out.mesh, keep, out.axis);
+  out.profile = compute_radius_profile(out.mesh, out.axis);
+  out.description = describe(m, selected);
+  out.total_ms = ms_since(t0);
+  return out;
+}
+
+}  // namespace windplan

@@ -1,0 +1,62 @@
+#pragma once
+// The mandrel of a job, ready for planning: the full welded mesh, the wound region (an annulus)
+// with its two boundary loops, the spindle axis and the radius profile.
+//
+// build_mandrel dispatches on mandrel.source:
+//   "mesh"                            -> load_mandrel_mesh (planner/mandrel_mesh.h),
+//   "cad"                             -> import_cad + tessellate (geometry/cad_import.h),
+//   "pipe", "cone", "vessel", "bent_tube" -> the parametric solid + tessellate,
+// then optionally remeshes (mandrel.remesh), finds the axis and cuts out the winding surface.
+//
+// The wound region: for B-rep sources every face that is not planar (planar faces are the end
+// caps: pipe/cone/tube ends, the vessel's polar-opening disks; a CAD model's flat faces are
+// taken to be caps too); for a mesh file, the whole mesh when it is open, otherwise every
+// triangle whose normal is not parallel to the axis (within 1 degree): flat end caps are dropped.
+// The axis is the job's `mandrel.axis`, or the known axis of pipe/cone/vessel (+Z through the
+// origin), or inferred (geometry/winding_surface.h) for CAD, mesh and bent-tube mandrels.
+#include <string>
+#include <vector>
+
+#include "geometry/axis.h"
+#include "geometry/cad_shape.h"
+#include "geometry/mesh.h"
+#include "geometry/mesh_validation.h"
+#include "geometry/winding_surface.h"
+#include "planner/job.h"
+
+namespace windplan {
+
+struct Mandrel {
+  Mesh mesh;                   ///< the full welded mesh (mm); closed for a solid
+  MeshHealth health;           ///< check_mesh of the full mesh's soup
+  WindingSurface winding;      ///< the annulus, its face/vertex maps to `mesh`, its two loops
+  SpindleAxis axis;            ///< the spindle axis
+  std::string axis_source;     ///< "job", "parametric", "revolution axis" or "principal axis ..."
+  bool revolution = false;     ///< the mandrel is a surface of revolution about `axis`
+  RadiusProfile profile;       ///< largest radius along the axis (clearance envelope)
+  CadShape shape;              ///< the B-rep (cad and parametric sources), empty for meshes
+  int brep_faces = 0;          ///< B-rep faces (0 for meshes)
+  std::string description;     ///< one line: source, shape and dimensions
+  double tessellation_ms = 0;  ///< B-rep meshing and welding (0 for meshes)
+  double remesh_ms = 0;        ///< isotropic remeshing (0 when off)
+  double total_ms = 0;         ///< the whole build
+  std::vector<std::string> warnings;
+
+  /// The start loop (lower axial position) and end loop, as winding-surface vertex indices.
+  const std::vector<int>& start_loop() const { return winding.loops[0].vertices; }
+  const std::vector<int>& end_loop() const { return winding.loops[1].vertices; }
+};
+
+/// Builds the mandrel of a `mandrel:` section (paths already resolved).
+/// \throw IoError/InputError naming the file for unreadable mesh or CAD files, ConfigError for
+///        invalid options, TopologyError when the wound region is not an annulus.
+Mandrel build_mandrel(const MandrelOptions& mandrel);
+
+/// Same for a loaded job.
+inline Mandrel build_mandrel(const Job& job) { return build_mandrel(job.mandrel); }
+
+/// The CAD shape of a parametric or CAD `mandrel:` section without meshing it (for STEP export).
+/// \throw ConfigError for a mesh source.
+CadShape mandrel_shape(const MandrelOptions& mandrel, std::vector<std::string>* warnings = nullptr);
+
+}  // namespace windplan

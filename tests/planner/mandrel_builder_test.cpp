@@ -1,0 +1,167 @@
+// build_mandrel on every shipped parametric/CAD job and on bad jobs: the welded mesh is closed,
+// manifold and outward; the winding surface is an annulus whose loops sit at the openings.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "geometry/errors.h"
+#include "geometry/mesh_validation.h"
+#include "geometry/parametric_mandrel.h"
+#include "planner/job.h"
+#include "planner/mandrel_builder.h"
+#include "tests/test_data.h"
+
+namespace windplan {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path config(const std::string& name) { return test::source_dir() / "configs" / name; }
+
+double signed_volume(const Mesh& m) {
+  double v = 0.0;
+  for (const Tri& t : m.triangles()) {
+    v += m.position(t[0]).dot(m.position(t[1]).cross(m.position(t[2])));
+  }
+  return v / 6.0;
+}
+
+void expect_closed_full_mesh(const Mandrel& m) {
+  EXPECT_TRUE(m.health.closed);
+  EXPECT_TRUE(m.health.manifold);
+  EXPECT_TRUE(m.health.oriented);
+  EXPECT_EQ(m.health.num_components, 1);
+  EXPECT_EQ(m.health.genus, 0);
+  EXPECT_TRUE(m.mesh.is_closed());
+  EXPECT_GT(signed_volume(m.mesh), 0.0) << "outward normals";
+  EXPECT_EQ(m.winding.mesh.boundary_loops().size(), 2u);
+  EXPECT_EQ(m.winding.mesh.num_components(), 1);
+  EXPECT_FALSE(m.start_loop().empty());
+  EXPECT_LT(m.winding.loops[0].axial, m.winding.loops[1].axial);
+}
+
+TEST(MandrelBuilder, ShippedVesselLoopsAreThePolarOpenings) {
+  const Job job = load_job(config("vessel.yaml"));
+  const Mandrel m = build_mandrel(job);
+  expect_closed_full_mesh(m);
+  EXPECT_EQ(m.axis_source, "parametric");
+  const double r_open = dome_opening_radius(job.mandrel.vessel.dome_end, 100.0);
+  EXPECT_NEAR(r_open, 30.0, 0.3);
+  for (const WindingLoop& L : m.winding.loops) {
+    // Loop vertices lie on the opening circle (exactly: they are B-rep edge nodes).
+    EXPECT_NEAR(L.mean_radius, r_open, 1e-6);
+    for (int v : L.vertices) EXPECT_NEAR(m.axis.radius(m.winding.mesh.position(v)), r_open, 1e-6);
+  }
+  // The winding surface is the full mesh without the two opening disks.
+  EXPECT_NEAR(m.winding.area, m.mesh.total_area() - 2 * M_PI * r_open * r_open,
+              1e-3 * m.winding.area);
+  // The radius profile peaks at the cylinder radius.
+  double rmax = 0;
+  for (double r : m.profile.radius) rmax = std::max(rmax, r);
+  EXPECT_NEAR(rmax, 100.0, 1e-6);
+  EXPECT_NEAR(m.profile.at(150.0), 100.0, 1e-6);
+}
+
+TEST(MandrelBuilder, ShippedPipeAndConeLoopsAreTheEnds) {
+  const Mandrel p = build_mandrel(load_job(config("pipe.yaml")));
+  expect_closed_full_mesh(p);
+  EXPECT_NEAR(p.winding.loops[0].mean_radius, 50.0, 1e-6);
+  EXPECT_NEAR(p.winding.loops[1].mean_radius, 50.0, 1e-6);
+  EXPECT_NEAR(p.winding.loops[0].axial, 0.0, 1e-9);
+  EXPECT_NEAR(p.winding.loops[1].axial, 500.0, 1e-9);
+  const Mandrel c = build_mandrel(load_job(config("cone.yaml")));
+  expect_closed_full_mesh(c);
+  EXPECT_NEAR(c.winding.loops[0].mean_radius, 60.0, 1e-6);
+  EXPECT_NEAR(c.winding.loops[1].mean_radius, 40.0, 1e-6);
+}
+
+TEST(MandrelBuilder, ShippedBentTubeLoopsAreCirclesOfTheTubeRadius) {
+  const Mandrel m = build_mandrel(load_job(config("bent_tube.yaml")));
+  expect_closed_full_mesh(m);
+  EXPECT_FALSE(m.revolution);
+  EXPECT_FALSE(m.warnings.empty()) << "the axis is a principal axis, and the report says so";
+  for (const WindingLoop& L : m.winding.loops) {
+    Vec3 c = Vec3::Zero();
+    for (int v : L.vertices) c += m.winding.mesh.position(v);
+    c /= static_cast<double>(L.vertices.size());
+    for (int v : L.vertices) EXPECT_NEAR((m.winding.mesh.position(v) - c).norm(), 25.0, 1e-6);
+  }
+  const double side = 2 * M_PI * 25 * (400 + 100 * M_PI / 2);
+  EXPECT_NEAR(m.winding.area, side, 2 * 0.25 / 25 * side);
+  EXPECT_LE(m.winding.area, side);
+}
+
+TEST(MandrelBuilder, ShippedStepVesselMatchesTheParametricOne) {
+  const Mandrel cad = build_mandrel(load_job(config("vessel_step.yaml")));
+  const Mandrel par = build_mandrel(load_job(config("vessel.yaml")));
+  expect_closed_full_mesh(cad);
+  EXPECT_TRUE(cad.revolution);
+  EXPECT_NEAR(std::abs(cad.axis.direction.z()), 1.0, 1e-6);
+  EXPECT_NEAR(cad.mesh.total_area(), par.mesh.total_area(), 1e-3 * par.mesh.total_area());
+  EXPECT_NEAR(cad.winding.loops[0].mean_radius, par.winding.loops[0].mean_radius, 1e-3);
+  EXPECT_LT(fs::file_size(config("mandrels/vessel.step")), 1u << 20);
+}
+
+TEST(MandrelBuilder, JobAxisIsUsed) {
+  const Job job = load_job_from_string(
+      "mandrel:\n  source: pipe\n  pipe: {radius: 20, length: 100}\n"
+      "  axis: {origin: [0, 0, 0], direction: [0, 0, 2]}\n",
+      "axis.yaml");
+  EXPECT_TRUE(job.mandrel.has_axis);
+  const Mandrel m = build_mandrel(job);
+  EXPECT_EQ(m.axis_source, "job");
+  EXPECT_NEAR(m.axis.direction.z(), 1.0, 1e-12);
+  EXPECT_TRUE(m.revolution);
+}
+
+void expect_job_error(const std::string& yaml, const std::string& needle) {
+  try {
+    build_mandrel(load_job_from_string(yaml, "bad.yaml"));
+    ADD_FAILURE() << "no error, expected one naming " << needle;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
+        << "job:\n" << yaml << "error: " << e.what();
+  }
+}
+
+TEST(MandrelBuilder, BadJobsNameTheKey) {
+  expect_job_error("mandrel:\n  source: pipe\n  linear_deflection: 0\n  pipe: {radius: 5, length: 9}\n",
+                   "linear_deflection");
+  expect_job_error("mandrel:\n  source: pipe\n  linear_deflection: -1\n  pipe: {radius: 5, length: 9}\n",
+                   "linear_deflection");
+  expect_job_error("mandrel:\n  source: vessel\n  vessel:\n    radius: 100\n    length: 300\n"
+                   "    dome: {type: hemispherical, polar_opening: 150}\n",
+                   "polar_opening");
+  expect_job_error("mandrel:\n  source: bent_tube\n  bent_tube:\n    radius: 25\n"
+                   "    segments: [100, 100]\n    bends: [{angle: 90, radius: 10}]\n",
+                   "bends[0].radius");
+  expect_job_error("mandrel:\n  source: pipe\n  pipe: {radius: -1, length: 9}\n", "radius");
+  expect_job_error("mandrel:\n  source: pipe\n  pipe: {radius: 1, length: 9, lenght: 9}\n", "lenght");
+  expect_job_error("mandrel:\n  source: pipe\n", "pipe");
+  expect_job_error("mandrel:\n  source: cad\n", "file");
+  expect_job_error("mandrel:\n  source: vessel\n  vessel: {radius: 100, length: 300, "
+                   "dome: {type: conical}}\n",
+                   "type");
+}
+
+TEST(MandrelBuilder, CadFilesThatAreNotMandrelsAreRefusedClearly) {
+  const fs::path dir = fs::temp_directory_path() / "windplan_mandrel_builder_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "text.step") << "not a model\n";
+  expect_job_error("mandrel: {source: cad, file: " + (dir / "text.step").string() + "}\n",
+                   "text.step");
+  // A single flat face: an open shell whose wound region (non-planar faces) is empty.
+  const fs::path face = test::source_dir() / "tests/data/cad/single_face.step";
+  try {
+    build_mandrel(load_job_from_string("mandrel: {source: cad, file: " + face.string() + "}\n",
+                                       "face.yaml"));
+    ADD_FAILURE() << "a flat face is not a mandrel";
+  } catch (const TopologyError& e) {
+    EXPECT_NE(std::string(e.what()).find("winding surface"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace windplan
