@@ -10,6 +10,13 @@
 
 namespace windplan {
 
+std::filesystem::path resolve_output_directory(const OutputOptions& output,
+                                               const std::filesystem::path& job_file,
+                                               const std::string& job_name) {
+  if (!output.directory.empty()) return output.directory;
+  return job_file.parent_path() / (job_name + ".out");
+}
+
 CsvTable fibre_path_table(const WindingPlan& plan) {
   CsvTable t;
   t.header = {"circuit", "index",     "x [mm]",     "y [mm]",     "z [mm]",

@@ -43,6 +43,12 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
                          const MachineOptions& machine, const OutputOptions& output,
                          const std::filesystem::path& dir);
 
+/// Where a job's files go: output.directory when set (already resolved against the job file's
+/// directory by the job loader), else "<job name>.out" beside the job file.
+std::filesystem::path resolve_output_directory(const OutputOptions& output,
+                                               const std::filesystem::path& job_file,
+                                               const std::string& job_name);
+
 /// The CSV tables, for tests and other writers.
 CsvTable fibre_path_table(const WindingPlan& plan);
 CsvTable payout_table(const Motion& motion);

@@ -93,7 +93,7 @@ std::string gcode_program(const Motion& motion, const std::string& job_name,
 
   std::vector<int> circuit_starts;  // indices into motion.states
   for (std::size_t i = 0; i < motion.states.size(); ++i) {
-    if (i == 0 || motion.states[i].circuit != motion.states[i - 1].circuit) {
+    if (i == 0 || motion.states[i].ordinal != motion.states[i - 1].ordinal) {
       circuit_starts.push_back(static_cast<int>(i));
     }
   }

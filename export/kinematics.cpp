@@ -178,7 +178,8 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts) {
   double laid_before = 0.0;
   bool first = true;
   MachineState prev;
-  for (const Circuit& c : plan.circuits) {
+  for (std::size_t ordinal = 0; ordinal < plan.circuits.size(); ++ordinal) {
+    const Circuit& c = plan.circuits[ordinal];
     const int n = static_cast<int>(c.points.size());
     if (n == 0) continue;
     m.dense_points += n;
@@ -209,6 +210,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts) {
       const FibrePoint& fp = c.points[k];
       MachineState st;
       st.circuit = c.index;
+      st.ordinal = static_cast<int>(ordinal);
       st.index = k;
       st.position = fp.position;
       st.eye = sol[k].eye;

@@ -88,7 +88,8 @@ EyeSolution solve_payout_eye(const AxisFrame& frame, const Envelope& env, const 
 
 /// The machine's state at one resampled point of the plan.
 struct MachineState {
-  int circuit = 0;
+  int circuit = 0;          ///< Circuit::index
+  int ordinal = 0;          ///< position of the circuit in WindingPlan::circuits
   int index = 0;            ///< index into the circuit's dense points
   double t_s = 0.0;         ///< s since the first point
   double duration = 0.0;    ///< s, of the move into this point

@@ -31,7 +31,8 @@ struct CircuitFigures {
 
 std::vector<CircuitFigures> circuit_figures(const WindingPlan& plan, const Motion& motion) {
   std::vector<CircuitFigures> out;
-  for (const Circuit& c : plan.circuits) {
+  for (std::size_t k = 0; k < plan.circuits.size(); ++k) {
+    const Circuit& c = plan.circuits[k];
     CircuitFigures f;
     f.index = c.index;
     f.points = static_cast<int>(c.points.size());
@@ -45,7 +46,7 @@ std::vector<CircuitFigures> circuit_figures(const WindingPlan& plan, const Motio
       f.max_slippage = std::max(f.max_slippage, p.slippage);
     }
     for (const MachineState& s : motion.states) {
-      if (s.circuit != c.index) continue;
+      if (s.ordinal != static_cast<int>(k)) continue;
       ++f.machine_points;
       f.time += s.duration;
     }

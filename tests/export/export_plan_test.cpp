@@ -172,6 +172,25 @@ TEST(ExportPlan, TwoExportsAreByteIdentical) {
   }
 }
 
+TEST(ExportPlan, OutputDirectory) {
+  OutputOptions o;
+  EXPECT_EQ(resolve_output_directory(o, "/jobs/tank.yaml", "tank"), fs::path("/jobs/tank.out"));
+  o.directory = "/elsewhere/run";
+  EXPECT_EQ(resolve_output_directory(o, "/jobs/tank.yaml", "tank"), fs::path("/elsewhere/run"));
+}
+
+TEST(ExportPlan, RepeatedCircuitIndicesStaySeparateCircuits) {
+  WindingPlan plan = sample_plan(200, 3);
+  for (Circuit& c : plan.circuits) c.index = 7;
+  MachineOptions m;
+  m.gcode.dialect = "fanuc";
+  const fs::path d = temp_dir("dup");
+  export_plan(plan, sample_mesh(), m, OutputOptions{}, d);
+  const test::ParsedGcode g = test::parse_gcode(read_text_file(d / "toolpath.nc"));
+  EXPECT_EQ(g.subprogram_calls, 3);
+  fs::remove_all(d);
+}
+
 TEST(ExportPlan, TimingsOnlyWhenAsked) {
   const fs::path d = temp_dir("timings");
   OutputOptions o;
