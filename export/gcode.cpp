@@ -114,7 +114,7 @@ std::string gcode_program(const Motion& motion, const std::string& job_name,
     w.comment(std::string("windplan ") + WINDPLAN_VERSION + ", job " + job_name);
   }
   w.comment("machine " + opts.kind + ", dialect " + dialect +
-            ", units mm (linear) and deg (rotary), 4 decimals");
+            ", units: mm for linear axes, deg for rotary axes, 4 decimals");
   w.comment(inverse ? std::string("feed G93 inverse time: F = 1 / move time [1/min]")
                     : std::string("feed G94: F = combined axis distance per minute, deg as mm"));
   {
@@ -125,7 +125,7 @@ std::string gcode_program(const Motion& motion, const std::string& job_name,
   }
   std::string axis_list;
   for (const Ax& a : axes) {
-    static const char* names[4] = {"A spindle", "X carriage", "Y cross-feed", "B eye rotation"};
+    static const char* names[4] = {"spindle", "carriage", "cross-feed", "eye rotation"};
     axis_list += (axis_list.empty() ? "" : ", ") + a.o->letter + " = " + names[a.value];
   }
   w.comment("axes: " + axis_list);

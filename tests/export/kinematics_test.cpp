@@ -208,6 +208,58 @@ TEST(Kinematics, DurationsAreTheSlowestAxisAndTimeAccumulates) {
   EXPECT_GT(slow.wind_time, mo.wind_time);
 }
 
+TEST(Kinematics, PerMinuteFeedIsCombinedAxisSpeed) {
+  const WindingPlan plan = test::helix_plan(40, 55, 1, 400, 2);
+  MachineOptions m;  // lathe2: A and X only
+  m.gcode.dialect = "marlin";
+  const Motion mo = compute_motion(plan, m);
+  EXPECT_FALSE(mo.inverse_time);
+  for (std::size_t i = 1; i < mo.states.size(); ++i) {
+    const MachineState& p = mo.states[i - 1];
+    const MachineState& s = mo.states[i];
+    const double da = s.a_deg - p.a_deg, dx = s.x_mm - p.x_mm;
+    EXPECT_NEAR(s.duration, std::max({std::fabs(da) / 720, std::fabs(dx) / 500, 1e-3}), 1e-12);
+    EXPECT_NEAR(s.feed, 60 * std::hypot(da, dx) / s.duration, 1e-6 * s.feed);
+    EXPECT_EQ(s.b_deg, 0.0);
+  }
+}
+
+TEST(Kinematics, GeodesicOnSphereUnderDomeEnvelope) {
+  // A great circle of a sphere (R = 60) tilted 30 deg from the axis plane: a closed geodesic.
+  // Under the explicit dome envelope every eye is on the envelope and on its tangent line.
+  const double R = 60;
+  WindingPlan plan;
+  Circuit c;
+  const Vec3 a(1, 0, 0), b = Vec3(0, std::cos(M_PI / 6), std::sin(M_PI / 6));
+  for (int i = 0; i <= 720; ++i) {
+    const double t = 2 * M_PI * i / 720;
+    FibrePoint p;
+    p.position = R * (std::cos(t) * a + std::sin(t) * b);
+    p.normal = p.position / R;
+    p.tangent = -std::sin(t) * a + std::cos(t) * b;
+    p.s = R * t;
+    c.points.push_back(p);
+  }
+  plan.circuits.push_back(c);
+  MachineOptions m;
+  m.kind = "robot";
+  for (int i = 0; i <= 40; ++i) {
+    const double x = -R + 3 * i;
+    m.envelope.profile.push_back({x, std::sqrt(std::max(0.0, R * R - x * x)) + 25});
+  }
+  m.chord_tolerance = 0.01;
+  const Motion mo = compute_motion(plan, m);
+  const AxisFrame f = make_axis_frame(plan.axis);
+  const Envelope env = make_envelope(plan.profile, m.envelope);
+  ASSERT_GT(mo.states.size(), 10u);
+  for (const MachineState& s : mo.states) {
+    EXPECT_NEAR(f.radius(s.eye), env.radius_at(f.axial(s.eye)), 1e-6);
+    EXPECT_LT((s.eye - s.position).cross(s.direction).norm(), 1e-9);
+    EXPECT_GT(s.free_length, 0.0);
+  }
+  EXPECT_NEAR(mo.states.back().paid_out - mo.states.back().free_length, 2 * M_PI * R, 1e-9);
+}
+
 TEST(Kinematics, TravelLimitNamesAxisValueAndPoint) {
   const WindingPlan plan = test::helix_plan(50, 45, 2, 400, 2);
   MachineOptions m;
