@@ -24,11 +24,23 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Every directory made here is removed when the test program exits (forked children leave with
+// _exit and remove nothing).
+struct TempDirs {
+  std::vector<fs::path> dirs;
+  ~TempDirs() {
+    std::error_code ec;
+    for (const fs::path& d : dirs) fs::remove_all(d, ec);
+  }
+};
+TempDirs temp_dirs;
+
 fs::path temp_dir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("windplan_export_" + name + "_" +
                                                   std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
+  temp_dirs.dirs.push_back(d);
   return d;
 }
 
@@ -260,8 +272,6 @@ TEST(ExportPlan, KilledExportLeavesOnlyCompleteFiles) {
       EXPECT_TRUE(real || name.find(".tmp.") != std::string::npos) << name;
     }
   }
-  for (int rep = 0; rep < 6; ++rep) fs::remove_all(temp_dir("kill_" + std::to_string(rep)));
-  fs::remove_all(ref);
   std::cout << "[ info ] full export " << full_ms << " ms; files complete " << complete_seen
             << ", absent " << absent_seen << "\n";
 }
