@@ -15,6 +15,7 @@
 #include "export/report.h"
 #include "geometry/atomic_file.h"
 #include "geometry/errors.h"
+#include "planner/job.h"
 #include "tests/export/gcode_parser.h"
 #include "tests/export/plan_fixtures.h"
 #include "tests/mesh_fixtures.h"
@@ -201,6 +202,22 @@ TEST(ExportPlan, RepeatedCircuitIndicesStaySeparateCircuits) {
   const test::ParsedGcode g = test::parse_gcode(read_text_file(d / "toolpath.nc"));
   EXPECT_EQ(g.subprogram_calls, 3);
   fs::remove_all(d);
+}
+
+TEST(ExportPlan, JobSectionsDriveTheExport) {
+  const Job job = load_job_from_string(
+      "mandrel:\n  file: a.obj\n"
+      "machine:\n  kind: lathe4\n  gcode: {dialect: marlin}\n"
+      "  axes:\n    A: {letter: C}\n"
+      "output:\n  ply: false\n  svg: false\n",
+      "/jobs/tank.yaml");
+  const fs::path d = temp_dir("job");
+  const ExportResult r = export_plan(sample_plan(), sample_mesh(), job.machine, job.output, d);
+  EXPECT_EQ(r.files, (std::vector<std::string>{"fibre_path.csv", "payout.csv", "axes.csv",
+                                                "toolpath.gcode", "report.json", "report.md"}));
+  const std::string g = read_text_file(d / "toolpath.gcode");
+  EXPECT_NE(g.find("G92 C0"), std::string::npos);
+  EXPECT_FALSE(fs::exists(d / "development.svg"));
 }
 
 TEST(ExportPlan, TimingsOnlyWhenAsked) {
