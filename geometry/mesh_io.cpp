@@ -263,8 +263,13 @@ TriangleSoup read_off(const std::filesystem::path& path, const std::string& data
     }
   }
   const long long nv = counts[0], nf = counts[1];
+  if (nv > std::numeric_limits<int>::max() || nf > std::numeric_limits<int>::max()) {
+    fail(path, "vertex or face count too large (" + std::to_string(nv) + ", " +
+                   std::to_string(nf) + ")");
+  }
   TriangleSoup soup;
-  soup.points.reserve(nv);
+  const long long cap = static_cast<long long>(data.size());  // a corrupt header may claim more
+  soup.points.reserve(std::min(nv, cap));
   t.skip_line();
   for (long long i = 0; i < nv; ++i) {
     double c[3];
@@ -282,7 +287,7 @@ TriangleSoup read_off(const std::filesystem::path& path, const std::string& data
     t.skip_line();  // colours or extra columns
   }
   std::vector<int> poly;
-  soup.triangles.reserve(2 * nf);
+  soup.triangles.reserve(std::min(2 * nf, cap));
   for (long long f = 0; f < nf; ++f) {
     long long n = 0;
     if (!t.next()) {
@@ -476,6 +481,10 @@ TriangleSoup read_ply(const std::filesystem::path& path, const std::string& data
       if (!(s >> e.name >> e.count) || e.count < 0) {
         fail_line(path, line, "malformed element line '" + l + "'");
       }
+      if (e.count > std::numeric_limits<int>::max()) {
+        fail_line(path, line, "element '" + e.name + "' count " + std::to_string(e.count) +
+                                  " is too large");
+      }
       elements.push_back(e);
     } else if (kw == "property") {
       if (elements.empty()) fail_line(path, line, "property before any element");
@@ -538,8 +547,10 @@ TriangleSoup read_ply(const std::filesystem::path& path, const std::string& data
       body.skip_bytes(scalar_bytes * el.count, "element '" + el.name + "'");
       continue;
     }
-    if (is_vertex) soup.points.reserve(el.count);
-    if (is_face) soup.triangles.reserve(2 * el.count);
+    // Reserve no more than the data can hold: a corrupt header may claim billions.
+    const long long cap = static_cast<long long>(data.size());
+    if (is_vertex) soup.points.reserve(std::min(el.count, cap));
+    if (is_face) soup.triangles.reserve(std::min(2 * el.count, cap));
     for (long long i = 0; i < el.count; ++i) {
       auto what = [&]() {
         return el.name + " " + std::to_string(i) + " of " + std::to_string(el.count);

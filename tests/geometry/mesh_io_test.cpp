@@ -347,6 +347,18 @@ TEST_F(MeshIo, TruncatedBinaryStlSaysExpectedAndActualSize) {
   EXPECT_NE(e.find("it has " + std::to_string(cut.size())), std::string::npos) << e;
 }
 
+TEST_F(MeshIo, AHeaderClaimingBillionsFailsAsTruncatedWithoutAllocatingThem) {
+  const std::string e = error_of(write(
+      "huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\n"
+                  "property float x\nproperty float y\nproperty float z\nend_header\nabc"));
+  EXPECT_NE(e.find("vertex 0 of 2000000000"), std::string::npos) << e;
+  const std::string o = error_of(write("huge.off", "OFF\n2000000000 1 0\n0 0 0\n"));
+  EXPECT_NE(o.find("expected 2000000000 vertices, found 1"), std::string::npos) << o;
+  const std::string t = error_of(write(
+      "big.ply", "ply\nformat ascii 1.0\nelement vertex 9000000000\nproperty float x\nend_header\n"));
+  EXPECT_NE(t.find("too large"), std::string::npos) << t;
+}
+
 TEST_F(MeshIo, ObjFaceIndexOutOfRangeNamesTheLine) {
   const std::string e = error_of(write("r.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n"));
   EXPECT_NE(e.find("r.obj:5:"), std::string::npos) << e;
