@@ -126,7 +126,9 @@ int run_mandrel(const std::vector<std::string>& argv) {
     << m.axis.direction.transpose() << "), " << m.axis_source
     << (m.revolution ? ", surface of revolution" : "") << "\n";
   s << "  max radius " << rmax << " mm over " << m.profile.axial.size() << " stations\n";
-  s << "  time: tessellation " << m.tessellation_ms << " ms, total " << m.total_ms << " ms\n";
+  s << "  time: tessellation " << m.tessellation_ms << " ms";
+  if (job.mandrel.remesh > 0.0) s << ", remesh " << m.remesh_ms << " ms";
+  s << ", total " << m.total_ms << " ms\n";
   std::cout << s.str();
   return 0;
 }

@@ -7,6 +7,7 @@
 #include "geometry/cad_import.h"
 #include "geometry/errors.h"
 #include "geometry/parametric_mandrel.h"
+#include "geometry/remesh.h"
 #include "geometry/tessellate.h"
 #include "planner/mandrel_mesh.h"
 
@@ -75,7 +76,10 @@ Mandrel build_mandrel(const MandrelOptions& m) {
   Mandrel out;
   std::string selected;
   TriangleSoup soup;
-  std::vector<char> keep;
+  // Per face: a patch id (its B-rep face, or wound/not wound for meshes) that survives remeshing,
+  // and per patch whether it is wound.
+  std::vector<int> patch;
+  std::vector<char> patch_wound;
   const bool parametric =
       m.source == "pipe" || m.source == "cone" || m.source == "vessel" || m.source == "bent_tube";
 
@@ -98,10 +102,8 @@ Mandrel build_mandrel(const MandrelOptions& m) {
     Tessellation tess = tessellate(out.shape, m.tessellation);
     out.tessellation_ms = tess.time_ms;
     out.brep_faces = static_cast<int>(tess.faces.size());
-    keep.resize(tess.soup.triangles.size());
-    for (std::size_t t = 0; t < keep.size(); ++t) {
-      keep[t] = tess.faces[tess.triangle_face[t]].kind != CadSurfaceKind::Plane;
-    }
+    patch = tess.triangle_face;
+    for (const CadFaceInfo& f : tess.faces) patch_wound.push_back(f.kind != CadSurfaceKind::Plane);
     soup = std::move(tess.soup);
   } else {
     throw ConfigError("mandrel.source: unknown source '" + m.source + "'");
@@ -120,10 +122,6 @@ Mandrel build_mandrel(const MandrelOptions& m) {
   } else {
     out.health = check_mesh(TriangleSoup{out.mesh.points(), out.mesh.triangles()});
   }
-  if (m.remesh > 0.0) {
-    out.warnings.push_back("mandrel.remesh is not available in this build; mesh kept as tessellated");
-  }
-
   // Axis.
   if (m.has_axis) {
     out.axis = m.axis;
@@ -149,14 +147,26 @@ Mandrel build_mandrel(const MandrelOptions& m) {
 
   // Wound region.
   if (m.source == "mesh") {
-    keep.assign(out.mesh.num_faces(), 1);
+    patch.assign(out.mesh.num_faces(), 1);
+    patch_wound = {0, 1};
     if (out.mesh.is_closed()) {
       const double c = std::cos(M_PI / 180.0);
       for (int f = 0; f < out.mesh.num_faces(); ++f) {
-        keep[f] = std::abs(out.mesh.face_normal(f).dot(out.axis.direction)) < c;
+        patch[f] = std::abs(out.mesh.face_normal(f).dot(out.axis.direction)) < c ? 1 : 0;
       }
     }
   }
+  if (m.remesh > 0.0) {
+    RemeshOptions ro;
+    ro.target_edge_length = m.remesh;
+    RemeshResult r = remesh_isotropic(out.mesh, patch, ro);
+    out.mesh = std::move(r.mesh);
+    patch = std::move(r.face_patch);
+    out.remesh_ms = r.time_ms;
+    out.health = check_mesh(TriangleSoup{out.mesh.points(), out.mesh.triangles()});
+  }
+  std::vector<char> keep(out.mesh.num_faces());
+  for (int f = 0; f < out.mesh.num_faces(); ++f) keep[f] = patch_wound[patch[f]];
   out.winding = extract_winding_surface(out.mesh, keep, out.axis);
   out.profile = compute_radius_profile(out.mesh, out.axis);
   out.description = describe(m, selected);

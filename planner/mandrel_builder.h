@@ -6,7 +6,8 @@
 //   "mesh"                            -> load_mandrel_mesh (planner/mandrel_mesh.h),
 //   "cad"                             -> import_cad + tessellate (geometry/cad_import.h),
 //   "pipe", "cone", "vessel", "bent_tube" -> the parametric solid + tessellate,
-// then optionally remeshes (mandrel.remesh), finds the axis and cuts out the winding surface.
+// then finds the axis, optionally remeshes (mandrel.remesh, geometry/remesh.h: B-rep face and
+// wound-region borders are protected) and cuts out the winding surface.
 //
 // The wound region: for B-rep sources every face that is not planar (planar faces are the end
 // caps: pipe/cone/tube ends, the vessel's polar-opening disks; a CAD model's flat faces are

@@ -104,6 +104,30 @@ TEST(MandrelBuilder, ShippedStepVesselMatchesTheParametricOne) {
   EXPECT_LT(fs::file_size(config("mandrels/vessel.step")), 1u << 20);
 }
 
+TEST(MandrelBuilder, RemeshEvensOutEdgesAndKeepsTheAnnulus) {
+  const std::string yaml =
+      "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 500}\n  remesh: 10\n";
+  const Mandrel plain = build_mandrel(load_job_from_string(
+      "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 500}\n", "plain.yaml"));
+  const Mandrel m = build_mandrel(load_job_from_string(yaml, "remesh.yaml"));
+  expect_closed_full_mesh(m);
+  // The CAD tessellation of a cylinder has 500 mm long edges; remeshed, edges above 4/3 of the
+  // target are split, and the tangential relaxation that follows stretches some a little.
+  EXPECT_GT(plain.mesh.edge_length_stats()[2], 400.0);
+  EXPECT_LT(m.mesh.edge_length_stats()[2], 2.0 * 10.0);
+  EXPECT_NEAR(m.mesh.edge_length_stats()[1], 10.0, 3.0);
+  EXPECT_GT(m.remesh_ms, 0.0);
+  // Loops stay at the ends (protected borders, split along the original chords).
+  EXPECT_NEAR(m.winding.loops[0].axial, 0.0, 1e-9);
+  EXPECT_NEAR(m.winding.loops[1].axial, 500.0, 1e-9);
+  for (const WindingLoop& L : m.winding.loops) {
+    EXPECT_LE(L.mean_radius, 50.0 + 1e-9);
+    EXPECT_GT(L.mean_radius, 50.0 * std::cos(M_PI / 72) - 1e-9);
+  }
+  const double side = 2 * M_PI * 50 * 500;
+  EXPECT_NEAR(m.winding.area, side, 2 * 0.25 / 50 * side);
+}
+
 TEST(MandrelBuilder, JobAxisIsUsed) {
   const Job job = load_job_from_string(
       "mandrel:\n  source: pipe\n  pipe: {radius: 20, length: 100}\n"

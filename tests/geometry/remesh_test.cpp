@@ -1,0 +1,90 @@
+// Isotropic remeshing: edge lengths near the target, boundary and patch borders kept in place,
+// patch ids carried over, closed meshes stay closed, bad options refused.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "geometry/errors.h"
+#include "geometry/remesh.h"
+#include "tests/mesh_fixtures.h"
+
+namespace windplan {
+namespace {
+
+TEST(Remesh, LongThinCylinderTrianglesBecomeIsotropic) {
+  const double r = 20, len = 200;
+  const Mesh in(test::open_cylinder(r, len, 48, 4));  // 50 mm long slivers
+  ASSERT_GT(in.edge_length_stats()[2], 50.0);
+  // Two patches, the lower and upper halves: their border is the vertex ring at mid-length.
+  std::vector<int> patch(in.num_faces());
+  for (int f = 0; f < in.num_faces(); ++f) patch[f] = in.face_centroid(f).z() < len / 2 ? 0 : 1;
+  RemeshOptions o;
+  o.target_edge_length = 4.0;
+  const RemeshResult res = remesh_isotropic(in, patch, o);
+  const Mesh& m = res.mesh;
+  ASSERT_EQ(res.face_patch.size(), static_cast<std::size_t>(m.num_faces()));
+  EXPECT_EQ(res.faces_before, in.num_faces());
+  // About area / (sqrt(3) / 4 * 4^2) = 3600 near-equilateral triangles.
+  EXPECT_GT(res.faces_after, 3000);
+  EXPECT_LT(res.faces_after, 5000);
+  const auto el = m.edge_length_stats();
+  EXPECT_NEAR(el[1], 4.0, 1.2);
+  EXPECT_LT(el[2], 8.0);
+  // Still an open tube with two loops at z = 0 and z = len, every vertex on the original
+  // (faceted) surface: between r cos(pi / 48) and r from the axis.
+  EXPECT_EQ(m.boundary_loops().size(), 2u);
+  EXPECT_EQ(m.genus(), 0);
+  for (const auto& loop : m.boundary_loops()) {
+    const double z0 = m.position(m.from(loop[0])).z();
+    EXPECT_TRUE(std::abs(z0) < 1e-9 || std::abs(z0 - len) < 1e-9);
+    for (int h : loop) EXPECT_NEAR(m.position(m.from(h)).z(), z0, 1e-9);
+  }
+  for (const Vec3& p : m.points()) {
+    const double rad = std::hypot(p.x(), p.y());
+    EXPECT_LE(rad, r + 1e-6);
+    EXPECT_GE(rad, r * std::cos(M_PI / 48) - 1e-6);
+  }
+  // New vertices lie on the 48 facets; triangles spanning a fold between facets cut the corner,
+  // losing at most the facet sagitta ratio 1 - cos(pi / 48) of the area.
+  const double loss = 1 - std::cos(M_PI / 48);
+  EXPECT_LE(m.total_area(), in.total_area() + 1e-6);
+  EXPECT_GE(m.total_area(), (1 - loss) * in.total_area());
+  // Patch ids were carried over: the faces of the two patches have the same total area as before.
+  double a0 = 0, a1 = 0;
+  for (int f = 0; f < m.num_faces(); ++f) (res.face_patch[f] == 0 ? a0 : a1) += m.face_area(f);
+  double b0 = 0, b1 = 0;
+  for (int f = 0; f < in.num_faces(); ++f) (patch[f] == 0 ? b0 : b1) += in.face_area(f);
+  EXPECT_NEAR(a0, b0, loss * b0);
+  EXPECT_NEAR(a1, b1, loss * b1);
+  EXPECT_NEAR(a0, a1, 0.02 * a1) << "the patch border stayed at mid-length";
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const double z = m.face_centroid(f).z();
+    EXPECT_EQ(res.face_patch[f], z < len / 2 ? 0 : 1) << "face " << f << " at z " << z;
+  }
+}
+
+TEST(Remesh, ClosedMeshStaysClosed) {
+  const Mesh in(test::uv_sphere(50, 24, 12));
+  RemeshOptions o;
+  o.target_edge_length = 5.0;
+  const RemeshResult res = remesh_isotropic(in, {}, o);
+  EXPECT_TRUE(res.mesh.is_closed());
+  EXPECT_EQ(res.mesh.genus(), 0);
+  EXPECT_EQ(res.mesh.num_components(), 1);
+  for (int p : res.face_patch) EXPECT_EQ(p, 0);
+}
+
+TEST(Remesh, BadOptionsAndSizesAreRefused) {
+  const Mesh in(test::open_cylinder(20, 100, 16, 2));
+  RemeshOptions o;
+  o.target_edge_length = 0.0;
+  EXPECT_THROW(remesh_isotropic(in, {}, o), ConfigError);
+  o.target_edge_length = 5.0;
+  o.iterations = 0;
+  EXPECT_THROW(remesh_isotropic(in, {}, o), ConfigError);
+  o.iterations = 3;
+  EXPECT_THROW(remesh_isotropic(in, std::vector<int>(3, 0), o), InputError);
+}
+
+}  // namespace
+}  // namespace windplan
