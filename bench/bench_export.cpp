@@ -36,11 +36,12 @@ int main(int argc, char** argv) {
   auto t0 = std::chrono::steady_clock::now();
   const Motion mo = compute_motion(plan, m);
   const double t_motion = seconds_since(t0);
-  std::printf("compute_motion: %.3f s (%.2f us per dense point), %zu machine points (%.2f%%), "
-              "max chord deviation %.4f mm (tolerance %.3f), max eye iterations %d\n",
-              t_motion, 1e6 * t_motion / (circuits * n), mo.states.size(),
-              100.0 * mo.states.size() / (circuits * n), mo.max_chord_deviation,
-              m.chord_tolerance, mo.max_eye_iterations);
+  std::printf(
+      "compute_motion: %.3f s (%.2f us per dense point), %zu machine points (%.2f%%), "
+      "max chord deviation %.4f mm (tolerance %.3f), max eye iterations %d\n",
+      t_motion, 1e6 * t_motion / (circuits * n), mo.states.size(),
+      100.0 * mo.states.size() / (circuits * n), mo.max_chord_deviation, m.chord_tolerance,
+      mo.max_eye_iterations);
 
   const AxisFrame f = make_axis_frame(plan.axis);
   const Envelope env = make_envelope(plan.profile, m.envelope);

@@ -19,17 +19,28 @@ std::filesystem::path resolve_output_directory(const OutputOptions& output,
 
 CsvTable fibre_path_table(const WindingPlan& plan) {
   CsvTable t;
-  t.header = {"circuit", "index",     "x [mm]",     "y [mm]",     "z [mm]",
-              "nx",      "ny",        "nz",         "tx",         "ty",
-              "tz",      "s [mm]",    "winding_angle [deg]",      "k_n [1/mm]",
-              "k_g [1/mm]", "slippage"};
+  t.header = {"circuit",
+              "index",
+              "x [mm]",
+              "y [mm]",
+              "z [mm]",
+              "nx",
+              "ny",
+              "nz",
+              "tx",
+              "ty",
+              "tz",
+              "s [mm]",
+              "winding_angle [deg]",
+              "k_n [1/mm]",
+              "k_g [1/mm]",
+              "slippage"};
   for (const Circuit& c : plan.circuits) {
     for (std::size_t i = 0; i < c.points.size(); ++i) {
       const FibrePoint& p = c.points[i];
-      t.rows.push_back({double(c.index), double(i), p.position.x(), p.position.y(),
-                        p.position.z(), p.normal.x(), p.normal.y(), p.normal.z(), p.tangent.x(),
-                        p.tangent.y(), p.tangent.z(), p.s, p.winding_angle, p.k_n, p.k_g,
-                        p.slippage});
+      t.rows.push_back({double(c.index), double(i), p.position.x(), p.position.y(), p.position.z(),
+                        p.normal.x(), p.normal.y(), p.normal.z(), p.tangent.x(), p.tangent.y(),
+                        p.tangent.z(), p.s, p.winding_angle, p.k_n, p.k_g, p.slippage});
     }
   }
   return t;
@@ -37,9 +48,8 @@ CsvTable fibre_path_table(const WindingPlan& plan) {
 
 CsvTable payout_table(const Motion& motion) {
   CsvTable t;
-  t.header = {"circuit",          "index",
-              "eye_x [mm]",       "eye_y [mm]",
-              "eye_z [mm]",       "free_length [mm]",
+  t.header = {"circuit",          "index",      "eye_x [mm]",
+              "eye_y [mm]",       "eye_z [mm]", "free_length [mm]",
               "fibre_length [mm]"};
   for (const MachineState& s : motion.states) {
     t.rows.push_back({double(s.circuit), double(s.index), s.eye.x(), s.eye.y(), s.eye.z(),
@@ -50,20 +60,20 @@ CsvTable payout_table(const Motion& motion) {
 
 CsvTable axes_table(const Motion& motion) {
   CsvTable t;
-  t.header = {"circuit", "index",  "t_s [s]", "A_deg [deg]", "X_mm [mm]",
-              "Y_mm [mm]", "B_deg [deg]",
-              motion.inverse_time ? "F [1/min]" : "F [units/min]"};
+  t.header = {
+      "circuit",   "index",     "t_s [s]",     "A_deg [deg]",
+      "X_mm [mm]", "Y_mm [mm]", "B_deg [deg]", motion.inverse_time ? "F [1/min]" : "F [units/min]"};
   for (const MachineState& s : motion.states) {
-    t.rows.push_back({double(s.circuit), double(s.index), s.t_s, s.a_deg, s.x_mm, s.y_mm,
-                      s.b_deg, s.feed});
+    t.rows.push_back(
+        {double(s.circuit), double(s.index), s.t_s, s.a_deg, s.x_mm, s.y_mm, s.b_deg, s.feed});
   }
   return t;
 }
 
 CsvTable eye_pose_table(const Motion& motion) {
   CsvTable t;
-  t.header = {"circuit",    "index",      "t_s [s]",    "A_deg [deg]", "eye_x [mm]",
-              "eye_y [mm]", "eye_z [mm]", "dir_x",      "dir_y",       "dir_z"};
+  t.header = {"circuit",    "index",      "t_s [s]", "A_deg [deg]", "eye_x [mm]",
+              "eye_y [mm]", "eye_z [mm]", "dir_x",   "dir_y",       "dir_z"};
   for (const MachineState& s : motion.states) {
     t.rows.push_back({double(s.circuit), double(s.index), s.t_s, s.a_deg, s.eye.x(), s.eye.y(),
                       s.eye.z(), s.direction.x(), s.direction.y(), s.direction.z()});

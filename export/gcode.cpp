@@ -165,8 +165,8 @@ std::string gcode_program(const Motion& motion, const std::string& job_name,
 
   auto circuit_body = [&](int k) {
     const int begin = circuit_starts[k];
-    const int end = k + 1 < n_circuits ? circuit_starts[k + 1]
-                                       : static_cast<int>(motion.states.size());
+    const int end =
+        k + 1 < n_circuits ? circuit_starts[k + 1] : static_cast<int>(motion.states.size());
     if (!fanuc) w.comment("circuit " + std::to_string(motion.states[begin].circuit));
     for (int i = begin; i < end; ++i) {
       motion_line(motion.states[i], i == 0);

@@ -21,9 +21,7 @@ std::string num(double v) {
 }
 
 // Brings `raw` (deg) within 180 of `prev` by whole turns: the unwrapped continuation.
-double unwrap_deg(double raw, double prev) {
-  return prev + std::remainder(raw - prev, 360.0);
-}
+double unwrap_deg(double raw, double prev) { return prev + std::remainder(raw - prev, 360.0); }
 
 }  // namespace
 
@@ -120,8 +118,9 @@ EyeSolution solve_payout_eye(const AxisFrame& frame, const Envelope& env, const 
   }
   const double t_perp = (t - t.dot(frame.d) * frame.d).norm();
   if (t_perp < 1e-12) {
-    throw InputError(at + "the fibre tangent is parallel to the spindle axis and never leaves "
-                          "the clearance envelope");
+    throw InputError(at +
+                     "the fibre tangent is parallel to the spindle axis and never leaves "
+                     "the clearance envelope");
   }
   const double r_max = *std::max_element(env.r.begin(), env.r.end());
   // Beyond l_max the radius t_perp * l - r0 exceeds every envelope radius.

@@ -21,8 +21,8 @@
 //   A [deg]: spindle angle = -theta(E), unwrapped (continuous over the whole plan), so that the
 //            turned eye lies at angle 0, i.e. on +u;
 //   X [mm]:  carriage = axial coordinate of E;
-//   Y [mm]:  cross-feed = radial distance of E from the axis (lathe2: reported, not a machine axis);
-//   B [deg]: eye rotation about its radial direction (lathe4; 0 for lathe2): with the fibre
+//   Y [mm]:  cross-feed = radial distance of E from the axis (lathe2: reported, not a machine
+//   axis); B [deg]: eye rotation about its radial direction (lathe4; 0 for lathe2): with the fibre
 //            direction t resolved at E into axial t_x = t.d and circumferential t_c = t.(d x r_E)
 //            (r_E the unit radial direction of E), B = atan2(t_c, t_x), unwrapped: 0 when the
 //            fibre runs along +d, +90 when it runs circumferentially counter-clockwise about d.
@@ -63,10 +63,10 @@ AxisFrame make_axis_frame(const SpindleAxis& axis);
 /// The clearance envelope R_env(x) (or the fixed free-length mode).
 struct Envelope {
   bool fixed_length = false;
-  double free_length = 0.0;   ///< mm, fixed_length mode
-  std::vector<double> x;      ///< mm, strictly increasing
-  std::vector<double> r;      ///< mm
-  double max_slope = 0.0;     ///< max |dr/dx|
+  double free_length = 0.0;  ///< mm, fixed_length mode
+  std::vector<double> x;     ///< mm, strictly increasing
+  std::vector<double> r;     ///< mm
+  double max_slope = 0.0;    ///< max |dr/dx|
   double radius_at(double ax) const;
 };
 
@@ -88,18 +88,18 @@ EyeSolution solve_payout_eye(const AxisFrame& frame, const Envelope& env, const 
 
 /// The machine's state at one resampled point of the plan.
 struct MachineState {
-  int circuit = 0;          ///< Circuit::index
-  int ordinal = 0;          ///< position of the circuit in WindingPlan::circuits
-  int index = 0;            ///< index into the circuit's dense points
-  double t_s = 0.0;         ///< s since the first point
-  double duration = 0.0;    ///< s, of the move into this point
+  int circuit = 0;        ///< Circuit::index
+  int ordinal = 0;        ///< position of the circuit in WindingPlan::circuits
+  int index = 0;          ///< index into the circuit's dense points
+  double t_s = 0.0;       ///< s since the first point
+  double duration = 0.0;  ///< s, of the move into this point
   double a_deg = 0.0, x_mm = 0.0, y_mm = 0.0, b_deg = 0.0;
-  double feed = 0.0;        ///< F in the dialect's convention
-  Vec3 position = Vec3::Zero();   ///< fibre point (mandrel frame)
-  Vec3 eye = Vec3::Zero();        ///< payout eye (mandrel frame)
-  Vec3 direction = Vec3::UnitZ(); ///< unit fibre direction at the eye (mandrel frame)
-  double free_length = 0.0;       ///< mm
-  double paid_out = 0.0;          ///< mm of fibre through the eye: laid length so far + free length
+  double feed = 0.0;               ///< F in the dialect's convention
+  Vec3 position = Vec3::Zero();    ///< fibre point (mandrel frame)
+  Vec3 eye = Vec3::Zero();         ///< payout eye (mandrel frame)
+  Vec3 direction = Vec3::UnitZ();  ///< unit fibre direction at the eye (mandrel frame)
+  double free_length = 0.0;        ///< mm
+  double paid_out = 0.0;  ///< mm of fibre through the eye: laid length so far + free length
 };
 
 /// Min and max of one quantity.

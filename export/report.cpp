@@ -164,8 +164,8 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
     << "| pattern | " << m.pattern << " |\n"
     << "| spacing CV | " << fmt("%.4f", m.spacing_cv) << " |\n"
     << "| mean spacing | " << fmt("%.3f", m.spacing_mean) << " mm |\n"
-    << "| max slippage | " << fmt("%.4f", m.max_slippage) << " (friction " << fmt("%.3f", m.friction)
-    << ") |\n"
+    << "| max slippage | " << fmt("%.4f", m.max_slippage) << " (friction "
+    << fmt("%.3f", m.friction) << ") |\n"
     << "| slip fraction | " << fmt("%.4f", m.slip_fraction) << " |\n"
     << "| bridging length | " << fmt("%.3f", m.bridging_length) << " mm |\n\n"
     << "## Machine\n\n| figure | value |\n|---|---|\n"
@@ -197,10 +197,10 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
     o << "\n## Cut-lines\n\n| name | closed | length [mm] | plane normal | offset [mm] | "
          "residual [mm] |\n|---|---|---|---|---|---|\n";
     for (const CutLine& c : plan.cutlines) {
-      o << "| " << c.name << " | " << (c.closed ? "yes" : "no") << " | "
-        << fmt("%.3f", c.length) << " | (" << fmt("%.6f", c.plane_normal.x()) << ", "
-        << fmt("%.6f", c.plane_normal.y()) << ", " << fmt("%.6f", c.plane_normal.z()) << ") | "
-        << fmt("%.4f", c.plane_offset) << " | " << fmt("%.2e", c.residual) << " |\n";
+      o << "| " << c.name << " | " << (c.closed ? "yes" : "no") << " | " << fmt("%.3f", c.length)
+        << " | (" << fmt("%.6f", c.plane_normal.x()) << ", " << fmt("%.6f", c.plane_normal.y())
+        << ", " << fmt("%.6f", c.plane_normal.z()) << ") | " << fmt("%.4f", c.plane_offset) << " | "
+        << fmt("%.2e", c.residual) << " |\n";
     }
   }
   if (!m.warnings.empty()) {
@@ -211,7 +211,8 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
   for (const std::string& f : r.files) o << "- `" << f << "`\n";
   if (r.timings && !m.timings.empty()) {
     o << "\n## Timings\n\n| stage | s |\n|---|---|\n";
-    for (const StageTiming& t : m.timings) o << "| " << t.stage << " | " << fmt("%.3f", t.seconds) << " |\n";
+    for (const StageTiming& t : m.timings)
+      o << "| " << t.stage << " | " << fmt("%.3f", t.seconds) << " |\n";
   }
   return o.str();
 }

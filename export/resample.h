@@ -16,8 +16,8 @@
 namespace windplan {
 
 struct ResampleResult {
-  std::vector<int> kept;        ///< increasing indices into the dense polyline; first and last kept
-  double max_deviation = 0.0;   ///< mm, largest distance of a dropped point to its chord
+  std::vector<int> kept;       ///< increasing indices into the dense polyline; first and last kept
+  double max_deviation = 0.0;  ///< mm, largest distance of a dropped point to its chord
 };
 
 /// \param polylines one or more dense polylines of the same length, sampled at the same

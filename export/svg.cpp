@@ -24,10 +24,18 @@ std::string escape(const std::string& s) {
   std::string o;
   for (char c : s) {
     switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
+      case '&':
+        o += "&amp;";
+        break;
+      case '<':
+        o += "&lt;";
+        break;
+      case '>':
+        o += "&gt;";
+        break;
+      case '"':
+        o += "&quot;";
+        break;
       default:
         if (static_cast<unsigned char>(c) >= 0x20) o += c;
     }
@@ -43,12 +51,30 @@ std::string colour(int k) {
   const double x = c * (1.0 - std::fabs(std::fmod(h, 2.0) - 1.0));
   double r = 0, g = 0, b = 0;
   switch (static_cast<int>(h)) {
-    case 0: r = c; g = x; break;
-    case 1: r = x; g = c; break;
-    case 2: g = c; b = x; break;
-    case 3: g = x; b = c; break;
-    case 4: r = x; b = c; break;
-    default: r = c; b = x; break;
+    case 0:
+      r = c;
+      g = x;
+      break;
+    case 1:
+      r = x;
+      g = c;
+      break;
+    case 2:
+      g = c;
+      b = x;
+      break;
+    case 3:
+      g = x;
+      b = c;
+      break;
+    case 4:
+      r = x;
+      b = c;
+      break;
+    default:
+      r = c;
+      b = x;
+      break;
   }
   const double m = l - c / 2.0;
   char buf[16];
@@ -108,8 +134,9 @@ std::string development_svg(const WindingPlan& plan, const SvgOptions& opts) {
     << "\" fill=\"white\"/>\n"
     << "<text x=\"" << ml << "\" y=\"22\" font-family=\"sans-serif\" font-size=\"15\">"
     << escape(plan.job_name) << ": " << plan.circuits.size() << " circuits, "
-    << plan.cutlines.size() << " cut-lines (unrolled: axial position vs angle about the "
-                               "spindle axis)</text>\n";
+    << plan.cutlines.size()
+    << " cut-lines (unrolled: axial position vs angle about the "
+       "spindle axis)</text>\n";
   // Frame, grid and tick labels.
   o << "<g font-family=\"sans-serif\" font-size=\"11\" fill=\"#333\">\n"
     << "<rect x=\"" << f2(ml) << "\" y=\"" << f2(mt) << "\" width=\"" << f2(pw) << "\" height=\""
@@ -122,10 +149,10 @@ std::string development_svg(const WindingPlan& plan, const SvgOptions& opts) {
     return std::string(buf);
   };
   for (double x = std::ceil(xmin / step) * step; x <= xmax + 1e-9 * step; x += step) {
-    o << "<line x1=\"" << f2(px(x)) << "\" y1=\"" << f2(mt) << "\" x2=\"" << f2(px(x))
-      << "\" y2=\"" << f2(mt + ph) << "\" stroke=\"#e4e4e4\" stroke-width=\"0.5\"/>\n"
-      << "<text x=\"" << f2(px(x)) << "\" y=\"" << f2(mt + ph + 16)
-      << "\" text-anchor=\"middle\">" << tick_label(x) << "</text>\n";
+    o << "<line x1=\"" << f2(px(x)) << "\" y1=\"" << f2(mt) << "\" x2=\"" << f2(px(x)) << "\" y2=\""
+      << f2(mt + ph) << "\" stroke=\"#e4e4e4\" stroke-width=\"0.5\"/>\n"
+      << "<text x=\"" << f2(px(x)) << "\" y=\"" << f2(mt + ph + 16) << "\" text-anchor=\"middle\">"
+      << tick_label(x) << "</text>\n";
   }
   for (int d = 0; d <= 360; d += 45) {
     o << "<line x1=\"" << f2(ml) << "\" y1=\"" << f2(py(d)) << "\" x2=\"" << f2(ml + pw)
@@ -143,16 +170,16 @@ std::string development_svg(const WindingPlan& plan, const SvgOptions& opts) {
   // Labels of the right half are anchored at their end so that they stay inside the image.
   auto vline = [&](double x, const std::string& style, const std::string& label, double ty) {
     const bool right = px(x) > ml + pw / 2;
-    o << "<line x1=\"" << f2(px(x)) << "\" y1=\"" << f2(mt) << "\" x2=\"" << f2(px(x))
-      << "\" y2=\"" << f2(mt + ph) << "\" " << style << "/>\n"
+    o << "<line x1=\"" << f2(px(x)) << "\" y1=\"" << f2(mt) << "\" x2=\"" << f2(px(x)) << "\" y2=\""
+      << f2(mt + ph) << "\" " << style << "/>\n"
       << "<text x=\"" << f2(px(x) + (right ? -3 : 3)) << "\" y=\"" << f2(ty)
       << "\" font-family=\"sans-serif\" font-size=\"10\" fill=\"#555\" text-anchor=\""
       << (right ? "end" : "start") << "\">" << escape(label) << "</text>\n";
   };
   if (!plan.profile.empty()) {
     const std::string solid = "stroke=\"#888\" stroke-width=\"1.5\"";
-    vline(plan.profile.axial.front(), solid, "mandrel end " + f2(plan.profile.axial.front()) + " mm",
-          mt + ph - 6);
+    vline(plan.profile.axial.front(), solid,
+          "mandrel end " + f2(plan.profile.axial.front()) + " mm", mt + ph - 6);
     vline(plan.profile.axial.back(), solid, "mandrel end " + f2(plan.profile.axial.back()) + " mm",
           mt + ph - 6);
   }
@@ -202,7 +229,7 @@ std::string development_svg(const WindingPlan& plan, const SvgOptions& opts) {
         double d = th - th_prev;
         if (std::fabs(d) > 180.0) {
           // Crosses the seam: finish at the seam on one side and restart on the other.
-          const double up = d < 0.0 ? 360.0 : 0.0;       // seam value on the previous side
+          const double up = d < 0.0 ? 360.0 : 0.0;  // seam value on the previous side
           const double unwrapped = d < 0.0 ? th + 360.0 : th - 360.0;
           const double f = (up - th_prev) / (unwrapped - th_prev);
           const double xs = px_prev + f * (x - px_prev);

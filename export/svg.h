@@ -17,8 +17,8 @@
 namespace windplan {
 
 struct SvgOptions {
-  int width = 1100;   ///< px
-  int height = 640;   ///< px
+  int width = 1100;  ///< px
+  int height = 640;  ///< px
 };
 
 std::string development_svg(const WindingPlan& plan, const SvgOptions& opts = {});

@@ -18,9 +18,10 @@ namespace windplan {
 ///  - "profile": the explicit (axial, radius) polyline `profile`;
 ///  - "free_length": no envelope, the eye is at a fixed free-fibre length along the tangent.
 struct EnvelopeOptions {
-  double clearance = 20.0;                     ///< mm added to the mandrel radius profile, > 0
-  std::vector<std::array<double, 2>> profile;  ///< [[x mm, r mm], ...], x strictly increasing, r > 0
-  double free_length = 0.0;                    ///< mm; > 0 selects the fixed-free-length mode
+  double clearance = 20.0;  ///< mm added to the mandrel radius profile, > 0
+  std::vector<std::array<double, 2>>
+      profile;               ///< [[x mm, r mm], ...], x strictly increasing, r > 0
+  double free_length = 0.0;  ///< mm; > 0 selects the fixed-free-length mode
 
   /// "clearance", "profile" or "free_length", from which field is set.
   std::string mode() const;
@@ -30,12 +31,14 @@ struct EnvelopeOptions {
 /// One machine axis: how the planner's value v maps to the G-code word (sign * v + offset),
 /// its travel limits (on that machine value) and its velocity limit.
 struct AxisOptions {
-  std::string letter;  ///< G-code address letter (one of A B C U V W X Y Z)
-  double sign = 1.0;   ///< +1 or -1
-  double offset = 0.0; ///< mm or deg added after the sign
-  double min = -std::numeric_limits<double>::infinity();  ///< travel limit (mm or deg), machine value
-  double max = std::numeric_limits<double>::infinity();   ///< travel limit (mm or deg), machine value
-  double max_velocity = 100.0;  ///< mm/s or deg/s, > 0
+  std::string letter;   ///< G-code address letter (one of A B C U V W X Y Z)
+  double sign = 1.0;    ///< +1 or -1
+  double offset = 0.0;  ///< mm or deg added after the sign
+  double min =
+      -std::numeric_limits<double>::infinity();  ///< travel limit (mm or deg), machine value
+  double max =
+      std::numeric_limits<double>::infinity();  ///< travel limit (mm or deg), machine value
+  double max_velocity = 100.0;                  ///< mm/s or deg/s, > 0
 
   bool is_valid(std::string* why) const;
 };
@@ -64,14 +67,30 @@ struct MachineOptions {
   /// mm/s: upper bound on the fibre laying speed; 0 = no bound.
   double max_fibre_speed = 0.0;
   /// A spindle (deg), X carriage (mm), Y cross-feed (mm), B eye rotation (deg).
-  AxisOptions a{"A", 1.0, 0.0, -std::numeric_limits<double>::infinity(),
-                std::numeric_limits<double>::infinity(), 720.0};
-  AxisOptions x{"X", 1.0, 0.0, -std::numeric_limits<double>::infinity(),
-                std::numeric_limits<double>::infinity(), 500.0};
-  AxisOptions y{"Y", 1.0, 0.0, -std::numeric_limits<double>::infinity(),
-                std::numeric_limits<double>::infinity(), 200.0};
-  AxisOptions b{"B", 1.0, 0.0, -std::numeric_limits<double>::infinity(),
-                std::numeric_limits<double>::infinity(), 360.0};
+  AxisOptions a{"A",
+                1.0,
+                0.0,
+                -std::numeric_limits<double>::infinity(),
+                std::numeric_limits<double>::infinity(),
+                720.0};
+  AxisOptions x{"X",
+                1.0,
+                0.0,
+                -std::numeric_limits<double>::infinity(),
+                std::numeric_limits<double>::infinity(),
+                500.0};
+  AxisOptions y{"Y",
+                1.0,
+                0.0,
+                -std::numeric_limits<double>::infinity(),
+                std::numeric_limits<double>::infinity(),
+                200.0};
+  AxisOptions b{"B",
+                1.0,
+                0.0,
+                -std::numeric_limits<double>::infinity(),
+                std::numeric_limits<double>::infinity(),
+                360.0};
   GcodeOptions gcode;
 
   bool is_valid(std::string* why) const;

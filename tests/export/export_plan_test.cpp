@@ -37,8 +37,8 @@ struct TempDirs {
 TempDirs temp_dirs;
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("windplan_export_" + name + "_" +
-                                                  std::to_string(::getpid()));
+  const fs::path d =
+      fs::temp_directory_path() / ("windplan_export_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   fs::create_directories(d);
   temp_dirs.dirs.push_back(d);
@@ -104,8 +104,8 @@ TEST(ExportPlan, WritesEveryFileConsistently) {
   MachineOptions m;
   m.kind = "lathe4";
   const ExportResult r = export_plan(plan, sample_mesh(), m, OutputOptions{}, d);
-  const std::vector<std::string> expect = {"fibre_path.csv", "payout.csv",   "axes.csv",
-                                           "toolpath.ngc",   "mesh.ply",     "paths.ply",
+  const std::vector<std::string> expect = {"fibre_path.csv",  "payout.csv",  "axes.csv",
+                                           "toolpath.ngc",    "mesh.ply",    "paths.ply",
                                            "development.svg", "report.json", "report.md"};
   EXPECT_EQ(r.files, expect);
   for (const std::string& f : expect) EXPECT_TRUE(fs::exists(d / f)) << f;
@@ -214,7 +214,7 @@ TEST(ExportPlan, JobSectionsDriveTheExport) {
   const fs::path d = temp_dir("job");
   const ExportResult r = export_plan(sample_plan(), sample_mesh(), job.machine, job.output, d);
   EXPECT_EQ(r.files, (std::vector<std::string>{"fibre_path.csv", "payout.csv", "axes.csv",
-                                                "toolpath.gcode", "report.json", "report.md"}));
+                                               "toolpath.gcode", "report.json", "report.md"}));
   const std::string g = read_text_file(d / "toolpath.gcode");
   EXPECT_NE(g.find("G92 C0"), std::string::npos);
   EXPECT_FALSE(fs::exists(d / "development.svg"));

@@ -63,8 +63,8 @@ void check_readback(const std::string& kind, const std::string& dialect) {
   if (mo.inverse_time) {
     for (std::size_t i = 1; i < g.moves.size(); ++i) {
       const double dur = 60.0 / g.moves[i].feed;
-      for (const auto& [letter, vmax] : std::map<char, double>{
-               {'C', m.a.max_velocity}, {'Z', m.x.max_velocity}}) {
+      for (const auto& [letter, vmax] :
+           std::map<char, double>{{'C', m.a.max_velocity}, {'Z', m.x.max_velocity}}) {
         const double d = std::fabs(g.moves[i].pos.at(letter) - g.moves[i - 1].pos.at(letter));
         EXPECT_LE(d / dur, vmax * (1 + 1e-6) + 2e-4 / dur) << i;
       }

@@ -60,8 +60,7 @@ TEST(Kinematics, EyeOnCylinderEnvelopeClosedForm) {
     const Vec3 p(R, 0, 0);
     const Vec3 t(0, std::sin(a), std::cos(a));
     const EyeSolution s = solve_payout_eye(f, env, p, t);
-    EXPECT_NEAR(s.free_length, std::sqrt((R + cl) * (R + cl) - R * R) / std::sin(a), 1e-9)
-        << alpha;
+    EXPECT_NEAR(s.free_length, std::sqrt((R + cl) * (R + cl) - R * R) / std::sin(a), 1e-9) << alpha;
   }
   std::vector<std::pair<Vec3, Vec3>> pts;
   std::mt19937 rng(7);
@@ -186,10 +185,9 @@ TEST(Kinematics, DurationsAreTheSlowestAxisAndTimeAccumulates) {
   for (std::size_t i = 1; i < mo.states.size(); ++i) {
     const MachineState& p = mo.states[i - 1];
     const MachineState& s = mo.states[i];
-    const double expect = std::max({std::fabs(s.a_deg - p.a_deg) / 360,
-                                    std::fabs(s.x_mm - p.x_mm) / 50,
-                                    std::fabs(s.y_mm - p.y_mm) / 20,
-                                    std::fabs(s.b_deg - p.b_deg) / 90, 1e-3});
+    const double expect =
+        std::max({std::fabs(s.a_deg - p.a_deg) / 360, std::fabs(s.x_mm - p.x_mm) / 50,
+                  std::fabs(s.y_mm - p.y_mm) / 20, std::fabs(s.b_deg - p.b_deg) / 90, 1e-3});
     EXPECT_NEAR(s.duration, expect, 1e-12);
     EXPECT_NEAR(s.t_s, p.t_s + s.duration, 1e-9);
     EXPECT_NEAR(s.feed, 60.0 / s.duration, 1e-9);  // linuxcnc: inverse time

@@ -30,26 +30,25 @@ TEST(MachineOptions, DefaultsAreValid) {
 }
 
 TEST(MachineOptions, DecodesEverySection) {
-  const Job job = load_job_from_string(
-      kMandrel +
-          "machine:\n"
-          "  kind: lathe4\n"
-          "  chord_tolerance: 0.1\n"
-          "  max_fibre_speed: 250\n"
-          "  envelope:\n"
-          "    profile: [[0, 80], [500, 90.5]]\n"
-          "  axes:\n"
-          "    A: {letter: C, sign: -1, max_velocity: 1080}\n"
-          "    X: {min: -10, max: 1500, offset: 5}\n"
-          "  gcode:\n"
-          "    dialect: fanuc\n"
-          "    feed: inverse_time\n"
-          "    program_number: 2000\n"
-          "output:\n"
-          "  directory: out/run1\n"
-          "  svg: false\n"
-          "  timings: true\n",
-      "/jobs/m.yaml");
+  const Job job = load_job_from_string(kMandrel +
+                                           "machine:\n"
+                                           "  kind: lathe4\n"
+                                           "  chord_tolerance: 0.1\n"
+                                           "  max_fibre_speed: 250\n"
+                                           "  envelope:\n"
+                                           "    profile: [[0, 80], [500, 90.5]]\n"
+                                           "  axes:\n"
+                                           "    A: {letter: C, sign: -1, max_velocity: 1080}\n"
+                                           "    X: {min: -10, max: 1500, offset: 5}\n"
+                                           "  gcode:\n"
+                                           "    dialect: fanuc\n"
+                                           "    feed: inverse_time\n"
+                                           "    program_number: 2000\n"
+                                           "output:\n"
+                                           "  directory: out/run1\n"
+                                           "  svg: false\n"
+                                           "  timings: true\n",
+                                       "/jobs/m.yaml");
   const MachineOptions& m = job.machine;
   EXPECT_EQ(m.kind, "lathe4");
   EXPECT_DOUBLE_EQ(m.chord_tolerance, 0.1);
