@@ -20,8 +20,8 @@ int main() {
   const std::filesystem::path root = WINDPLAN_SHARED_MESHES;
   const char* files[] = {"derived/bunny-remesh-20k.obj", "derived/bunny-remesh-100k.obj",
                          "derived/bunny-remesh-300k.obj", "kitten-106k.obj"};
-  std::printf("%-32s %9s %9s %9s %9s %8s %8s %8s\n", "mesh", "MB", "read_ms", "conn_ms",
-              "check_ms", "V", "F", "total");
+  std::printf("%-32s %9s %9s %9s %9s %8s %8s %8s\n", "mesh", "MB", "read_ms", "conn_ms", "check_ms",
+              "V", "F", "total");
   for (const char* name : files) {
     const auto path = root / name;
     if (!std::filesystem::exists(path)) {

@@ -53,8 +53,10 @@ void health_fields(JsonWriter& j, const MeshHealth& h) {
   j.field("boundary_edges", h.num_boundary_edges);
   j.field("euler_characteristic", h.euler_characteristic);
   j.key("genus");
-  if (h.genus >= 0) j.value(h.genus);
-  else j.null();
+  if (h.genus >= 0)
+    j.value(h.genus);
+  else
+    j.null();
   j.field("closed", h.closed);
   j.field("manifold", h.manifold);
   j.field("oriented", h.oriented);
@@ -139,7 +141,8 @@ int run_mesh(const std::vector<std::string>& argv) {
     if (!health.is_valid_mesh() || !refused.empty()) {
       std::string why = refused;
       if (why.empty()) {
-        for (const std::string& p : health.blocking_problems()) why += (why.empty() ? "" : "; ") + p;
+        for (const std::string& p : health.blocking_problems())
+          why += (why.empty() ? "" : "; ") + p;
       }
       throw TopologyError(mandrel.file.string() + ": cannot write " + out +
                           ": the mesh is not a valid oriented 2-manifold: " + why +
@@ -161,8 +164,10 @@ int run_mesh(const std::vector<std::string>& argv) {
     string_array(j, "changes", have_repair ? repaired.changes : std::vector<std::string>{});
     string_array(j, "kept", have_repair ? repaired.kept : std::vector<std::string>{});
     j.key("refused");
-    if (refused.empty()) j.null();
-    else j.value(refused);
+    if (refused.empty())
+      j.null();
+    else
+      j.value(refused);
     j.end_object();
     if (repair) {
       j.key("input").begin_object();

@@ -176,7 +176,8 @@ void check_finite(const std::filesystem::path& path, const Vec3& p, std::size_t 
 }
 
 void fan_split(const std::vector<int>& poly, std::vector<Tri>* tris) {
-  for (std::size_t i = 1; i + 1 < poly.size(); ++i) tris->push_back({poly[0], poly[i], poly[i + 1]});
+  for (std::size_t i = 1; i + 1 < poly.size(); ++i)
+    tris->push_back({poly[0], poly[i], poly[i + 1]});
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -264,8 +265,8 @@ TriangleSoup read_off(const std::filesystem::path& path, const std::string& data
   }
   const long long nv = counts[0], nf = counts[1];
   if (nv > std::numeric_limits<int>::max() || nf > std::numeric_limits<int>::max()) {
-    fail(path, "vertex or face count too large (" + std::to_string(nv) + ", " +
-                   std::to_string(nf) + ")");
+    fail(path,
+         "vertex or face count too large (" + std::to_string(nv) + ", " + std::to_string(nf) + ")");
   }
   TriangleSoup soup;
   const long long cap = static_cast<long long>(data.size());  // a corrupt header may claim more
@@ -275,8 +276,8 @@ TriangleSoup read_off(const std::filesystem::path& path, const std::string& data
     double c[3];
     for (int k = 0; k < 3; ++k) {
       if (!t.next()) {
-        fail(path, "truncated: expected " + std::to_string(nv) + " vertices, found " +
-                       std::to_string(i));
+        fail(path,
+             "truncated: expected " + std::to_string(nv) + " vertices, found " + std::to_string(i));
       }
       if (!t.number(&c[k])) {
         fail_line(path, t.line(), "malformed coordinate " + token_at(t.pos(), t.end()));
@@ -291,8 +292,8 @@ TriangleSoup read_off(const std::filesystem::path& path, const std::string& data
   for (long long f = 0; f < nf; ++f) {
     long long n = 0;
     if (!t.next()) {
-      fail(path, "truncated: expected " + std::to_string(nf) + " faces, found " +
-                     std::to_string(f));
+      fail(path,
+           "truncated: expected " + std::to_string(nf) + " faces, found " + std::to_string(f));
     }
     if (!t.integer(&n) || n < 3) {
       fail_line(path, t.line(), "malformed face vertex count " + token_at(t.pos(), t.end()));
@@ -335,11 +336,20 @@ PlyType ply_type(const std::string& s) {
 
 int ply_size(PlyType t) {
   switch (t) {
-    case PlyType::Int8: case PlyType::UInt8: return 1;
-    case PlyType::Int16: case PlyType::UInt16: return 2;
-    case PlyType::Int32: case PlyType::UInt32: case PlyType::Float32: return 4;
-    case PlyType::Float64: return 8;
-    case PlyType::None: return 0;
+    case PlyType::Int8:
+    case PlyType::UInt8:
+      return 1;
+    case PlyType::Int16:
+    case PlyType::UInt16:
+      return 2;
+    case PlyType::Int32:
+    case PlyType::UInt32:
+    case PlyType::Float32:
+      return 4;
+    case PlyType::Float64:
+      return 8;
+    case PlyType::None:
+      return 0;
   }
   return 0;
 }
@@ -402,15 +412,45 @@ class PlyBody {
     p_ += n;
     if (swap_) std::reverse(b, b + n);
     switch (t) {
-      case PlyType::Int8: { std::int8_t v; std::memcpy(&v, b, 1); return v; }
-      case PlyType::UInt8: return b[0];
-      case PlyType::Int16: { std::int16_t v; std::memcpy(&v, b, 2); return v; }
-      case PlyType::UInt16: { std::uint16_t v; std::memcpy(&v, b, 2); return v; }
-      case PlyType::Int32: { std::int32_t v; std::memcpy(&v, b, 4); return v; }
-      case PlyType::UInt32: { std::uint32_t v; std::memcpy(&v, b, 4); return v; }
-      case PlyType::Float32: { float v; std::memcpy(&v, b, 4); return v; }
-      case PlyType::Float64: { double v; std::memcpy(&v, b, 8); return v; }
-      case PlyType::None: break;
+      case PlyType::Int8: {
+        std::int8_t v;
+        std::memcpy(&v, b, 1);
+        return v;
+      }
+      case PlyType::UInt8:
+        return b[0];
+      case PlyType::Int16: {
+        std::int16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case PlyType::UInt16: {
+        std::uint16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case PlyType::Int32: {
+        std::int32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case PlyType::UInt32: {
+        std::uint32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case PlyType::Float32: {
+        float v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case PlyType::Float64: {
+        double v;
+        std::memcpy(&v, b, 8);
+        return v;
+      }
+      case PlyType::None:
+        break;
     }
     return 0.0;
   }
@@ -471,10 +511,14 @@ TriangleSoup read_ply(const std::filesystem::path& path, const std::string& data
     if (kw == "format") {
       std::string f;
       s >> f;
-      if (f == "ascii") ascii = true;
-      else if (f == "binary_little_endian") big = false;
-      else if (f == "binary_big_endian") big = true;
-      else fail_line(path, line, "unknown PLY format '" + f + "'");
+      if (f == "ascii")
+        ascii = true;
+      else if (f == "binary_little_endian")
+        big = false;
+      else if (f == "binary_big_endian")
+        big = true;
+      else
+        fail_line(path, line, "unknown PLY format '" + f + "'");
       have_format = true;
     } else if (kw == "element") {
       PlyElement e;
@@ -482,8 +526,8 @@ TriangleSoup read_ply(const std::filesystem::path& path, const std::string& data
         fail_line(path, line, "malformed element line '" + l + "'");
       }
       if (e.count > std::numeric_limits<int>::max()) {
-        fail_line(path, line, "element '" + e.name + "' count " + std::to_string(e.count) +
-                                  " is too large");
+        fail_line(path, line,
+                  "element '" + e.name + "' count " + std::to_string(e.count) + " is too large");
       }
       elements.push_back(e);
     } else if (kw == "property") {
@@ -587,8 +631,8 @@ TriangleSoup read_ply(const std::filesystem::path& path, const std::string& data
           }
           for (int v : poly) {
             if (v >= static_cast<long long>(soup.points.size())) {
-              fail(path, what() + " has vertex index " + std::to_string(v) +
-                             " out of range [0, " + std::to_string(soup.points.size()) + ")");
+              fail(path, what() + " has vertex index " + std::to_string(v) + " out of range [0, " +
+                             std::to_string(soup.points.size()) + ")");
             }
           }
           fan_split(poly, &soup.triangles);
@@ -674,11 +718,12 @@ TriangleSoup read_stl(const std::filesystem::path& path, const std::string& data
     binary = data.size() == 84 + 50 * static_cast<std::uint64_t>(n);
   }
   const char* q = skip_spaces(data.data(), data.data() + data.size());
-  while (q < data.data() + data.size() && *q == '\n') q = skip_spaces(q + 1, data.data() + data.size());
-  const bool starts_solid =
-      static_cast<std::size_t>(data.data() + data.size() - q) >= 5 && std::strncmp(q, "solid", 5) == 0;
-  const bool has_facet = data.find("facet", 0) != std::string::npos &&
-                         data.find("vertex", 0) != std::string::npos;
+  while (q < data.data() + data.size() && *q == '\n')
+    q = skip_spaces(q + 1, data.data() + data.size());
+  const bool starts_solid = static_cast<std::size_t>(data.data() + data.size() - q) >= 5 &&
+                            std::strncmp(q, "solid", 5) == 0;
+  const bool has_facet =
+      data.find("facet", 0) != std::string::npos && data.find("vertex", 0) != std::string::npos;
   TriangleSoup soup;
   if (binary) {
     soup = read_stl_binary(path, data, n);
@@ -829,10 +874,14 @@ TriangleSoup read_mesh(const std::filesystem::path& path, const MeshReadOptions&
   }
   const std::string data = read_whole_file(path);
   TriangleSoup soup;
-  if (ext == ".obj") soup = read_obj(path, data);
-  else if (ext == ".off") soup = read_off(path, data);
-  else if (ext == ".ply") soup = read_ply(path, data);
-  else soup = read_stl(path, data, options);
+  if (ext == ".obj")
+    soup = read_obj(path, data);
+  else if (ext == ".off")
+    soup = read_off(path, data);
+  else if (ext == ".ply")
+    soup = read_ply(path, data);
+  else
+    soup = read_stl(path, data, options);
   if (soup.triangles.empty()) fail(path, "the file contains no faces");
   return soup;
 }
@@ -896,7 +945,7 @@ TriangleSoup weld_vertices(const TriangleSoup& soup, double tolerance) {
     };
     std::unordered_map<std::uint64_t, int> head;  // cell hash -> last welded vertex in chain
     head.reserve(n);
-    std::vector<int> chain;                        // per welded vertex: previous in same hash
+    std::vector<int> chain;  // per welded vertex: previous in same hash
     const double tol2 = tolerance * tolerance;
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3& p = soup.points[i];
@@ -930,7 +979,8 @@ TriangleSoup weld_vertices(const TriangleSoup& soup, double tolerance) {
     }
   }
   out.triangles.reserve(soup.triangles.size());
-  for (const Tri& t : soup.triangles) out.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+  for (const Tri& t : soup.triangles)
+    out.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
   return out;
 }
 

@@ -48,13 +48,13 @@ bool degenerate_tri(const Tri& t) { return t[0] == t[1] || t[1] == t[2] || t[2] 
 // (valid, non-degenerate) triangles, and the fan id of every corner.
 struct Analysis {
   MeshHealth health;
-  std::vector<char> usable;            // per triangle
+  std::vector<char> usable;  // per triangle
   // Halfedges h = 3f + k of usable triangles, sorted by undirected edge; groups are runs.
   std::vector<std::pair<std::uint64_t, int>> halfedges;
-  std::vector<int> group_start;        // group g is halfedges[group_start[g], group_start[g+1])
-  std::vector<int> group_of;           // per halfedge 3f+k (-1 for unusable triangles)
-  std::vector<int> corner_fan;         // per corner 3f+k: representative corner of its fan
-  std::vector<int> face_component;     // per triangle (-1 for unusable)
+  std::vector<int> group_start;     // group g is halfedges[group_start[g], group_start[g+1])
+  std::vector<int> group_of;        // per halfedge 3f+k (-1 for unusable triangles)
+  std::vector<int> corner_fan;      // per corner 3f+k: representative corner of its fan
+  std::vector<int> face_component;  // per triangle (-1 for unusable)
 };
 
 std::string pair_str(const std::array<int, 2>& e) {
@@ -178,7 +178,7 @@ Analysis analyze(const TriangleSoup& soup, const MeshCheckOptions& opt) {
       const Tri& t = soup.triangles[f];
       for (int k = 0; k < 3; ++k) {
         a.halfedges[fill[std::min(t[k], t[(k + 1) % 3])]++] = {edge_key(t[k], t[(k + 1) % 3]),
-                                                              3 * f + k};
+                                                               3 * f + k};
       }
     }
     for (int v = 0; v < nv; ++v) {
@@ -342,8 +342,10 @@ int flip_zero_area(TriangleSoup* soup, double area_tol, std::vector<int>* left) 
   auto index_tri = [&](int f, bool add) {
     const Tri& t = soup->triangles[f];
     for (int k = 0; k < 3; ++k) {
-      if (add) directed[dkey(t[k], t[(k + 1) % 3])] = f;
-      else directed.erase(dkey(t[k], t[(k + 1) % 3]));
+      if (add)
+        directed[dkey(t[k], t[(k + 1) % 3])] = f;
+      else
+        directed.erase(dkey(t[k], t[(k + 1) % 3]));
     }
   };
   for (int f = 0; f < static_cast<int>(soup->triangles.size()); ++f) index_tri(f, true);
@@ -362,7 +364,8 @@ int flip_zero_area(TriangleSoup* soup, double area_tol, std::vector<int>* left) 
     }
     const int a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
     const Vec3 ab = soup->points[b] - soup->points[a];
-    const double s = ab.squaredNorm() > 0 ? (soup->points[c] - soup->points[a]).dot(ab) / ab.squaredNorm() : -1;
+    const double s =
+        ab.squaredNorm() > 0 ? (soup->points[c] - soup->points[a]).dot(ab) / ab.squaredNorm() : -1;
     const auto it = directed.find(dkey(b, a));
     bool ok = s > 0.0 && s < 1.0 && it != directed.end();
     int g = -1, d = -1;
@@ -420,8 +423,9 @@ std::vector<std::string> MeshHealth::blocking_problems() const {
                 " a vertex index out of range");
   }
   if (num_nonmanifold_edges > 0) {
-    p.push_back(plural(num_nonmanifold_edges, "non-manifold edge", "non-manifold edges") +
-                " (in more than two triangles): " + edges(nonmanifold_edges, num_nonmanifold_edges));
+    p.push_back(
+        plural(num_nonmanifold_edges, "non-manifold edge", "non-manifold edges") +
+        " (in more than two triangles): " + edges(nonmanifold_edges, num_nonmanifold_edges));
   }
   if (num_nonmanifold_vertices > 0) {
     p.push_back(plural(num_nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices") +
@@ -433,8 +437,9 @@ std::vector<std::string> MeshHealth::blocking_problems() const {
                 edges(inconsistent_edges, num_inconsistent_edges));
   }
   if (num_degenerate_triangles > 0) {
-    p.push_back(plural(num_degenerate_triangles, "degenerate triangle", "degenerate triangles") +
-                " (repeated vertex index): " + ints(degenerate_triangles, num_degenerate_triangles));
+    p.push_back(
+        plural(num_degenerate_triangles, "degenerate triangle", "degenerate triangles") +
+        " (repeated vertex index): " + ints(degenerate_triangles, num_degenerate_triangles));
   }
   return p;
 }
@@ -473,15 +478,16 @@ std::string MeshHealth::brief_report() const {
   s << "\nfaces:           " << num_faces << "\nedges:           " << num_edges
     << "\ncomponents:      " << num_components << "\nboundary loops:  " << num_boundary_loops
     << " (" << num_boundary_edges << " boundary edges)"
-    << "\neuler char.:     " << euler_characteristic << "\ngenus:           "
-    << (genus >= 0 ? std::to_string(genus) : std::string("n/a")) << "\nclosed:          "
-    << (closed ? "yes" : "no") << "\nmanifold:        " << (manifold ? "yes" : "no")
-    << "\noriented:        " << (oriented ? "yes" : "no") << "\nbbox min:        ("
-    << bbox.min.x() << ", " << bbox.min.y() << ", " << bbox.min.z() << ")"
+    << "\neuler char.:     " << euler_characteristic
+    << "\ngenus:           " << (genus >= 0 ? std::to_string(genus) : std::string("n/a"))
+    << "\nclosed:          " << (closed ? "yes" : "no")
+    << "\nmanifold:        " << (manifold ? "yes" : "no")
+    << "\noriented:        " << (oriented ? "yes" : "no") << "\nbbox min:        (" << bbox.min.x()
+    << ", " << bbox.min.y() << ", " << bbox.min.z() << ")"
     << "\nbbox max:        (" << bbox.max.x() << ", " << bbox.max.y() << ", " << bbox.max.z()
     << ")\nedge length:     min " << min_edge_length << ", mean " << mean_edge_length << ", max "
-    << max_edge_length << "\ndegenerate:      " << num_degenerate_triangles
-    << " repeated-index, " << num_zero_area_triangles << " zero-area\n";
+    << max_edge_length << "\ndegenerate:      " << num_degenerate_triangles << " repeated-index, "
+    << num_zero_area_triangles << " zero-area\n";
   return s.str();
 }
 
@@ -505,7 +511,8 @@ RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options) {
     for (const Tri& t : soup.triangles)
       if (valid_tri(t, nv0)) keep.push_back(t);
     soup.triangles = std::move(keep);
-    r.changes.push_back("dropped " + plural(a.health.num_invalid_triangles, "triangle", "triangles") +
+    r.changes.push_back("dropped " +
+                        plural(a.health.num_invalid_triangles, "triangle", "triangles") +
                         " with a vertex index out of range");
     a = analyze(soup, options.check);
   }
@@ -562,12 +569,14 @@ RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options) {
       soup.triangles = std::move(out);
       if (degenerate > 0) {
         r.removed_degenerate = degenerate;
-        r.changes.push_back("dropped " + plural(degenerate, "degenerate triangle", "degenerate triangles") +
+        r.changes.push_back("dropped " +
+                            plural(degenerate, "degenerate triangle", "degenerate triangles") +
                             " (repeated vertex index)");
       }
       if (duplicates > 0) {
         r.removed_duplicates = duplicates;
-        r.changes.push_back("dropped " + plural(duplicates, "duplicate triangle", "duplicate triangles") +
+        r.changes.push_back("dropped " +
+                            plural(duplicates, "duplicate triangle", "duplicate triangles") +
                             " (same three vertices as an earlier one)");
       }
       a = analyze(soup, options.check);
@@ -577,9 +586,10 @@ RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options) {
   // 4. What cannot be repaired safely.
   const MeshHealth& h = a.health;
   if (h.num_nonmanifold_edges > 0) {
-    throw TopologyError(
-        "cannot repair " + plural(h.num_nonmanifold_edges, "non-manifold edge", "non-manifold edges") +
-        " (shared by more than two triangles): " + list_str(h.nonmanifold_edges, h.num_nonmanifold_edges, pair_str));
+    throw TopologyError("cannot repair " +
+                        plural(h.num_nonmanifold_edges, "non-manifold edge", "non-manifold edges") +
+                        " (shared by more than two triangles): " +
+                        list_str(h.nonmanifold_edges, h.num_nonmanifold_edges, pair_str));
   }
   if (h.num_nonmanifold_vertices > 0) {
     if (!options.split_nonmanifold_vertices) {
@@ -621,9 +631,10 @@ RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options) {
       }
     }
     r.split_vertices = added;
-    r.changes.push_back("split " +
-                        plural(h.num_nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices") +
-                        " into one vertex per fan (" + plural(added, "vertex", "vertices") + " added)");
+    r.changes.push_back(
+        "split " +
+        plural(h.num_nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices") +
+        " into one vertex per fan (" + plural(added, "vertex", "vertices") + " added)");
   }
 
   // 5. Unreferenced vertices.
@@ -631,7 +642,8 @@ RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options) {
     const int removed = drop_unreferenced(&soup);
     if (removed > 0) {
       r.removed_unreferenced = removed;
-      r.changes.push_back("dropped " + plural(removed, "unreferenced vertex", "unreferenced vertices"));
+      r.changes.push_back("dropped " +
+                          plural(removed, "unreferenced vertex", "unreferenced vertices"));
     }
     if (removed > 0 || r.split_vertices > 0) a = analyze(soup, options.check);
   }
@@ -653,7 +665,8 @@ RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options) {
         const int g = a.group_of[he];
         const int b = a.group_start[g], e = a.group_start[g + 1];
         if (e - b != 2) continue;
-        const int other = a.halfedges[b].second == he ? a.halfedges[b + 1].second : a.halfedges[b].second;
+        const int other =
+            a.halfedges[b].second == he ? a.halfedges[b + 1].second : a.halfedges[b].second;
         const int fo = other / 3;
         // Same direction in the file <=> the two need opposite flip states.
         const bool same_dir = soup.triangles[f][k] == soup.triangles[fo][other % 3];
@@ -663,11 +676,12 @@ RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options) {
           flip[fo] = want;
           queue.push_back(fo);
         } else if (flip[fo] != want) {
-          throw TopologyError("cannot orient component " + std::to_string(c) +
-                              " (the one containing triangle " + std::to_string(faces[0]) +
-                              "): it is non-orientable (a Moebius-like surface); conflict at edge " +
-                              pair_str({std::min(soup.triangles[f][k], soup.triangles[f][(k + 1) % 3]),
-                                        std::max(soup.triangles[f][k], soup.triangles[f][(k + 1) % 3])}));
+          throw TopologyError(
+              "cannot orient component " + std::to_string(c) + " (the one containing triangle " +
+              std::to_string(faces[0]) +
+              "): it is non-orientable (a Moebius-like surface); conflict at edge " +
+              pair_str({std::min(soup.triangles[f][k], soup.triangles[f][(k + 1) % 3]),
+                        std::max(soup.triangles[f][k], soup.triangles[f][(k + 1) % 3])}));
         }
       }
     }
@@ -711,8 +725,9 @@ RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options) {
                         " so that every edge is traversed once in each direction");
   }
   if (outward_components > 0) {
-    r.changes.push_back("turned " + plural(outward_components, "closed component", "closed components") +
-                        " (" + plural(flipped_outward, "triangle", "triangles") +
+    r.changes.push_back("turned " +
+                        plural(outward_components, "closed component", "closed components") + " (" +
+                        plural(flipped_outward, "triangle", "triangles") +
                         ") inside out so that the normals point outward");
   }
 
@@ -724,13 +739,16 @@ RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options) {
         flip_zero_area(&soup, options.check.zero_area_tolerance * diag * diag, &left);
     if (removed > 0) {
       r.removed_zero_area = removed;
-      r.changes.push_back("removed " + plural(removed, "zero-area triangle", "zero-area triangles") +
+      r.changes.push_back("removed " +
+                          plural(removed, "zero-area triangle", "zero-area triangles") +
                           " by flipping its long edge (the surface is unchanged)");
     }
     if (!left.empty()) {
-      r.kept.push_back("kept " + plural(static_cast<int>(left.size()), "zero-area triangle", "zero-area triangles") +
-                       " (no safe edge flip; dropping would open a hole): " +
-                       list_str(left, static_cast<int>(left.size()), [](int i) { return std::to_string(i); }));
+      r.kept.push_back(
+          "kept " +
+          plural(static_cast<int>(left.size()), "zero-area triangle", "zero-area triangles") +
+          " (no safe edge flip; dropping would open a hole): " +
+          list_str(left, static_cast<int>(left.size()), [](int i) { return std::to_string(i); }));
     }
   }
 

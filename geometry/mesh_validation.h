@@ -39,9 +39,9 @@ struct MeshCheckOptions {
 
 /// The health report of a triangle soup. Lists hold at most MeshCheckOptions::max_listed items.
 struct MeshHealth {
-  int num_vertices = 0;              ///< points in the soup
-  int num_faces = 0;                 ///< triangles in the soup
-  int num_referenced_vertices = 0;   ///< vertices used by at least one valid triangle
+  int num_vertices = 0;             ///< points in the soup
+  int num_faces = 0;                ///< triangles in the soup
+  int num_referenced_vertices = 0;  ///< vertices used by at least one valid triangle
   int num_unreferenced_vertices = 0;
   int num_duplicate_vertices = 0;    ///< points exactly equal to an earlier point
   int num_invalid_triangles = 0;     ///< an index outside [0, V) (never produced by read_mesh)
@@ -53,9 +53,9 @@ struct MeshHealth {
   int num_boundary_loops = 0;
   int num_nonmanifold_edges = 0;
   int num_nonmanifold_vertices = 0;
-  int num_inconsistent_edges = 0;    ///< edges traversed twice in the same direction
+  int num_inconsistent_edges = 0;  ///< edges traversed twice in the same direction
   int num_components = 0;
-  int euler_characteristic = 0;      ///< V_referenced - E + F_valid
+  int euler_characteristic = 0;  ///< V_referenced - E + F_valid
   /// (2 - chi - boundary loops) / 2 for a single-component manifold; -1 otherwise.
   int genus = -1;
   bool closed = false;    ///< no boundary edges
@@ -110,11 +110,11 @@ struct RepairResult {
   MeshHealth after;
   int merged_vertices = 0;
   int removed_degenerate = 0;
-  int removed_zero_area = 0;         ///< zero-area triangles removed by an edge flip
+  int removed_zero_area = 0;  ///< zero-area triangles removed by an edge flip
   int removed_duplicates = 0;
   int removed_unreferenced = 0;
-  int split_vertices = 0;            ///< vertices added by splitting non-manifold vertices
-  int flipped_triangles = 0;         ///< re-oriented for consistency or outward normals
+  int split_vertices = 0;     ///< vertices added by splitting non-manifold vertices
+  int flipped_triangles = 0;  ///< re-oriented for consistency or outward normals
 };
 
 /// Repairs what is safe, in this order: drop triangles with invalid indices; merge exactly
@@ -131,7 +131,6 @@ RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options = {});
 /// the halfedge mesh. `health_out` receives the health before repair, `changes` the repairs made.
 /// \throw TopologyError naming elements when the (repaired) soup cannot be a Mesh.
 Mesh build_mesh(TriangleSoup soup, bool repair, MeshHealth* health_out = nullptr,
-                std::vector<std::string>* changes = nullptr,
-                const RepairOptions& options = {});
+                std::vector<std::string>* changes = nullptr, const RepairOptions& options = {});
 
 }  // namespace windplan

@@ -119,7 +119,8 @@ TEST_F(Cli, RepairAndWriteThenReadBack) {
   std::swap(s.triangles[7][0], s.triangles[7][1]);
   write_mesh(dir_ / "in.obj", s);
   const fs::path out = dir_ / "fixed.ply";
-  const RunResult r = run({"mesh", (dir_ / "in.obj").string(), "--repair", "-o", out.string(), "--json"});
+  const RunResult r =
+      run({"mesh", (dir_ / "in.obj").string(), "--repair", "-o", out.string(), "--json"});
   ASSERT_EQ(r.code, 0) << r.err;
   const YAML::Node j = YAML::Load(r.out);
   EXPECT_TRUE(j["oriented"].as<bool>());
@@ -138,8 +139,8 @@ TEST_F(Cli, BrokenMeshGetsItsReportButCannotBeWritten) {
   const RunResult report = run({"mesh", (dir_ / "fin.obj").string()});
   EXPECT_EQ(report.code, 0) << report.err;
   EXPECT_NE(report.out.find("non-manifold edge"), std::string::npos) << report.out;
-  const RunResult w = run({"mesh", (dir_ / "fin.obj").string(), "--repair", "-o",
-                     (dir_ / "x.ply").string()});
+  const RunResult w =
+      run({"mesh", (dir_ / "fin.obj").string(), "--repair", "-o", (dir_ / "x.ply").string()});
   EXPECT_EQ(w.code, 1);
   EXPECT_NE(w.err.find("(0, 1)"), std::string::npos) << w.err;
   EXPECT_FALSE(fs::exists(dir_ / "x.ply"));
@@ -153,7 +154,8 @@ TEST_F(Cli, MissingFileIsExit1NamingIt) {
 }
 
 TEST_F(Cli, AJobWithAParametricMandrelIsRedirected) {
-  const fs::path job = write("pipe.yaml", "mandrel:\n  source: pipe\n  pipe: {radius: 5, length: 20}\n");
+  const fs::path job =
+      write("pipe.yaml", "mandrel:\n  source: pipe\n  pipe: {radius: 5, length: 20}\n");
   const RunResult r = run({"mesh", job.string()});
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("'pipe'"), std::string::npos) << r.err;
@@ -168,8 +170,8 @@ TEST_F(Cli, UnknownFlagIsExit2) {
 }
 
 TEST_F(Cli, JobWithUnknownKeyIsExit1NamingFileLineKey) {
-  const fs::path job =
-      write("job.yaml", "name: t\nmandrel:\n  source: mesh\n  file: " + kTube + "\n  colour: red\n");
+  const fs::path job = write(
+      "job.yaml", "name: t\nmandrel:\n  source: mesh\n  file: " + kTube + "\n  colour: red\n");
   const RunResult r = run({"mesh", job.string()});
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("job.yaml:5"), std::string::npos) << r.err;

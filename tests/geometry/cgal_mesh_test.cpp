@@ -42,7 +42,7 @@ TEST(CgalMesh, OctahedronRoundTripAndClosedFormMeasures) {
   expect_round_trip(m);
   const CgalMesh c(m);
   EXPECT_NEAR(c.area(), 4.0 * std::sqrt(3.0), 1e-12);  // 8 equilateral triangles of side sqrt 2
-  EXPECT_NEAR(c.volume(), 4.0 / 3.0, 1e-12);          // |x| + |y| + |z| <= 1
+  EXPECT_NEAR(c.volume(), 4.0 / 3.0, 1e-12);           // |x| + |y| + |z| <= 1
 }
 
 TEST(CgalMesh, TorusRoundTrip) { expect_round_trip(Mesh(test::torus(3.0, 1.0, 24, 12))); }

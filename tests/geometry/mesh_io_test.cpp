@@ -1,12 +1,12 @@
 #include "geometry/mesh_io.h"
 
+#include <unistd.h>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <string>
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -124,9 +124,9 @@ TEST_F(MeshIo, ObjNegativeIndicesQuadsSlashFormsAndIgnoredStatements) {
                        "vt 0 0\nvt 1 0\nvt 1 1\n"
                        "vn 0 0 1\n"
                        "g group\ns 1\nusemtl red\n"
-                       "f 1/1/1 2/2/1 3/3/1 4/1/1\n"    // quad -> (0,1,2), (0,2,3)
-                       "f -4//1 -2//1 -1//1\n"          // relative: (0,2,3)
-                       "f -4/1 -3/2 -2/3\n"             // v/vt: (0,1,2)
+                       "f 1/1/1 2/2/1 3/3/1 4/1/1\n"  // quad -> (0,1,2), (0,2,3)
+                       "f -4//1 -2//1 -1//1\n"        // relative: (0,2,3)
+                       "f -4/1 -3/2 -2/3\n"           // v/vt: (0,1,2)
                        "v 0.5 0.5 +1e0\n"
                        "f 1 2 5\n");
   const TriangleSoup s = read_mesh(p);
@@ -137,16 +137,19 @@ TEST_F(MeshIo, ObjNegativeIndicesQuadsSlashFormsAndIgnoredStatements) {
 }
 
 TEST_F(MeshIo, WindowsLineEndings) {
-  const TriangleSoup o = read_mesh(write("crlf.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 1.5 0\r\nf 1 2 3\r\n"));
+  const TriangleSoup o =
+      read_mesh(write("crlf.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 1.5 0\r\nf 1 2 3\r\n"));
   ASSERT_EQ(o.points.size(), 3u);
   EXPECT_EQ(o.points[2], Vec3(0, 1.5, 0));
-  const TriangleSoup f = read_mesh(write("crlf.off", "OFF\r\n3 1 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n"));
+  const TriangleSoup f =
+      read_mesh(write("crlf.off", "OFF\r\n3 1 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n"));
   EXPECT_EQ(f.triangles.size(), 1u);
-  const TriangleSoup p = read_mesh(write(
-      "crlf.ply", "ply\r\nformat ascii 1.0\r\nelement vertex 3\r\nproperty float x\r\n"
-                  "property float y\r\nproperty float z\r\nelement face 1\r\n"
-                  "property list uchar int vertex_indices\r\nend_header\r\n"
-                  "0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n"));
+  const TriangleSoup p =
+      read_mesh(write("crlf.ply",
+                      "ply\r\nformat ascii 1.0\r\nelement vertex 3\r\nproperty float x\r\n"
+                      "property float y\r\nproperty float z\r\nelement face 1\r\n"
+                      "property list uchar int vertex_indices\r\nend_header\r\n"
+                      "0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n"));
   EXPECT_EQ(p.triangles.size(), 1u);
 }
 
@@ -175,14 +178,15 @@ TEST_F(MeshIo, OffCountsOnTheHeaderLine) {
 }
 
 TEST_F(MeshIo, AsciiPlyWithExtraPropertiesAndQuad) {
-  const auto p = write("a.ply",
-                       "ply\nformat ascii 1.0\ncomment hand written\n"
-                       "element vertex 4\nproperty float x\nproperty uchar red\n"
-                       "property float y\nproperty float z\nproperty list uchar float junk\n"
-                       "element face 1\nproperty uchar flags\nproperty list uchar int vertex_indices\n"
-                       "property float quality\nend_header\n"
-                       "0 7 0 0 2 0.5 0.5\n1 7 0 0 0\n1 7 1 0 1 9\n0 7 1 0 3 1 2 3\n"
-                       "3 4 0 1 2 3 0.25\n");
+  const auto p =
+      write("a.ply",
+            "ply\nformat ascii 1.0\ncomment hand written\n"
+            "element vertex 4\nproperty float x\nproperty uchar red\n"
+            "property float y\nproperty float z\nproperty list uchar float junk\n"
+            "element face 1\nproperty uchar flags\nproperty list uchar int vertex_indices\n"
+            "property float quality\nend_header\n"
+            "0 7 0 0 2 0.5 0.5\n1 7 0 0 0\n1 7 1 0 1 9\n0 7 1 0 3 1 2 3\n"
+            "3 4 0 1 2 3 0.25\n");
   const TriangleSoup s = read_mesh(p);
   ASSERT_EQ(s.points.size(), 4u);
   EXPECT_EQ(s.points[2], Vec3(1, 1, 0));
@@ -348,14 +352,16 @@ TEST_F(MeshIo, TruncatedBinaryStlSaysExpectedAndActualSize) {
 }
 
 TEST_F(MeshIo, AHeaderClaimingBillionsFailsAsTruncatedWithoutAllocatingThem) {
-  const std::string e = error_of(write(
-      "huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\n"
-                  "property float x\nproperty float y\nproperty float z\nend_header\nabc"));
+  const std::string e =
+      error_of(write("huge.ply",
+                     "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\n"
+                     "property float x\nproperty float y\nproperty float z\nend_header\nabc"));
   EXPECT_NE(e.find("vertex 0 of 2000000000"), std::string::npos) << e;
   const std::string o = error_of(write("huge.off", "OFF\n2000000000 1 0\n0 0 0\n"));
   EXPECT_NE(o.find("expected 2000000000 vertices, found 1"), std::string::npos) << o;
-  const std::string t = error_of(write(
-      "big.ply", "ply\nformat ascii 1.0\nelement vertex 9000000000\nproperty float x\nend_header\n"));
+  const std::string t = error_of(
+      write("big.ply",
+            "ply\nformat ascii 1.0\nelement vertex 9000000000\nproperty float x\nend_header\n"));
   EXPECT_NE(t.find("too large"), std::string::npos) << t;
 }
 
@@ -398,21 +404,25 @@ TEST_F(MeshIo, MalformedNumbersNameTheLine) {
   EXPECT_NE(ef.find("f.obj:4:"), std::string::npos) << ef;
   const std::string eo = error_of(write("m.off", "OFF\n3 1 0\n0 0 0\n1 0 zero\n0 1 0\n3 0 1 2\n"));
   EXPECT_NE(eo.find("m.off:4:"), std::string::npos) << eo;
-  const std::string ep = error_of(write(
-      "m.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-               "property float z\nend_header\n0 1,5 0\n"));
+  const std::string ep =
+      error_of(write("m.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                     "property float z\nend_header\n0 1,5 0\n"));
   EXPECT_NE(ep.find("m.ply:8:"), std::string::npos) << ep;
 }
 
 TEST_F(MeshIo, TruncatedTextFiles) {
-  const std::string eo = error_of(write("t.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n"));
+  const std::string eo =
+      error_of(write("t.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n"));
   EXPECT_NE(eo.find("expected 2 faces, found 1"), std::string::npos) << eo;
-  const std::string ep = error_of(write(
-      "t.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
-               "property float z\nend_header\n0 0 0\n1 0\n"));
+  const std::string ep =
+      error_of(write("t.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                     "property float z\nend_header\n0 0 0\n1 0\n"));
   EXPECT_NE(ep.find("truncated ascii PLY"), std::string::npos) << ep;
-  EXPECT_NE(error_of(write("h.ply", "ply\nformat ascii 1.0\nelement vertex 2\n")).find("end_header"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(write("h.ply", "ply\nformat ascii 1.0\nelement vertex 2\n")).find("end_header"),
+      std::string::npos);
 }
 
 }  // namespace

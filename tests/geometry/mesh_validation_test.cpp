@@ -133,10 +133,10 @@ TEST(CheckMesh, GridHasOneBoundaryLoop) {
 
 TEST(CheckMesh, CountsEachKindOfProblem) {
   TriangleSoup s = test::octahedron();
-  s.points.push_back(Vec3(7, 7, 7));             // 6: unreferenced
-  s.points.push_back(s.points[0]);               // 7: duplicate position of 0, unreferenced
-  s.triangles.push_back({0, 2, 0});              // degenerate
-  s.triangles.push_back(s.triangles[3]);         // duplicate
+  s.points.push_back(Vec3(7, 7, 7));      // 6: unreferenced
+  s.points.push_back(s.points[0]);        // 7: duplicate position of 0, unreferenced
+  s.triangles.push_back({0, 2, 0});       // degenerate
+  s.triangles.push_back(s.triangles[3]);  // duplicate
   const MeshHealth h = check_mesh(s);
   EXPECT_EQ(h.num_vertices, 8);
   EXPECT_EQ(h.num_faces, 10);
@@ -168,9 +168,9 @@ TEST(CheckMesh, InconsistentOrientationCountsEdges) {
 }
 
 TEST(CheckMesh, NonManifoldEdgeListsItsVertexPair) {
-  TriangleSoup s = test::grid(1, 1);                      // (0,1,3), (0,3,2)
-  s.points.push_back(Vec3(0.5, 0.5, 1));                 // 4
-  s.triangles.push_back({0, 3, 4});                      // a fin on the diagonal (0, 3)
+  TriangleSoup s = test::grid(1, 1);      // (0,1,3), (0,3,2)
+  s.points.push_back(Vec3(0.5, 0.5, 1));  // 4
+  s.triangles.push_back({0, 3, 4});       // a fin on the diagonal (0, 3)
   const MeshHealth h = check_mesh(s);
   EXPECT_EQ(h.num_nonmanifold_edges, 1);
   ASSERT_EQ(h.nonmanifold_edges.size(), 1u);
@@ -219,7 +219,8 @@ TEST(RepairMesh, ReorientsAFlippedTriangle) {
   // The flipped face now has the orientation of the original (as a cyclic order).
   const Tri t = r.soup.triangles[5], o = test::octahedron().triangles[5];
   bool same = false;
-  for (int k = 0; k < 3; ++k) same = same || (t[k] == o[0] && t[(k + 1) % 3] == o[1] && t[(k + 2) % 3] == o[2]);
+  for (int k = 0; k < 3; ++k)
+    same = same || (t[k] == o[0] && t[(k + 1) % 3] == o[1] && t[(k + 2) % 3] == o[2]);
   EXPECT_TRUE(same);
   EXPECT_NO_THROW(Mesh(r.soup));
 }
@@ -255,9 +256,9 @@ TEST(RepairMesh, MergesDropsAndReportsEachChange) {
     if (&t == &s.triangles[0] || &t == &s.triangles[1])
       for (int& v : t) v = v == 4 ? 6 : v;
   }
-  s.points.push_back(Vec3(9, 9, 9));         // unreferenced
-  s.triangles.push_back({1, 1, 3});          // degenerate
-  s.triangles.push_back(s.triangles[6]);     // duplicate
+  s.points.push_back(Vec3(9, 9, 9));      // unreferenced
+  s.triangles.push_back({1, 1, 3});       // degenerate
+  s.triangles.push_back(s.triangles[6]);  // duplicate
   const MeshHealth before = check_mesh(s);
   EXPECT_FALSE(before.closed);
   const RepairResult r = repair_mesh(s);

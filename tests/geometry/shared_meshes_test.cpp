@@ -18,13 +18,13 @@ constexpr int kNoGenus = -2;  // SOURCES.md gives no genus (open or non-manifold
 
 struct Row {
   const char* file;
-  int vertices;        // referenced vertices (SOURCES counts after dropping unreferenced ones)
-  int faces;           // triangles after fan-splitting
+  int vertices;  // referenced vertices (SOURCES counts after dropping unreferenced ones)
+  int faces;     // triangles after fan-splitting
   bool closed;
   bool manifold;
-  int genus;           // kNoGenus when not given
+  int genus;  // kNoGenus when not given
   int boundary_edges;
-  double weld;         // STL weld tolerance (relative); SOURCES welded exactly equal corners
+  double weld;  // STL weld tolerance (relative); SOURCES welded exactly equal corners
 };
 
 void PrintTo(const Row& r, std::ostream* os) { *os << r.file; }
