@@ -101,6 +101,22 @@ int face_of_edge(const Mesh& mesh, int u, int w) {
   return -1;
 }
 
+// The vertex p sits on, or -1.
+int as_vertex(const Mesh& mesh, const SurfacePoint& p) {
+  switch (p.kind) {
+    case SurfacePoint::Kind::Vertex: return p.element;
+    case SurfacePoint::Kind::Edge:
+      if (p.t <= 0.0) return mesh.from(p.element);
+      if (p.t >= 1.0) return mesh.to(p.element);
+      return -1;
+    case SurfacePoint::Kind::Face:
+      for (int k = 0; k < 3; ++k)
+        if (p.bary[k] >= 1.0) return mesh.triangle(p.element)[k];
+      return -1;
+  }
+  return -1;
+}
+
 // Faces whose closure contains p.
 std::vector<int> faces_containing(const Mesh& mesh, const SurfacePoint& p) {
   std::vector<int> faces;
@@ -170,13 +186,17 @@ EdgePath shortest_edge_path(const Mesh& mesh, const EdgeGraph& graph, const Surf
   std::vector<int> parent(nv, -1);
   std::vector<char> done(nv, 0);
   // Target legs: straight distance from each target vertex to b (within b's face).
+  // A vertex endpoint is the only source/target; otherwise the corners of its face(s).
   std::vector<std::pair<int, double>> targets;
-  for (int f : faces_containing(mesh, b))
-    for (int k = 0; k < 3; ++k) {
-      const int v = mesh.triangle(f)[k];
-      targets.emplace_back(v, rho * (mesh.position(v) - pb).norm());
-    }
-  std::vector<double> target_leg(0);
+  if (as_vertex(mesh, b) >= 0) {
+    targets.emplace_back(as_vertex(mesh, b), 0.0);
+  } else {
+    for (int f : faces_containing(mesh, b))
+      for (int k = 0; k < 3; ++k) {
+        const int v = mesh.triangle(f)[k];
+        targets.emplace_back(v, rho * (mesh.position(v) - pb).norm());
+      }
+  }
   auto leg_to_b = [&](int v) {
     double best = kInf;
     for (const auto& t : targets)
@@ -187,15 +207,21 @@ EdgePath shortest_edge_path(const Mesh& mesh, const EdgeGraph& graph, const Surf
 
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  for (int f : faces_containing(mesh, a))
-    for (int k = 0; k < 3; ++k) {
-      const int v = mesh.triangle(f)[k];
-      const double d = rho * (mesh.position(v) - pa).norm();
-      if (d < dist[v]) {
-        dist[v] = d;
-        queue.emplace(d + heuristic(v), v);
+  if (as_vertex(mesh, a) >= 0) {
+    const int v = as_vertex(mesh, a);
+    dist[v] = 0.0;
+    queue.emplace(heuristic(v), v);
+  } else {
+    for (int f : faces_containing(mesh, a))
+      for (int k = 0; k < 3; ++k) {
+        const int v = mesh.triangle(f)[k];
+        const double d = rho * (mesh.position(v) - pa).norm();
+        if (d < dist[v]) {
+          dist[v] = d;
+          queue.emplace(d + heuristic(v), v);
+        }
       }
-    }
+  }
   double best = kInf;
   int best_vertex = -1;
   while (!queue.empty()) {
@@ -247,7 +273,7 @@ SurfacePath strip_from_vertex_path(const Mesh& mesh, const SurfacePoint& a,
 
   std::size_t first = 0;
   int face = -1;
-  const bool a_is_vertex = a.kind == SurfacePoint::Kind::Vertex && a.element == vertices.front();
+  const bool a_is_vertex = as_vertex(mesh, a) == vertices.front();
   if (a_is_vertex && vertices.size() >= 2) {
     face = face_of_edge(mesh, vertices[0], vertices[1]);
     first = 1;
@@ -259,7 +285,7 @@ SurfacePath strip_from_vertex_path(const Mesh& mesh, const SurfacePoint& a,
   if (face < 0) throw InvariantError("initial path: the start face does not touch the path");
   path.start_face = face;
 
-  const bool b_is_vertex = b.kind == SurfacePoint::Kind::Vertex && b.element == vertices.back();
+  const bool b_is_vertex = as_vertex(mesh, b) == vertices.back();
   for (std::size_t i = first; i < vertices.size(); ++i) {
     const int u = vertices[i];
     const Vec3 prev = i == 0 ? pa : mesh.position(vertices[i - 1]);
@@ -267,7 +293,7 @@ SurfacePath strip_from_vertex_path(const Mesh& mesh, const SurfacePoint& a,
       const int w = vertices[i + 1];
       turn_at(mesh, u, &face, prev, mesh.position(w),
               [&](int f) { return face_has_vertex(mesh, f, w); }, &path);
-    } else if (!(b_is_vertex && u == b.element)) {
+    } else if (!b_is_vertex) {
       turn_at(mesh, u, &face, prev, pb, [&](int f) { return face_contains(mesh, f, b); }, &path);
     }
   }

@@ -7,6 +7,8 @@
 #include <limits>
 #include <sstream>
 #include <unordered_map>
+#include <cstdio>
+#include <cstdlib>
 
 #include "geometry/errors.h"
 
@@ -56,6 +58,8 @@ std::string GeodesicSummary::brief_report() const {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+// A crossing this close (in lambda) to a vertex, pushed towards it, triggers the vertex test.
+constexpr double kNearVertex = 1e-3;
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
@@ -153,6 +157,21 @@ class Refiner {
   }
 
   GeodesicResult run();
+  PathObjective objective(const std::vector<double>& z, double M, const std::vector<double>& mu) {
+    if (!z.empty()) z_ = z;
+    M_ = M;
+    penalty_on_ = con_ != nullptr;
+    if (!mu.empty()) mu_ = mu;
+    Eval ev;
+    evaluate(lambda_, z_, true, &ev);
+    PathObjective o;
+    o.value = ev.value;
+    o.length = ev.length;
+    o.gradient = ev.g;
+    o.hessian_diag = ev.hd;
+    o.hessian_off = ev.ho;
+    return o;
+  }
 
  private:
   // ---- strip data ----
@@ -160,7 +179,7 @@ class Refiner {
     k_ = path_.num_crossings();
     a_.resize(k_);
     d_.resize(k_);
-    fixed_.assign(k_, 0);
+    if (static_cast<int>(fixed_.size()) != k_) fixed_.assign(k_, 0);
     for (int i = 0; i < k_; ++i) {
       const int h = path_.halfedges[i];
       a_[i] = mesh_.position(mesh_.from(h));
@@ -213,15 +232,24 @@ class Refiner {
   }
 
   // ---- vertex events ----
-  enum class Action { None, Lifted, Rerouted, Pinned, Collapsed };
+  enum class Action { None, Lifted, Rerouted, Pinned, Snapped, Collapsed, Rotated };
   bool process_vertex_events(const Eval& ev);
-  Action handle_vertex(int idx, int v);
+  Action handle_vertex(int idx, int v, bool pushed_out, int* run_start, int* run_length);
   bool fan_lift(const std::vector<int>& run, int v, const Vec3& P, const Vec3& Q, bool apply,
                 double* theta);
   void rotate_closed(int shift);
+ public:
+  bool handle_vertices_ = true;
+  bool funnel_allowed_ = true;
+ private:
   void replace_run(int i, int j, const std::vector<int>& hs, const std::vector<double>& ls);
 
   bool inner_solve(GeodesicSummary* summary, Clock::time_point t0);
+  // Exact Euclidean shortest path inside the current strip (funnel algorithm on the unfolded
+  // strip), then reroutes around every vertex the path wraps with an angle < pi on the other
+  // side; repeated until no reroute happens. Open paths only.
+  void funnel_rounds();
+  void funnel_straighten();
 
   const Mesh& mesh_;
   const PathMetric& metric_;
@@ -235,6 +263,8 @@ class Refiner {
   std::vector<double>& lambda_ = path_.lambdas;
   std::vector<double> z_, mu_;
   std::vector<char> fixed_;
+  std::vector<char> touched_;  // per sweep: crossings already decided by a vertex event
+  int events_ = 0;             // strip/parameter changes made by vertex events
   double M_ = 0.0;
   bool penalty_on_ = false;
   int evaluations_ = 0, iterations_ = 0, reroutes_ = 0, lifts_ = 0, max_reroutes_ = 0;
@@ -550,6 +580,8 @@ void Refiner::rotate_closed(int shift) {
   std::rotate(path_.halfedges.begin(), path_.halfedges.begin() + shift, path_.halfedges.end());
   std::rotate(path_.lambdas.begin(), path_.lambdas.begin() + shift, path_.lambdas.end());
   std::rotate(mu_.begin(), mu_.begin() + shift, mu_.end());
+  std::rotate(fixed_.begin(), fixed_.begin() + shift, fixed_.end());
+  touched_.clear();
   rebuild();
 }
 
@@ -566,33 +598,47 @@ void Refiner::replace_run(int i, int j, const std::vector<int>& hs, const std::v
   mu_new.insert(mu_new.end(), hs.size(), 0.0);
   mu_new.insert(mu_new.end(), mu_.begin() + j + 1, mu_.end());
   mu_ = std::move(mu_new);
+  fixed_.erase(fixed_.begin() + i, fixed_.begin() + j + 1);
+  fixed_.insert(fixed_.begin() + i, hs.size(), 0);
+  if (!touched_.empty()) {
+    touched_.erase(touched_.begin() + i, touched_.begin() + j + 1);
+    touched_.insert(touched_.begin() + i, hs.size(), 1);
+  }
   rebuild();
 }
 
-Refiner::Action Refiner::handle_vertex(int idx, int v) {
+Refiner::Action Refiner::handle_vertex(int idx, int v, bool pushed_out, int* run_start,
+                                       int* run_length) {
   auto incident = [&](int m) {
     const int h = path_.halfedges[m];
     return mesh_.from(h) == v || mesh_.to(h) == v;
   };
   // The maximal run of consecutive crossings on spokes of v around idx.
+  auto free_at = [&](int m) { return incident(m); };
   int i = idx, j = idx, count = 1;
   if (path_.closed) {
-    while (count < k_ && incident((i - 1 + k_) % k_)) {
+    while (count < k_ && free_at((i - 1 + k_) % k_)) {
       i = (i - 1 + k_) % k_;
       ++count;
     }
-    while (count < k_ && incident((j + 1) % k_)) {
+    while (count < k_ && free_at((j + 1) % k_)) {
       j = (j + 1) % k_;
       ++count;
     }
     if (count >= k_ - 1) return Action::Pinned;  // the whole loop circles one vertex
   } else {
-    while (i > 0 && incident(i - 1)) --i;
-    while (j + 1 < k_ && incident(j + 1)) ++j;
+    while (i > 0 && free_at(i - 1)) --i;
+    while (j + 1 < k_ && free_at(j + 1)) ++j;
     count = j - i + 1;
   }
   std::vector<int> run(count);
   for (int q = 0; q < count; ++q) run[q] = (i + q) % k_;
+  *run_start = i;
+  *run_length = count;
+  // A run that overlaps crossings another vertex changed in this sweep waits for the next one.
+  if (!touched_.empty())
+    for (int m : run)
+      if (touched_[m]) return Action::None;
   const Vec3& pv = mesh_.position(v);
   const double eps_d = 1e-12 * scale_;
   // Endpoint at the vertex: drop the crossings around it (the path starts/ends at v).
@@ -614,18 +660,43 @@ Refiner::Action Refiner::handle_vertex(int idx, int v) {
   if ((P - pv).norm() <= eps_d || (Q - pv).norm() <= eps_d) return Action::Pinned;
 
   constexpr double kAngleTol = 1e-12;
+  // Guard against lift/reroute ping-pong at one vertex: after this many tries it is pinned.
+  constexpr int kMaxTries = 40;
   double theta = 0.0;
   fan_lift(run, v, P, Q, false, &theta);
   int& tries = lifts_at_[v];
-  if (theta < M_PI - kAngleTol && tries < 8) {
-    ++tries;
+  // Under a density or anisotropic metric the Euclidean angle test is only a heuristic: a single
+  // crossing that the gradient pushes past v (the bound's multiplier, the paper's rule) is
+  // rerouted to the other side; collapsed runs (zero-length segments, no gradient) use the test.
+  const bool by_multiplier = metric_.kind() != PathMetric::Kind::Euclidean && pushed_out;
+  if (!by_multiplier && theta < M_PI - kAngleTol && tries < kMaxTries) {
+    std::vector<double> before_lift(run.size());
+    for (std::size_t q = 0; q < run.size(); ++q) before_lift[q] = lambda_[run[q]];
     fan_lift(run, v, P, Q, true, &theta);
+    double change = 0.0;
+    for (std::size_t q = 0; q < run.size(); ++q)
+      change = std::max(change, std::fabs(lambda_[run[q]] - before_lift[q]));
+    if (change <= 1e-12) return Action::None;
+    ++tries;
     ++lifts_;
     return Action::Lifted;
   }
-  if (mesh_.is_boundary_vertex(v) || tries >= 8) return Action::Pinned;
+  // Pin: the path passes through v. Crossings still near v move onto it.
+  auto pin = [&]() {
+    bool moved = false;
+    for (int m : run) {
+      const double target = mesh_.from(path_.halfedges[m]) == v ? 0.0 : 1.0;
+      if (lambda_[m] != target && std::fabs(lambda_[m] - target) < kNearVertex) {
+        lambda_[m] = target;
+        moved = true;
+      }
+    }
+    if (moved) ++tries;
+    return moved ? Action::Snapped : Action::Pinned;
+  };
+  if (mesh_.is_boundary_vertex(v) || tries >= kMaxTries) return pin();
   const double other = mesh_.cone_angle(v) - theta;
-  if (!(other < M_PI - kAngleTol)) return Action::Pinned;
+  if (!by_multiplier && !(other < M_PI - kAngleTol)) return pin();
   // Reroute: the fan on the other side of v, from f_i to f_{j+1}.
   const int f_in = mesh_.face(path_.halfedges[i]);
   const int f_out = mesh_.face(mesh_.twin(path_.halfedges[j]));
@@ -647,10 +718,10 @@ Refiner::Action Refiner::handle_vertex(int idx, int v) {
   }
   if (face != f_out || hs.empty()) return Action::Pinned;
   if (path_.closed && i + count > k_) {
-    // The run wraps around the end of the arrays: rotate so that it starts at index 0.
+    // The run wraps around the end of the arrays: rotate so that it starts at index 0 and let
+    // the caller re-evaluate (every index changed); the event is handled on the next sweep.
     rotate_closed(i);
-    i = 0;
-    j = count - 1;
+    return Action::Rotated;
   }
   replace_run(i, j, hs, ls);
   ++tries;
@@ -661,28 +732,225 @@ Refiner::Action Refiner::handle_vertex(int idx, int v) {
   return Action::Rerouted;
 }
 
+
 bool Refiner::process_vertex_events(const Eval& ev) {
+  // One sweep from the last crossing to the first: a strip change at a run only shifts the
+  // indices after it, so the gradient of the crossings still to visit stays valid.
   std::fill(fixed_.begin(), fixed_.end(), 0);
-  for (int i = 0; i < k_; ++i) {
+  touched_.assign(k_, 0);
+  bool changed = false;
+  for (int i = k_ - 1; i >= 0; --i) {
     const double l = lambda_[i];
-    if (fixed_[i] || (l > 0.0 && l < 1.0)) continue;
+    if (fixed_[i] || touched_[i]) continue;
+    // A crossing at a vertex that the gradient pushes outward, or that touches a zero-length
+    // segment, goes to the vertex test. One that converges onto a vertex (within kNearVertex of
+    // it, pushed towards it) is snapped onto it: the objective has a kink there and Newton would
+    // approach it only linearly; the test then decides on the next sweep.
+    const bool at_bound = l <= 0.0 || l >= 1.0;
+    const int h = path_.halfedges[i];
+    if (!at_bound) {
+      const double gn = ev.g[i] / d_[i].norm();
+      if (l < kNearVertex && gn > 1e-9) {
+        lambda_[i] = 0.0;
+      } else if (l > 1.0 - kNearVertex && gn < -1e-9) {
+        lambda_[i] = 1.0;
+      } else {
+        continue;
+      }
+      touched_[i] = 1;
+      changed = true;
+      ++events_;
+      continue;
+    }
     const bool out = (l <= 0.0 && ev.g[i] > 0.0) || (l >= 1.0 && ev.g[i] < 0.0);
     if (!out && !ev.zero_adjacent[i]) continue;
-    const int h = path_.halfedges[i];
     const int v = l <= 0.0 ? mesh_.from(h) : mesh_.to(h);
-    const Action a = handle_vertex(i, v);
+    int run_start = i, run_length = 1;
+    const Action a = handle_vertex(i, v, out && !ev.zero_adjacent[i], &run_start, &run_length);
+    if (a == Action::Rotated) return true;  // indices changed wholesale: re-evaluate first
     if (a == Action::Pinned) {
-      // Fix every crossing of the run at v (re-tested next iteration).
-      for (int m = 0; m < k_; ++m) {
+      for (int q = 0; q < run_length; ++q) {
+        const int m = (run_start + q) % k_;
         const int hm = path_.halfedges[m];
         if ((lambda_[m] <= 0.0 && mesh_.from(hm) == v) || (lambda_[m] >= 1.0 && mesh_.to(hm) == v))
           fixed_[m] = 1;
       }
+    } else if (a != Action::None) {
+      changed = true;
+      ++events_;
+    }
+    if (a != Action::None && static_cast<int>(touched_.size()) == k_) {
+      const int len = a == Action::Rerouted || a == Action::Collapsed
+                          ? 0  // indices from run_start on changed; nothing below is touched
+                          : run_length;
+      for (int q = 0; q < len; ++q) touched_[(run_start + q) % k_] = 1;
+    }
+    i = std::min(i, run_start);
+  }
+  return changed;
+}
+
+
+namespace {
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Places the third corner c of a triangle in the plane, given a and b and the lengths |c - a|,
+// |c - b|, on the left of a -> b when left is true.
+Vec2 place_third(const Vec2& a, const Vec2& b, double la, double lb, bool left) {
+  const Vec2 ab = b - a;
+  const double L = ab.norm();
+  const double x = (la * la - lb * lb + L * L) / (2.0 * L);
+  const double y = std::sqrt(std::max(0.0, la * la - x * x));
+  const Vec2 u = ab / L;
+  const Vec2 n(-u.y(), u.x());
+  return a + x * u + (left ? y : -y) * n;
+}
+
+}  // namespace
+
+void Refiner::funnel_straighten() {
+  if (path_.closed || k_ == 0) return;
+  // Unfold the strip: the 2D corners of the current face, face by face.
+  std::vector<Vec2> L(k_ + 1), R(k_ + 1);
+  std::vector<int> Lv(k_ + 1, -1), Rv(k_ + 1, -1);
+  const int h0 = path_.halfedges[0];
+  const int f0 = mesh_.face(h0);
+  Vec2 pos[3];
+  int ids[3];
+  {
+    const int a = mesh_.from(h0), b = mesh_.to(h0), c = mesh_.to(mesh_.next(h0));
+    const Vec3 &A = mesh_.position(a), &B = mesh_.position(b), &C = mesh_.position(c);
+    ids[0] = a; ids[1] = b; ids[2] = c;
+    pos[0] = Vec2(0, 0);
+    pos[1] = Vec2((B - A).norm(), 0);
+    pos[2] = place_third(pos[0], pos[1], (C - A).norm(), (C - B).norm(), true);
+  }
+  auto local = [&](int v) {
+    for (int q = 0; q < 3; ++q)
+      if (ids[q] == v) return pos[q];
+    return Vec2(NAN, NAN);
+  };
+  // Start point in f0's placement.
+  const Vec3 bs = barycentric_in_face(mesh_, f0, path_.start);
+  Vec2 s2 = Vec2::Zero();
+  for (int q = 0; q < 3; ++q) s2 += bs[q] * local(mesh_.triangle(f0)[q]);
+  for (int i = 0; i < k_; ++i) {
+    const int h = path_.halfedges[i];
+    // Leaving face(h) through h: to(h) is on the left of the travel direction.
+    L[i] = local(mesh_.to(h));
+    R[i] = local(mesh_.from(h));
+    Lv[i] = mesh_.to(h);
+    Rv[i] = mesh_.from(h);
+    const int t = mesh_.twin(h);
+    const int d = mesh_.to(mesh_.next(t));
+    const Vec3& D = mesh_.position(d);
+    // The next face (CCW: to(h) -> from(h) -> d) has d on the right of from(h) -> to(h).
+    const Vec2 pd = place_third(R[i], L[i], (D - mesh_.position(mesh_.from(h))).norm(),
+                                (D - mesh_.position(mesh_.to(h))).norm(), false);
+    ids[0] = mesh_.from(h); pos[0] = R[i];
+    ids[1] = mesh_.to(h);   pos[1] = L[i];
+    ids[2] = d;             pos[2] = pd;
+  }
+  const int fk = mesh_.face(mesh_.twin(path_.halfedges[k_ - 1]));
+  const Vec3 bt = barycentric_in_face(mesh_, fk, path_.end);
+  Vec2 t2 = Vec2::Zero();
+  for (int q = 0; q < 3; ++q) t2 += bt[q] * local(mesh_.triangle(fk)[q]);
+  L[k_] = R[k_] = t2;
+
+  // Simple stupid funnel (Mononen): corners of the shortest path with their portal indices.
+  std::vector<Vec2> corner = {s2};
+  std::vector<int> corner_portal = {-1};
+  std::vector<int> corner_vertex = {-1};
+  Vec2 apex = s2, left = L[0], right = R[0];
+  int apex_i = -1, left_i = 0, right_i = 0;
+  const double eps = 1e-14 * scale_ * scale_;
+  for (int i = 1; i <= k_; ++i) {
+    const Vec2 &nl = L[i], &nr = R[i];
+    // Tighten the right side.
+    if (cross2(right - apex, nr - apex) >= -eps) {
+      if ((apex - right).squaredNorm() == 0.0 || cross2(nr - apex, left - apex) > eps) {
+        right = nr;
+        right_i = i;
+      } else {
+        corner.push_back(left);
+        corner_portal.push_back(left_i);
+        corner_vertex.push_back(Lv[left_i]);
+        apex = left;
+        apex_i = left_i;
+        left = right = apex;
+        left_i = right_i = apex_i;
+        i = apex_i;
+        continue;
+      }
+    }
+    // Tighten the left side.
+    if (cross2(nl - apex, left - apex) >= -eps) {
+      if ((apex - left).squaredNorm() == 0.0 || cross2(right - apex, nl - apex) > eps) {
+        left = nl;
+        left_i = i;
+      } else {
+        corner.push_back(right);
+        corner_portal.push_back(right_i);
+        corner_vertex.push_back(Rv[right_i]);
+        apex = right;
+        apex_i = right_i;
+        left = right = apex;
+        left_i = right_i = apex_i;
+        i = apex_i;
+        continue;
+      }
+    }
+  }
+  corner.push_back(t2);
+  corner_portal.push_back(k_);
+  corner_vertex.push_back(-1);
+
+  // Crossing parameters: portal i is cut by the corner segment that spans it.
+  std::size_t m = 0;
+  for (int i = 0; i < k_; ++i) {
+    while (m + 1 < corner.size() && corner_portal[m + 1] < i) ++m;
+    const int h = path_.halfedges[i];
+    if (corner_portal[m + 1] == i && corner_vertex[m + 1] >= 0) {
+      lambda_[i] = corner_vertex[m + 1] == mesh_.from(h) ? 0.0 : 1.0;
       continue;
     }
-    if (a != Action::None) return true;
+    const Vec2 a = corner[m], b = corner[m + 1];
+    const Vec2 e = L[i] - R[i];  // from(h) -> to(h)
+    const double den = cross2(b - a, e);
+    double l = den != 0.0 ? cross2(b - a, a - R[i]) / den : 0.5;
+    if (corner_vertex[m] >= 0) {
+      if (corner_vertex[m] == mesh_.from(h)) l = std::min(l, 1.0) * (l > 1e-12);
+    }
+    lambda_[i] = std::clamp(l, 0.0, 1.0);
+    if (lambda_[i] < 1e-13) lambda_[i] = 0.0;
+    if (lambda_[i] > 1.0 - 1e-13) lambda_[i] = 1.0;
   }
-  return false;
+}
+
+void Refiner::funnel_rounds() {
+  if (path_.closed) return;
+  for (int round = 0; round < 10000; ++round) {
+    funnel_straighten();
+    // Reroute around every wrapped vertex whose other side is shorter; pin the rest.
+    bool changed = false;
+    std::fill(fixed_.begin(), fixed_.end(), 0);
+    touched_.assign(k_, 0);
+    for (int i = k_ - 1; i >= 0; --i) {
+      const double l = lambda_[i];
+      if (fixed_[i] || (l > 0.0 && l < 1.0)) continue;
+      const int h = path_.halfedges[i];
+      const int v = l <= 0.0 ? mesh_.from(h) : mesh_.to(h);
+      int run_start = i, run_length = 1;
+      const Action a = handle_vertex(i, v, false, &run_start, &run_length);
+      if (a == Action::Rerouted || a == Action::Collapsed) changed = true;
+      if (a == Action::Pinned)
+        for (int q = 0; q < run_length; ++q) fixed_[run_start + q] = 1;
+      i = std::min(i, run_start);
+    }
+    if (!changed || reroutes_ > max_reroutes_) break;
+  }
+  std::fill(fixed_.begin(), fixed_.end(), 0);
 }
 
 bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
@@ -698,11 +966,11 @@ bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
       termination_ = GeodesicTermination::MaxIterations;
       break;
     }
-    if (reroutes_ + lifts_ > max_reroutes_) {
+    if (reroutes_ + lifts_ > max_reroutes_ || events_ > 4 * max_reroutes_) {
       termination_ = GeodesicTermination::MaxReroutes;
       break;
     }
-    if (process_vertex_events(ev)) {
+    if (handle_vertices_ && process_vertex_events(ev)) {
       s_mem_.clear();
       y_mem_.clear();
       evaluate(lambda_, z_, opt_.solver == GeodesicSolver::Newton, &ev);
@@ -740,7 +1008,7 @@ bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
       if (++stalls >= 2) {
         termination_ = GeodesicTermination::ObjectiveStalled;
         // Still process pending vertex events before stopping.
-        if (process_vertex_events(ev)) {
+        if (handle_vertices_ && process_vertex_events(ev)) {
           evaluate(lambda_, z_, opt_.solver == GeodesicSolver::Newton, &ev);
           stalls = 0;
           continue;
@@ -764,6 +1032,7 @@ GeodesicResult Refiner::run() {
     summary.initial_length = ev.length;
   }
   if (!con_) {
+    if (opt_.funnel_start && handle_vertices_) funnel_rounds();
     inner_solve(&summary, t0);
   } else {
     // Penalty weight: the initial penalty at a residual of one mean edge length per point is
@@ -848,6 +1117,16 @@ GeodesicResult refine_path(const Mesh& mesh, const SurfacePath& initial, const P
   if (!is_valid_path(mesh, initial, &why)) throw InputError("initial path: " + why);
   Refiner refiner(mesh, initial, metric, options, constraint);
   return refiner.run();
+}
+
+PathObjective evaluate_path_objective(const Mesh& mesh, const SurfacePath& path,
+                                      const PathMetric& metric, PathConstraint* constraint,
+                                      const std::vector<double>& z, double penalty_weight,
+                                      const std::vector<double>& multipliers) {
+  std::string why;
+  if (!is_valid_path(mesh, path, &why)) throw InputError("path: " + why);
+  Refiner refiner(mesh, path, metric, GeodesicOptions{}, constraint);
+  return refiner.objective(z, penalty_weight, multipliers);
 }
 
 GeodesicContext::GeodesicContext(const Mesh& mesh, PathMetric metric)

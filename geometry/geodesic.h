@@ -44,6 +44,9 @@ struct GeodesicOptions {
   /// Stop also when the relative objective change of an iteration is below this, twice in a row.
   double objective_tolerance = 1e-15;
   int max_iterations = 2000;
+  /// Open paths without constraints: start from the exact Euclidean shortest path in the strip
+  /// (funnel algorithm on the unfolded strip, alternated with reroutes), then refine.
+  bool funnel_start = true;
   /// Upper bound on strip changes (reroutes) before giving up (0: 20 + 4 * crossings).
   int max_reroutes = 0;
   /// L-BFGS memory (pairs).
@@ -102,6 +105,22 @@ struct GeodesicResult {
 GeodesicResult refine_path(const Mesh& mesh, const SurfacePath& initial,
                            const PathMetric& metric = {}, const GeodesicOptions& options = {},
                            PathConstraint* constraint = nullptr);
+
+/// The objective of the refinement on a fixed strip, exposed for diagnostics and for checking
+/// the analytic derivatives: value = weighted length + sum_q (mu_q r_q + M/2 r_q^2), gradient
+/// over (lambda_0..lambda_{k-1}, z), and the tridiagonal Hessian of the length part plus the
+/// Gauss-Newton Hessian of the penalty (diag, off[i] coupling i and i+1, cyclic off[k-1]).
+struct PathObjective {
+  double value = 0.0;
+  double length = 0.0;
+  std::vector<double> gradient;
+  std::vector<double> hessian_diag, hessian_off;
+};
+PathObjective evaluate_path_objective(const Mesh& mesh, const SurfacePath& path,
+                                      const PathMetric& metric = {},
+                                      PathConstraint* constraint = nullptr,
+                                      const std::vector<double>& z = {}, double penalty_weight = 0.0,
+                                      const std::vector<double>& multipliers = {});
 
 /// Reusable state for many queries on one mesh and metric (precompute / query split).
 class GeodesicContext {
