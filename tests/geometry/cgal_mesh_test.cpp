@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include "geometry/errors.h"
+#include "geometry/mesh_io.h"
+#include "geometry/mesh_validation.h"
 #include "tests/mesh_fixtures.h"
+#include "tests/test_data.h"
 
 namespace windplan {
 namespace {
@@ -66,6 +69,21 @@ TEST(CgalMesh, UnreferencedVerticesKeepTheIndices) {
   const Mesh back = c.to_mesh();
   EXPECT_EQ(back.points(), m.points());
   EXPECT_EQ(back.num_unreferenced_vertices(), 1);
+}
+
+TEST(CgalMesh, SharedMeshesRoundTripAndCgalAgreesOnAreaAndVolume) {
+  for (const char* name : {"fertility.off", "torus.off", "camelhead.off"}) {
+    WINDPLAN_REQUIRE_SHARED_MESH(path, name);
+    const Mesh m = build_mesh(read_mesh(path), true);
+    SCOPED_TRACE(name);
+    expect_round_trip(m);
+    if (!m.is_closed()) continue;
+    double volume = 0.0;  // divergence theorem, independent of CGAL
+    for (const Tri& t : m.triangles()) {
+      volume += m.position(t[0]).dot(m.position(t[1]).cross(m.position(t[2]))) / 6.0;
+    }
+    EXPECT_NEAR(CgalMesh(m).volume(), volume, 1e-9 * std::abs(volume));
+  }
 }
 
 TEST(CgalMesh, CopyAndMove) {
