@@ -1,6 +1,7 @@
 #include "planner/job.h"
 
 #include <cmath>
+#include <utility>
 
 #include "geometry/atomic_file.h"
 #include "geometry/errors.h"
@@ -113,10 +114,18 @@ void decode_mandrel(ConfigNode n, const std::filesystem::path& base, MandrelOpti
     DomeParams both = v.dome_end;
     decode_dome(p.section("dome"), &both);
     v.dome_start = v.dome_end = both;
+    const bool start_own = p.has("dome_start"), end_own = p.has("dome_end");
     decode_dome(p.section("dome_start"), &v.dome_start);
     decode_dome(p.section("dome_end"), &v.dome_end);
     p.finish();
-    p.check(v);
+    if (std::string why; !v.is_valid(&why)) {
+      // Name the key the user wrote: `dome.x` when the faulty dome came from `dome:` alone.
+      for (const auto& [key, own] : {std::pair{std::string("dome_start."), start_own},
+                                     std::pair{std::string("dome_end."), end_own}}) {
+        if (!own && why.rfind(key, 0) == 0) why = "dome." + why.substr(key.size());
+      }
+      p.fail_here(why);
+    }
   } else if (m->source == "bent_tube") {
     ConfigNode p = n.section("bent_tube");
     if (!p.present()) {

@@ -157,7 +157,10 @@ TEST(MandrelBuilder, BadJobsNameTheKey) {
                    "linear_deflection");
   expect_job_error("mandrel:\n  source: vessel\n  vessel:\n    radius: 100\n    length: 300\n"
                    "    dome: {type: hemispherical, polar_opening: 150}\n",
-                   "polar_opening");
+                   "dome.polar_opening (150 mm) must be smaller than the vessel radius");
+  expect_job_error("mandrel:\n  source: vessel\n  vessel:\n    radius: 100\n    length: 300\n"
+                   "    dome_end: {polar_opening: 100}\n",
+                   "dome_end.polar_opening");
   expect_job_error("mandrel:\n  source: bent_tube\n  bent_tube:\n    radius: 25\n"
                    "    segments: [100, 100]\n    bends: [{angle: 90, radius: 10}]\n",
                    "bends[0].radius");
