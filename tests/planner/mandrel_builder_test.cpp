@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "geometry/errors.h"
+#include "geometry/mesh_io.h"
 #include "geometry/mesh_validation.h"
 #include "geometry/parametric_mandrel.h"
 #include "planner/job.h"
@@ -126,6 +127,27 @@ TEST(MandrelBuilder, RemeshEvensOutEdgesAndKeepsTheAnnulus) {
   }
   const double side = 2 * M_PI * 50 * 500;
   EXPECT_NEAR(m.winding.area, side, 2 * 0.25 / 50 * side);
+}
+
+TEST(MandrelBuilder, ClosedMeshFileDropsItsFlatCapsAndFindsTheAxis) {
+  // The pipe's closed tessellation, tilted and moved, saved as a mesh file.
+  const Mandrel pipe = build_mandrel(load_job(config("pipe.yaml")));
+  const Eigen::AngleAxisd rot(0.6, Vec3(1, -1, 0.3).normalized());
+  const Vec3 shift(5, 10, -20);
+  TriangleSoup soup{pipe.mesh.points(), pipe.mesh.triangles()};
+  for (Vec3& p : soup.points) p = rot * p + shift;
+  const fs::path dir = fs::temp_directory_path() / "windplan_mandrel_builder_mesh";
+  fs::create_directories(dir);
+  write_mesh(dir / "pipe.ply", soup);
+  const Mandrel m = build_mandrel(load_job_from_string(
+      "mandrel: {source: mesh, file: " + (dir / "pipe.ply").string() + "}\n", "mesh.yaml"));
+  EXPECT_TRUE(m.revolution);
+  EXPECT_NEAR(std::abs(m.axis.direction.dot(rot * Vec3::UnitZ())), 1.0, 1e-9);
+  EXPECT_EQ(m.winding.mesh.boundary_loops().size(), 2u);
+  for (const WindingLoop& L : m.winding.loops) EXPECT_NEAR(L.mean_radius, 50.0, 1e-6);
+  EXPECT_NEAR(m.winding.loops[1].axial - m.winding.loops[0].axial, 500.0, 1e-6);
+  EXPECT_NEAR(m.winding.area, pipe.winding.area, 1e-6 * pipe.winding.area);
+  fs::remove_all(dir);
 }
 
 TEST(MandrelBuilder, JobAxisIsUsed) {

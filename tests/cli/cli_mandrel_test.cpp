@@ -1,0 +1,117 @@
+// `windplan mandrel` run as a subprocess (WINDPLAN_BINARY): the JSON report is pure JSON (no
+// OpenCASCADE banner on stdout, even when reading STEP), files are written, errors exit 1 with
+// one line naming the key or file, usage errors exit 2.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include "geometry/cad_import.h"
+#include "geometry/mesh_io.h"
+#include "tests/test_data.h"
+
+namespace windplan {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+class MandrelCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("windplan_mandrel_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  static std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  static std::string q(const std::string& s) {
+    std::string r = "'";
+    for (char c : s) r += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return r + "'";
+  }
+  CliRun run(const std::vector<std::string>& args) const {
+    std::string cmd = q(WINDPLAN_BINARY) + " mandrel";
+    for (const auto& a : args) cmd += " " + q(a);
+    cmd += " >" + q((dir_ / "out.txt").string()) + " 2>" + q((dir_ / "err.txt").string());
+    const int status = std::system(cmd.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "out.txt"),
+            slurp(dir_ / "err.txt")};
+  }
+  fs::path dir_;
+};
+
+std::string config(const std::string& name) {
+  return (test::source_dir() / "configs" / name).string();
+}
+
+TEST_F(MandrelCli, JsonIsPureAndComplete) {
+  for (const char* job : {"vessel.yaml", "vessel_step.yaml", "pipe.yaml"}) {
+    const CliRun r = run({config(job), "--json"});
+    ASSERT_EQ(r.code, 0) << job << ": " << r.err;
+    ASSERT_FALSE(r.out.empty());
+    EXPECT_EQ(r.out.front(), '{') << "stdout must start with the JSON object: " << r.out.substr(0, 200);
+    EXPECT_EQ(r.out.substr(r.out.size() - 2), "}\n");
+    const YAML::Node j = YAML::Load(r.out);  // JSON is YAML
+    EXPECT_TRUE(j["mesh"]["closed"].as<bool>()) << job;
+    EXPECT_TRUE(j["mesh"]["manifold"].as<bool>()) << job;
+    EXPECT_TRUE(j["mesh"]["oriented"].as<bool>()) << job;
+    ASSERT_EQ(j["winding_surface"]["loops"].size(), 2u);
+    EXPECT_EQ(j["winding_surface"]["loops"][0]["role"].as<std::string>(), "start");
+    EXPECT_GT(j["timings_ms"]["tessellation"].as<double>(), 0.0);
+  }
+}
+
+TEST_F(MandrelCli, WritesMeshesAndStep) {
+  const fs::path mesh = dir_ / "vessel.ply", annulus = dir_ / "annulus.obj",
+                 step = dir_ / "vessel.step";
+  const CliRun r = run({config("pipe.yaml"), "-o", mesh.string(), "--winding", annulus.string(),
+                     "--step", step.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("start loop"), std::string::npos) << r.out;
+  EXPECT_EQ(read_mesh(mesh).triangles.size() > read_mesh(annulus).triangles.size(), true);
+  const CadImport back = import_cad(step);
+  EXPECT_TRUE(back.is_solid && back.closed);
+}
+
+TEST_F(MandrelCli, ErrorsNameTheKeyOrFile) {
+  std::ofstream(dir_ / "bad.yaml")
+      << "mandrel:\n  source: bent_tube\n  bent_tube: {radius: 25, segments: [100, 100], "
+         "bends: [{angle: 90, radius: 20}]}\n";
+  const CliRun r = run({(dir_ / "bad.yaml").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("bends[0].radius"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(r.out.empty());
+
+  std::ofstream(dir_ / "text.step") << "just text\n";
+  std::ofstream(dir_ / "cad.yaml") << "mandrel: {source: cad, file: text.step}\n";
+  const CliRun c = run({(dir_ / "cad.yaml").string(), "--json"});
+  EXPECT_EQ(c.code, 1);
+  EXPECT_NE(c.err.find("text.step"), std::string::npos) << c.err;
+  EXPECT_TRUE(c.out.empty()) << c.out;
+
+  EXPECT_EQ(run({}).code, 2);
+  EXPECT_EQ(run({config("pipe.yaml"), "--nope"}).code, 2);
+}
+
+}  // namespace
+}  // namespace windplan
