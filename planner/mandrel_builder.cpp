@@ -1,5 +1,6 @@
 #include "planner/mandrel_builder.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -167,6 +168,14 @@ Mandrel build_mandrel(const MandrelOptions& m) {
   }
   std::vector<char> keep(out.mesh.num_faces());
   for (int f = 0; f < out.mesh.num_faces(); ++f) keep[f] = patch_wound[patch[f]];
+  if (std::find(keep.begin(), keep.end(), 1) == keep.end()) {
+    throw TopologyError("mandrel (" + describe(m, selected) + "): no wound region: " +
+                        (m.source == "mesh"
+                             ? std::string("every triangle is normal to the axis")
+                             : "all " + std::to_string(out.brep_faces) +
+                                   " B-rep faces are planar (planar faces are taken as end caps)") +
+                        "; the winding surface must be an annulus");
+  }
   out.winding = extract_winding_surface(out.mesh, keep, out.axis);
   out.profile = compute_radius_profile(out.mesh, out.axis);
   out.description = describe(m, selected);
