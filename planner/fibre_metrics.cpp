@@ -1,0 +1,389 @@
+#include "planner/fibre_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "geometry/errors.h"
+
+namespace windplan {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+// Arc-length interpolation along a polyline (cumulative lengths `cum`), clamped to its ends.
+Vec3 at_length(const std::vector<FibrePoint>& p, const std::vector<double>& cum, double s) {
+  const std::size_t n = p.size();
+  if (s <= cum.front()) return p.front().position;
+  if (s >= cum.back()) return p.back().position;
+  const std::size_t i =
+      static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), s) - cum.begin());
+  const std::size_t a = std::min(i, n - 1) - 1, b = a + 1;
+  const double d = cum[b] - cum[a];
+  const double u = d > 0.0 ? (s - cum[a]) / d : 0.0;
+  return (1.0 - u) * p[a].position + u * p[b].position;
+}
+
+Vec3 chord_direction(const std::vector<FibrePoint>& p, const std::vector<double>& cum, double s,
+                     double half) {
+  const double lo = std::max(cum.front(), s - half), hi = std::min(cum.back(), s + half);
+  const Vec3 d = at_length(p, cum, hi) - at_length(p, cum, lo);
+  const double n = d.norm();
+  return n > 0.0 ? Vec3(d / n) : Vec3::Zero();
+}
+
+Vec3 point_normal(const Mesh& m, const std::vector<Vec3>& vn, const SurfacePoint& p) {
+  Vec3 n = Vec3::Zero();
+  switch (p.kind) {
+    case SurfacePoint::Kind::Vertex: n = vn[p.element]; break;
+    case SurfacePoint::Kind::Edge:
+      n = (1.0 - p.t) * vn[m.from(p.element)] + p.t * vn[m.to(p.element)];
+      break;
+    case SurfacePoint::Kind::Face: {
+      const Tri& t = m.triangle(p.element);
+      n = p.bary[0] * vn[t[0]] + p.bary[1] * vn[t[1]] + p.bary[2] * vn[t[2]];
+      break;
+    }
+  }
+  return n.norm() > 0.0 ? Vec3(n.normalized()) : Vec3::UnitX();
+}
+
+double mean_of(const std::vector<double>& v) {
+  return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+}
+double cv_of(const std::vector<double>& v) {
+  const double m = mean_of(v);
+  if (v.size() < 2 || !(m != 0.0)) return 0.0;
+  double s = 0.0;
+  for (double x : v) s += (x - m) * (x - m);
+  return std::sqrt(s / v.size()) / std::fabs(m);
+}
+
+std::string fmt(double x, int prec = 3) {
+  std::ostringstream o;
+  o.setf(std::ios::fixed);
+  o.precision(prec);
+  o << x;
+  return o.str();
+}
+
+}  // namespace
+
+std::vector<Vec3> vertex_normals(const Mesh& m) {
+  std::vector<Vec3> n(m.num_vertices(), Vec3::Zero());
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const Vec3 fn = m.face_normal(f);
+    for (int k = 0; k < 3; ++k) n[m.triangle(f)[k]] += m.corner_angle(3 * f + k) * fn;
+  }
+  for (Vec3& x : n) {
+    if (x.norm() > 0.0) x.normalize();
+  }
+  return n;
+}
+
+double winding_angle_deg(const SpindleAxis& axis, const Vec3& n, const Vec3& t) {
+  const Vec3 mer = axis.direction - axis.direction.dot(n) * n;
+  if (!(mer.norm() > 1e-12) || !(t.norm() > 0.0)) return 90.0;
+  const double c = std::clamp(std::fabs(t.normalized().dot(mer.normalized())), 0.0, 1.0);
+  return std::acos(c) * 180.0 / M_PI;
+}
+
+void annotate_fibre_points(std::vector<FibrePoint>* points, const SpindleAxis& axis,
+                           double window, double s0) {
+  std::vector<FibrePoint>& p = *points;
+  const std::size_t n = p.size();
+  if (n == 0) return;
+  std::vector<double> cum(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) cum[i] = cum[i - 1] + (p[i].position - p[i - 1].position).norm();
+  // A window no longer than the polyline itself.
+  const double w = std::max(1e-9, std::min(window, cum.back()));
+  const double half = 0.5 * w;
+  auto tangent_at = [&](double s, const Vec3& nrm) {
+    Vec3 t = chord_direction(p, cum, s, half);
+    t -= t.dot(nrm) * nrm;
+    return t.norm() > 0.0 ? Vec3(t.normalized()) : t;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    FibrePoint& q = p[i];
+    q.s = s0 + cum[i];
+    const Vec3 t = tangent_at(cum[i], q.normal);
+    if (t.norm() > 0.0) q.tangent = t;
+    q.winding_angle = winding_angle_deg(axis, q.normal, q.tangent);
+    const double lo = std::max(0.0, cum[i] - half), hi = std::min(cum.back(), cum[i] + half);
+    if (hi - lo <= 0.0) {
+      q.k_n = q.k_g = q.slippage = 0.0;
+      continue;
+    }
+    // Chord tangents (unprojected) at both ends of the window: their difference over the span.
+    const Vec3 ta = chord_direction(p, cum, lo, half), tb = chord_direction(p, cum, hi, half);
+    const Vec3 dt = (tb - ta) / (hi - lo);
+    q.k_n = dt.dot(q.normal);
+    q.k_g = dt.dot(q.normal.cross(q.tangent));
+    q.slippage = std::fabs(q.k_n) > 1e-12 ? std::fabs(q.k_g / q.k_n) : (std::fabs(q.k_g) > 1e-12 ? 1e12 : 0.0);
+  }
+}
+
+std::vector<FibrePoint> path_points(const Mesh& m, const SurfacePath& path,
+                                    const std::vector<Vec3>& vn) {
+  std::vector<FibrePoint> out;
+  const std::vector<int> faces = segment_faces(m, path);
+  auto add = [&](const SurfacePoint& sp, int face) {
+    FibrePoint q;
+    q.position = position(m, sp);
+    q.normal = point_normal(m, vn, sp);
+    q.face = face;
+    out.push_back(q);
+  };
+  if (!path.closed) add(path.start, faces.empty() ? path.start_face : faces.front());
+  for (int i = 0; i < path.num_crossings(); ++i) {
+    add(SurfacePoint::on_edge(path.halfedges[i], path.lambdas[i]),
+        i < static_cast<int>(faces.size()) ? faces[i] : -1);
+  }
+  if (!path.closed) add(path.end, faces.empty() ? path.start_face : faces.back());
+  return out;
+}
+
+std::vector<Circuit> build_circuits(const Mesh& m, const HelixPlan& plan,
+                                    const std::vector<int>& face_map, const SpindleAxis& axis,
+                                    const WindingOptions& options) {
+  const std::vector<Vec3> vn = vertex_normals(m);
+  const double window = options.curvature_window > 0.0 ? options.curvature_window
+                                                       : options.band_width;
+  const int K = plan.summary.circuits;
+  std::vector<Circuit> circuits;
+  for (int k = 0; k < K; ++k) {
+    Circuit c;
+    c.index = k;
+    double s = 0.0;
+    auto append = [&](std::vector<FibrePoint> pts, CircuitSegment::Kind kind) {
+      annotate_fibre_points(&pts, axis, window, s);
+      if (pts.empty()) return;
+      s = pts.back().s;
+      // The first point repeats the previous segment's last point: keep one copy.
+      const int first = c.points.empty() ? 0 : static_cast<int>(c.points.size()) - 1;
+      const std::size_t skip = c.points.empty() ? 0 : 1;
+      for (std::size_t i = skip; i < pts.size(); ++i) c.points.push_back(pts[i]);
+      c.segments.push_back({kind, first, static_cast<int>(c.points.size()) - 1});
+    };
+    auto arc_points = [&](const LoopArc& arc) {
+      std::vector<FibrePoint> pts;
+      for (std::size_t i = 0; i < arc.points.size(); ++i) {
+        FibrePoint q;
+        q.position = arc.points[i];
+        const int f = arc.faces[std::min(i, arc.faces.size() - 1)];
+        // The arc runs on the boundary: the normal of its face.
+        q.normal = m.face_normal(f);
+        q.face = f;
+        pts.push_back(q);
+      }
+      return pts;
+    };
+    append(path_points(m, plan.passes[2 * k].path, vn), CircuitSegment::Kind::Pass);
+    append(arc_points(plan.turnarounds[2 * k].arc), CircuitSegment::Kind::Turnaround);
+    append(path_points(m, plan.passes[2 * k + 1].path, vn), CircuitSegment::Kind::Pass);
+    append(arc_points(plan.turnarounds[2 * k + 1].arc), CircuitSegment::Kind::Turnaround);
+    if (!face_map.empty()) {
+      for (FibrePoint& q : c.points) {
+        if (q.face >= 0 && q.face < static_cast<int>(face_map.size())) q.face = face_map[q.face];
+      }
+    }
+    circuits.push_back(std::move(c));
+  }
+  return circuits;
+}
+
+SpacingStats turn_spacing(const Mesh& m, const HelixPlan& plan,
+                          const std::vector<double>& face_girth, const SpindleAxis& axis,
+                          int meridians) {
+  struct Hit {
+    double h;
+    Vec3 p;
+    int face;
+  };
+  std::vector<std::vector<Hit>> hits(meridians);
+  for (const HelixPass& pass : plan.passes) {
+    if (pass.hand != 1) continue;
+    const SurfacePath& path = pass.path;
+    const std::vector<int> faces = segment_faces(m, path);
+    // (theta, h, position) at every polyline point, theta unwrapped along the path.
+    std::vector<std::array<double, 2>> th;
+    std::vector<Vec3> pos;
+    auto add_edge_point = [&](const SurfacePoint& sp) {
+      th.push_back(edge_point_coordinates(m, plan.coords, sp.element, sp.t));
+      pos.push_back(position(m, sp));
+    };
+    add_edge_point(path.start);
+    for (int i = 0; i < path.num_crossings(); ++i) {
+      add_edge_point(SurfacePoint::on_edge(path.halfedges[i], path.lambdas[i]));
+    }
+    add_edge_point(path.end);
+    for (std::size_t i = 1; i < th.size(); ++i) {
+      th[i][0] -= kTwoPi * std::round((th[i][0] - th[i - 1][0]) / kTwoPi);
+    }
+    for (std::size_t i = 0; i + 1 < th.size(); ++i) {
+      const double a = th[i][0], b = th[i + 1][0];
+      if (a == b) continue;
+      const double lo = std::min(a, b), hi = std::max(a, b);
+      for (int j = 0; j < meridians; ++j) {
+        const double tm = kTwoPi * j / meridians;
+        for (double q = std::ceil((lo - tm) / kTwoPi); tm + kTwoPi * q < hi; q += 1.0) {
+          const double u = (tm + kTwoPi * q - a) / (b - a);
+          hits[j].push_back({(1 - u) * th[i][1] + u * th[i + 1][1], (1 - u) * pos[i] + u * pos[i + 1],
+                             faces[std::min(i, faces.size() - 1)]});
+        }
+      }
+    }
+  }
+  std::vector<double> mm, norm;
+  for (auto& list : hits) {
+    std::sort(list.begin(), list.end(), [](const Hit& a, const Hit& b) { return a.h < b.h; });
+    for (std::size_t i = 0; i + 1 < list.size(); ++i) {
+      const double d = (list[i + 1].p - list[i].p).norm();
+      if (!(d > 0.0)) continue;
+      double g = 0.0;
+      if (!face_girth.empty()) {
+        g = 0.5 * (face_girth[list[i].face] + face_girth[list[i + 1].face]);
+      } else {
+        g = kTwoPi * axis.radius(0.5 * (list[i].p + list[i + 1].p));
+      }
+      mm.push_back(d);
+      if (g > 0.0) norm.push_back(d / g);
+    }
+  }
+  SpacingStats s;
+  s.samples = static_cast<int>(mm.size());
+  s.mean = mean_of(mm);
+  s.cv = cv_of(mm);
+  s.mean_normalised = mean_of(norm);
+  s.cv_normalised = cv_of(norm);
+  return s;
+}
+
+std::vector<PassReport> pass_reports(const HelixPlan& plan, const std::vector<Circuit>& circuits,
+                                     const SpindleAxis& axis) {
+  std::vector<PassReport> out;
+  for (std::size_t i = 0; i < plan.passes.size(); ++i) {
+    const HelixPass& p = plan.passes[i];
+    PassReport r;
+    r.circuit = p.circuit;
+    r.hand = p.hand;
+    r.iterations = p.summary.iterations;
+    r.termination = to_string(p.summary.termination);
+    const Circuit& c = circuits[p.circuit];
+    int seg_index = p.hand == 1 ? 0 : 2;
+    if (seg_index < static_cast<int>(c.segments.size())) {
+      const CircuitSegment& seg = c.segments[seg_index];
+      const FibrePoint& a = c.points[seg.first];
+      const FibrePoint& b = c.points[seg.last];
+      r.length = b.s - a.s;
+      r.angle_start = a.winding_angle;
+      r.angle_end = b.winding_angle;
+      r.radius_start = axis.radius(a.position);
+      r.radius_end = axis.radius(b.position);
+      for (int j = seg.first; j <= seg.last; ++j) {
+        r.max_slippage = std::max(r.max_slippage, c.points[j].slippage);
+      }
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+PlanMetrics compute_plan_metrics(const Mesh& m, const HelixPlan& plan,
+                                 const std::vector<Circuit>& circuits,
+                                 const std::vector<double>& face_girth, const SpindleAxis& axis,
+                                 bool revolution, const WindingOptions& options) {
+  PlanMetrics pm;
+  const int K = plan.summary.circuits;
+  pm.circuits = K;
+  pm.turns_per_pass = options.turns;
+  pm.band_width = options.band_width;
+  pm.friction = options.mu;
+  for (const Circuit& c : circuits) {
+    if (!c.points.empty()) pm.fibre_length += c.points.back().s;
+  }
+  // Spacing.
+  const SpacingStats sp = turn_spacing(m, plan, face_girth, axis, options.meridians);
+  pm.spacing_mean = sp.mean;
+  pm.spacing_cv = sp.cv_normalised;
+
+  // Coverage at the largest radius of the passes (mean over the out passes).
+  double R = 0.0, cos_sum = 0.0;
+  int cos_n = 0;
+  double girth_at_R = 0.0;
+  for (const Circuit& c : circuits) {
+    for (const CircuitSegment& seg : c.segments) {
+      if (seg.kind != CircuitSegment::Kind::Pass) continue;
+      int best = seg.first;
+      for (int j = seg.first; j <= seg.last; ++j) {
+        if (axis.radius(c.points[j].position) > axis.radius(c.points[best].position)) best = j;
+      }
+      const double r = axis.radius(c.points[best].position);
+      if (r > R) {
+        R = r;
+        girth_at_R = kTwoPi * r;
+      }
+      cos_sum += std::cos(c.points[best].winding_angle * M_PI / 180.0);
+      ++cos_n;
+    }
+  }
+  const double ca = cos_n > 0 ? cos_sum / cos_n : 1.0;
+  const double band_length = girth_at_R * ca;  // circumference seen across the band direction
+  if (band_length > 0.0) {
+    pm.circuits_for_coverage =
+        std::max(1, static_cast<int>(std::ceil(band_length / options.band_width - 1e-9)));
+    pm.cover_factor = K * options.band_width / band_length;
+  }
+  const int p = plan.summary.pattern_step;
+  if (revolution) {
+    pm.pattern = "K=" + std::to_string(K) + ", advance " + std::to_string(p) + "/" +
+                 std::to_string(K) + " turn per circuit, " +
+                 (std::gcd(p, K) == 1 ? "coprime: closes after " + std::to_string(K) + " circuits"
+                                      : "not coprime");
+  } else {
+    pm.pattern = "K=" + std::to_string(K) + ", advance " + std::to_string(p) + "/" +
+                 std::to_string(K) + " of the conformal angle (not a shape of revolution)";
+  }
+
+  // Stability on the passes.
+  double pass_len = 0.0, slip_len = 0.0;
+  constexpr double kBridgeTol = 1e-5;  // 1/mm: k_n below -tol counts as bridging
+  for (const Circuit& c : circuits) {
+    for (const CircuitSegment& seg : c.segments) {
+      if (seg.kind != CircuitSegment::Kind::Pass) continue;
+      for (int j = seg.first; j <= seg.last; ++j) {
+        pm.max_slippage = std::max(pm.max_slippage, c.points[j].slippage);
+        if (j == seg.first) continue;
+        const FibrePoint& a = c.points[j - 1];
+        const FibrePoint& b = c.points[j];
+        const double L = b.s - a.s;
+        pass_len += L;
+        if (0.5 * (a.slippage + b.slippage) > options.mu) slip_len += L;
+        if (0.5 * (a.k_n + b.k_n) < -kBridgeTol) pm.bridging_length += L;
+      }
+    }
+  }
+  pm.slip_fraction = pass_len > 0.0 ? slip_len / pass_len : 0.0;
+
+  for (const std::string& w : plan.summary.warnings) pm.warnings.push_back(w);
+  if (pm.max_slippage > options.mu) {
+    pm.warnings.push_back("slippage: max |k_g/k_n| = " + fmt(pm.max_slippage) + " exceeds mu = " +
+                          fmt(options.mu) + " on " + fmt(100.0 * pm.slip_fraction, 1) +
+                          "% of the pass length: the fibre may slip there (lower beta)");
+  }
+  if (pm.bridging_length > 0.0) {
+    pm.warnings.push_back("bridging: " + fmt(pm.bridging_length, 1) +
+                          " mm of pass with k_n <= 0: the fibre would bridge a concave region");
+  }
+  if (pm.cover_factor > 0.0 && pm.cover_factor < 1.0) {
+    pm.warnings.push_back("coverage: " + std::to_string(K) + " circuits of band " +
+                          fmt(options.band_width, 2) + " mm cover " +
+                          fmt(100.0 * pm.cover_factor, 1) + "% at the largest radius; " +
+                          std::to_string(pm.circuits_for_coverage) + " needed");
+  }
+  return pm;
+}
+
+}  // namespace windplan

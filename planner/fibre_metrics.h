@@ -1,0 +1,92 @@
+#pragma once
+// Fibre-path differential geometry and the figures of a plan: turn spacing along meridians,
+// coverage and winding pattern, fibre stability (slippage against friction, bridging).
+//
+// Curvatures are estimated robustly from the polyline and the mesh normals: the tangent at arc
+// length s is the unit chord P(s + w/2) - P(s - w/2) projected onto the tangent plane, and
+// t' = (T(s + w/2) - T(s - w/2)) / w, i.e. smoothed finite differences over a window w of about a
+// band width (WindingOptions::curvature_window, default band_width). Then k_n = t' . n and
+// k_g = t' . (n x t) with n the interpolated (angle-weighted) vertex normal; slippage is
+// |k_g / k_n|. The window filters the tessellation's kinks (edge-crossing scale); curvature
+// radii well above w are resolved to O(w^2 / radius^2).
+//
+// Spacing: the out passes (one helix family) are cut with `meridians` lines of constant conformal
+// angle theta (planner/harmonic.h); along each meridian the crossings are ordered by height and
+// the chord between successive ones is the turn spacing (mm), also divided by the local girth
+// (the girth field's face value, or 2 pi r when no field is given). spacing_cv is the coefficient
+// of variation of the girth-normalised spacing (0 for equally spaced helices, whatever the radius).
+//
+// Coverage (shapes of revolution): at the largest radius R with winding angle a there, full
+// coverage needs ceil(2 pi R cos a / B) circuits; cover factor K B / (2 pi R cos a).
+// Stability is evaluated on the passes (the turnarounds are dwell arcs on the opening).
+#include <string>
+#include <vector>
+
+#include "geometry/axis.h"
+#include "geometry/mesh.h"
+#include "geometry/surface_path.h"
+#include "planner/helix.h"
+#include "planner/plan.h"
+#include "planner/winding_options.h"
+
+namespace windplan {
+
+/// Unit vertex normals of a mesh (angle-weighted).
+std::vector<Vec3> vertex_normals(const Mesh& mesh);
+
+/// Fills s (starting at s0), tangent, winding angle, k_n, k_g and slippage of `points` from their
+/// positions and normals (see the header comment). \param window mm, > 0
+void annotate_fibre_points(std::vector<FibrePoint>* points, const SpindleAxis& axis, double window,
+                           double s0 = 0.0);
+
+/// Winding angle (deg, 0 axial, 90 hoop) of direction t at a point with normal n.
+double winding_angle_deg(const SpindleAxis& axis, const Vec3& n, const Vec3& t);
+
+/// Polyline points of a path with interpolated normals and annulus faces (not yet annotated).
+std::vector<FibrePoint> path_points(const Mesh& annulus, const SurfacePath& path,
+                                    const std::vector<Vec3>& normals);
+
+/// The K continuous circuits of a helix plan as dense FibrePoints (passes and turnarounds,
+/// each annotated separately, arc length continuous). face_map maps annulus faces to the full
+/// mesh (empty: keep annulus faces).
+std::vector<Circuit> build_circuits(const Mesh& annulus, const HelixPlan& plan,
+                                    const std::vector<int>& face_map, const SpindleAxis& axis,
+                                    const WindingOptions& options);
+
+struct SpacingStats {
+  int samples = 0;              ///< spacings measured
+  double mean = 0.0;            ///< mm
+  double cv = 0.0;              ///< coefficient of variation of the mm spacing
+  double mean_normalised = 0.0; ///< spacing / girth (dimensionless)
+  double cv_normalised = 0.0;   ///< coefficient of variation of spacing / girth
+};
+
+/// Turn spacing of the out passes along `meridians` lines of constant theta.
+/// \param face_girth per annulus face (mm), or empty for 2 pi r
+SpacingStats turn_spacing(const Mesh& annulus, const HelixPlan& plan,
+                          const std::vector<double>& face_girth, const SpindleAxis& axis,
+                          int meridians);
+
+/// Per pass figures for reports.
+struct PassReport {
+  int circuit = 0;
+  int hand = 1;
+  double length = 0.0;            ///< mm
+  double angle_start = 0.0;       ///< winding angle where the pass leaves its opening (deg)
+  double angle_end = 0.0;         ///< where it meets the other opening (deg)
+  double radius_start = 0.0, radius_end = 0.0;  ///< mm
+  double max_slippage = 0.0;
+  int iterations = 0;
+  std::string termination;
+};
+std::vector<PassReport> pass_reports(const HelixPlan& plan, const std::vector<Circuit>& circuits,
+                                     const SpindleAxis& axis);
+
+/// Spacing, coverage/pattern and stability of a plan (fills every PlanMetrics field except
+/// timings), with warnings.
+PlanMetrics compute_plan_metrics(const Mesh& annulus, const HelixPlan& plan,
+                                 const std::vector<Circuit>& circuits,
+                                 const std::vector<double>& face_girth, const SpindleAxis& axis,
+                                 bool revolution, const WindingOptions& options);
+
+}  // namespace windplan

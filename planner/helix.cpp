@@ -1,0 +1,371 @@
+#include "planner/helix.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "geometry/errors.h"
+
+namespace windplan {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Corner index of vertex v in face f.
+int corner_of(const Mesh& m, int f, int v) {
+  const Tri& t = m.triangle(f);
+  return t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+}
+
+// Lifted theta of from(h) and to(h) in face(h) (interior h).
+std::array<double, 2> lift_on(const Mesh& m, const HarmonicCoordinates& hc, int h) {
+  const int f = m.face(h), k = h % 3;
+  return {hc.corner_theta(m, f, k), hc.corner_theta(m, f, (k + 1) % 3)};
+}
+
+// The interior halfedge of an edge point's boundary edge (the point's own halfedge or its twin).
+int interior_boundary_halfedge(const Mesh& m, const SurfacePoint& p, double* t) {
+  if (p.kind != SurfacePoint::Kind::Edge || p.element < 0 || p.element >= m.num_halfedges()) {
+    throw InputError("helix start: " + to_string(m, p) + " is not an edge point");
+  }
+  int h = p.element;
+  *t = p.t;
+  if (m.is_boundary_halfedge(h)) {
+    h = m.twin(h);
+    *t = 1.0 - p.t;
+  }
+  if (!m.is_boundary_halfedge(m.twin(h))) {
+    throw InputError("helix start: " + to_string(m, p) + " is not on a boundary edge");
+  }
+  return h;
+}
+
+// Boundary loop as interior halfedges ordered so that theta increases along the loop: step i
+// runs from vertex v[i] to v[i+1]; forward[i] says whether from(h[i]) == v[i].
+struct OrientedLoop {
+  std::vector<int> h;
+  std::vector<char> forward;
+};
+
+OrientedLoop oriented_loop_of(const Mesh& m, const HarmonicCoordinates& hc, int interior_h) {
+  // Find the boundary loop holding twin(interior_h), in next() order.
+  const int b0 = m.twin(interior_h);
+  std::vector<int> bl;
+  int b = b0;
+  do {
+    bl.push_back(b);
+    b = m.next(b);
+  } while (b != b0 && static_cast<int>(bl.size()) <= m.num_halfedges());
+  // Along boundary halfedge b (from(b) -> to(b)) the interior twin runs backwards.
+  double total = 0.0;
+  for (int bb : bl) {
+    const auto l = lift_on(m, hc, m.twin(bb));
+    total += l[0] - l[1];
+  }
+  OrientedLoop o;
+  if (total >= 0.0) {
+    for (int bb : bl) {
+      o.h.push_back(m.twin(bb));
+      o.forward.push_back(0);  // step from(b) = to(twin) -> to(b) = from(twin)
+    }
+  } else {
+    for (auto it = bl.rbegin(); it != bl.rend(); ++it) {
+      o.h.push_back(m.twin(*it));
+      o.forward.push_back(1);
+    }
+  }
+  return o;
+}
+
+Vec3 edge_position(const Mesh& m, int h, double t) {
+  return (1.0 - t) * m.position(m.from(h)) + t * m.position(m.to(h));
+}
+
+}  // namespace
+
+std::array<double, 2> edge_point_coordinates(const Mesh& m, const HarmonicCoordinates& hc, int h,
+                                             double t) {
+  if (m.is_boundary_halfedge(h)) {
+    h = m.twin(h);
+    t = 1.0 - t;
+  }
+  const auto l = lift_on(m, hc, h);
+  const double th = (1.0 - t) * l[0] + t * l[1];
+  const double hh = (1.0 - t) * hc.height[m.from(h)] + t * hc.height[m.to(h)];
+  return {th, hh};
+}
+
+SurfacePoint loop_point_at_theta(const Mesh& m, const HarmonicCoordinates& hc,
+                                 const std::vector<int>& loop, double theta) {
+  if (loop.empty()) throw InputError("loop_point_at_theta: empty loop");
+  // Any interior halfedge on the loop's boundary.
+  int start = -1;
+  for (int h : m.outgoing_halfedges(loop[0])) {
+    if (m.is_boundary_halfedge(m.twin(h))) start = h;
+    if (m.is_boundary_halfedge(m.twin(m.prev(h)))) start = m.prev(h);
+    if (start >= 0) break;
+  }
+  if (start < 0) throw InputError("loop_point_at_theta: vertex " + std::to_string(loop[0]) +
+                                  " is not on the boundary");
+  const OrientedLoop o = oriented_loop_of(m, hc, start);
+  for (std::size_t i = 0; i < o.h.size(); ++i) {
+    const auto l = lift_on(m, hc, o.h[i]);
+    const double a = l[0], b = l[1];
+    const double lo = std::min(a, b), hi = std::max(a, b);
+    const double q = std::ceil((lo - theta) / kTwoPi);
+    const double target = theta + kTwoPi * q;
+    if (target <= hi && hi > lo) {
+      const double t = std::clamp((target - a) / (b - a), 0.0, 1.0);
+      return SurfacePoint::on_edge(o.h[i], t);
+    }
+  }
+  throw TopologyError("no point of the boundary loop has angle " + std::to_string(theta));
+}
+
+SurfacePath trace_helix(const Mesh& m, const HarmonicCoordinates& hc, const SurfacePoint& start,
+                        int turns, int hand) {
+  if (turns < 1) throw InputError("trace_helix: turns must be >= 1");
+  if (hand != 1 && hand != -1) throw InputError("trace_helix: hand must be +1 or -1");
+  double t0 = 0.0;
+  const int h0 = interior_boundary_halfedge(m, start, &t0);
+  const double k2piN = hand * kTwoPi * turns;
+  // Level function in face f at corner k: lifted theta - hand 2 pi N h.
+  auto phi = [&](int f, int k) {
+    return hc.corner_theta(m, f, k) - k2piN * hc.height[m.triangle(f)[k]];
+  };
+  const int start_loop = hc.height[m.from(h0)] < 0.5 ? 0 : 1;
+  int f = m.face(h0);
+  double level = (1.0 - t0) * phi(f, h0 % 3) + t0 * phi(f, (h0 % 3 + 1) % 3);
+
+  SurfacePath path;
+  path.closed = false;
+  path.start = SurfacePoint::on_edge(h0, t0);
+  path.start_face = f;
+  int entry = h0;
+  const int max_steps = 2 * m.num_faces() + 8;
+  for (int step = 0; step < max_steps; ++step) {
+    int best = -1;
+    double best_lambda = 0.0;
+    bool best_strict = false;
+    for (int h : {m.next(entry), m.prev(entry)}) {
+      const double a = phi(f, h % 3) - level, b = phi(f, (h % 3 + 1) % 3) - level;
+      if (a == b) continue;
+      const bool strict = (a < 0.0 && b > 0.0) || (a > 0.0 && b < 0.0);
+      const bool touch = a == 0.0 || b == 0.0;
+      if (!strict && !touch) continue;
+      if (best >= 0 && (best_strict || !strict)) continue;
+      best = h;
+      best_lambda = std::clamp(-a / (b - a), 0.0, 1.0);
+      best_strict = strict;
+    }
+    if (best < 0) {
+      throw TopologyError("helix tracing: the level set stops in face " + std::to_string(f) +
+                          " (degenerate conformal coordinates there)");
+    }
+    const int tw = m.twin(best);
+    if (m.is_boundary_halfedge(tw)) {
+      const double hb = 0.5 * (hc.height[m.from(best)] + hc.height[m.to(best)]);
+      const int end_loop = hb < 0.5 ? 0 : 1;
+      if (end_loop == start_loop) {
+        throw TopologyError("helix tracing: the level set returns to its start loop at face " +
+                            std::to_string(f) + " (the harmonic height is not monotone there)");
+      }
+      path.end = SurfacePoint::on_edge(best, best_lambda);
+      return path;
+    }
+    path.halfedges.push_back(best);
+    path.lambdas.push_back(best_lambda);
+    // Move into the next face; re-express the level in its lift (differs by k 2 pi).
+    const int g = m.face(tw);
+    const int v = m.from(best);
+    level += hc.face_offset[g][corner_of(m, g, v)] - hc.face_offset[f][corner_of(m, f, v)];
+    f = g;
+    entry = tw;
+  }
+  throw TopologyError("helix tracing: the level set does not reach the other loop (stopped after " +
+                      std::to_string(max_steps) + " faces)");
+}
+
+LoopArc loop_arc(const Mesh& m, const HarmonicCoordinates& hc, const SurfacePoint& start,
+                 double dwell) {
+  double t = 0.0;
+  const int h = interior_boundary_halfedge(m, start, &t);
+  const OrientedLoop o = oriented_loop_of(m, hc, h);
+  const int n = static_cast<int>(o.h.size());
+  int i = static_cast<int>(std::find(o.h.begin(), o.h.end(), h) - o.h.begin());
+  LoopArc arc;
+  Vec3 p = edge_position(m, h, t);
+  arc.points.push_back(p);
+  // u: parameter along step i in loop direction.
+  double u = o.forward[i] ? t : 1.0 - t;
+  double remaining = std::max(0.0, dwell);
+  for (int guard = 0; guard <= 2 * n + 2; ++guard) {
+    const int hi = o.h[i];
+    const auto l = lift_on(m, hc, hi);
+    const double a = o.forward[i] ? l[0] : l[1], b = o.forward[i] ? l[1] : l[0];  // along loop
+    const double th_now = a + u * (b - a);
+    const double left = b - th_now;
+    if (left >= remaining && b > a) {
+      const double u_end = u + remaining / (b - a);
+      const double t_end = o.forward[i] ? u_end : 1.0 - u_end;
+      arc.end = SurfacePoint::on_edge(hi, std::clamp(t_end, 0.0, 1.0));
+      const Vec3 q = edge_position(m, hi, std::clamp(t_end, 0.0, 1.0));
+      arc.length += (q - arc.points.back()).norm();
+      arc.points.push_back(q);
+      arc.faces.push_back(m.face(hi));
+      return arc;
+    }
+    remaining -= std::max(0.0, left);
+    const Vec3 q = m.position(o.forward[i] ? m.to(hi) : m.from(hi));
+    arc.length += (q - arc.points.back()).norm();
+    arc.points.push_back(q);
+    arc.faces.push_back(m.face(hi));
+    i = (i + 1) % n;
+    u = 0.0;
+  }
+  throw TopologyError("turnaround: theta does not increase along the boundary loop");
+}
+
+std::vector<double> density_from_girth(const Mesh& m, const std::vector<double>& g, double beta) {
+  if (static_cast<int>(g.size()) != m.num_faces()) {
+    throw InputError("density: " + std::to_string(g.size()) + " girth values for " +
+                     std::to_string(m.num_faces()) + " faces");
+  }
+  double sum = 0.0, area = 0.0;
+  for (int f = 0; f < m.num_faces(); ++f) {
+    if (!(g[f] > 0.0) || !std::isfinite(g[f])) {
+      throw InputError("density: girth of face " + std::to_string(f) + " is " +
+                       std::to_string(g[f]) + " (must be > 0)");
+    }
+    const double a = m.face_area(f);
+    sum += a * g[f];
+    area += a;
+  }
+  const double mean = area > 0.0 ? sum / area : 1.0;
+  std::vector<double> rho(g.size());
+  for (std::size_t f = 0; f < g.size(); ++f) rho[f] = std::pow(g[f] / mean, -beta);
+  return rho;
+}
+
+HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loops,
+                       const std::vector<double>& rho, const SpindleAxis& axis,
+                       const WindingOptions& options, const GeodesicOptions& geodesic) {
+  if (std::string why; !options.is_valid(&why)) throw ConfigError("winding: " + why);
+  HelixPlan plan;
+  plan.coords = compute_harmonic_coordinates(m, loops);
+  plan.summary.harmonic_ms = plan.coords.time_ms;
+  const HarmonicCoordinates& hc = plan.coords;
+  const PathMetric metric = rho.empty() ? PathMetric() : PathMetric::density(m, rho);
+  // Workaround (geodesic core, see the report): under a density metric the exact Euclidean
+  // funnel start pins the path at vertices and the refinement can end longer than it started;
+  // the level set is already a good start, so refine it directly.
+  GeodesicOptions gopt = geodesic;
+  if (!rho.empty()) gopt.funnel_start = false;
+  const int N = options.turns;
+
+  auto refine = [&](HelixPass* p) {
+    const auto t0 = std::chrono::steady_clock::now();
+    GeodesicResult r = refine_path(m, p->initial, metric, gopt);
+    plan.summary.refine_ms += ms_since(t0);
+    p->path = std::move(r.path);
+    p->summary = r.summary;
+    if (!p->summary.converged()) ++plan.summary.not_converged;
+  };
+  // The start of circuit 0: theta of the first loop vertex, nudged off the vertices.
+  const SurfacePoint first = [&] {
+    const int v = loops[0][0];
+    const int h = m.vertex_halfedge(v);
+    const double th = hc.corner_theta(m, m.face(h), h % 3);
+    return loop_point_at_theta(m, hc, loops[0], th + 1e-6);
+  }();
+
+  // K: given, or from the coverage of the first out pass at its largest radius.
+  int K = options.circuits;
+  HelixPass first_pass;
+  {
+    const auto t0 = std::chrono::steady_clock::now();
+    first_pass.initial = trace_helix(m, hc, first, N, +1);
+    plan.summary.trace_ms += ms_since(t0);
+    refine(&first_pass);
+  }
+  if (K == 0) {
+    plan.summary.circuits_auto = true;
+    const std::vector<Vec3> pl = polyline(m, first_pass.path);
+    const std::vector<int> sf = segment_faces(m, first_pass.path);
+    std::size_t best = 0;
+    double rmax = -1.0;
+    for (std::size_t i = 0; i + 1 < pl.size(); ++i) {
+      const double r = axis.radius(0.5 * (pl[i] + pl[i + 1]));
+      if (r > rmax && (pl[i + 1] - pl[i]).norm() > 0.0) {
+        rmax = r;
+        best = i;
+      }
+    }
+    const Vec3 n = m.face_normal(sf[best]);
+    const Vec3 t = (pl[best + 1] - pl[best]).normalized();
+    Vec3 mer = axis.direction - axis.direction.dot(n) * n;
+    double ca = 1.0;
+    if (mer.norm() > 1e-12) ca = std::fabs(t.dot(mer.normalized()));
+    ca = std::clamp(ca, 0.0, 1.0);
+    plan.summary.auto_radius = rmax;
+    plan.summary.auto_angle_deg = std::acos(ca) * 180.0 / M_PI;
+    K = std::max(1, static_cast<int>(std::ceil(kTwoPi * rmax * ca / options.band_width - 1e-9)));
+  }
+  plan.summary.circuits = K;
+  plan.summary.pattern_step = 1;
+  const double advance = kTwoPi * plan.summary.pattern_step / K;
+  const double dwell = M_PI + 0.5 * advance;
+
+  SurfacePoint start = first;
+  for (int k = 0; k < K; ++k) {
+    HelixPass out;
+    if (k == 0) {
+      out = std::move(first_pass);
+    } else {
+      const auto t0 = std::chrono::steady_clock::now();
+      out.initial = trace_helix(m, hc, start, N, +1);
+      plan.summary.trace_ms += ms_since(t0);
+      refine(&out);
+    }
+    out.circuit = k;
+    out.hand = +1;
+    Turnaround top;
+    top.circuit = k;
+    top.loop = 1;
+    top.dwell = dwell;
+    top.arc = loop_arc(m, hc, out.path.end, dwell);
+    HelixPass back;
+    back.circuit = k;
+    back.hand = -1;
+    {
+      const auto t0 = std::chrono::steady_clock::now();
+      back.initial = trace_helix(m, hc, top.arc.end, N, -1);
+      plan.summary.trace_ms += ms_since(t0);
+    }
+    refine(&back);
+    Turnaround bottom;
+    bottom.circuit = k;
+    bottom.loop = 0;
+    bottom.dwell = dwell;
+    bottom.arc = loop_arc(m, hc, back.path.end, dwell);
+    start = bottom.arc.end;
+    plan.passes.push_back(std::move(out));
+    plan.passes.push_back(std::move(back));
+    plan.turnarounds.push_back(std::move(top));
+    plan.turnarounds.push_back(std::move(bottom));
+  }
+  if (plan.summary.not_converged > 0) {
+    plan.summary.warnings.push_back(std::to_string(plan.summary.not_converged) + " of " +
+                                    std::to_string(plan.passes.size()) +
+                                    " passes did not converge in the geodesic refinement");
+  }
+  return plan;
+}
+
+}  // namespace windplan

@@ -1,0 +1,219 @@
+// planner/helix.cpp: level-set helices, their refinement and the continuous circuits.
+#include "planner/helix.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "geometry/errors.h"
+#include "tests/mesh_fixtures.h"
+#include "tests/planner/revolution_fixtures.h"
+
+namespace windplan {
+namespace {
+
+using test::loops_by_z;
+using test::polyline_length;
+
+SurfacePoint start_point(const Mesh& m, const HarmonicCoordinates& hc,
+                         const std::array<std::vector<int>, 2>& loops, double theta) {
+  return loop_point_at_theta(m, hc, loops[0], theta);
+}
+
+// The N-turn helix on a cylinder: after refinement it is the straight line of the unrolled
+// prism, length sqrt(L^2 + (N P)^2) with P the prism's perimeter, and it tends to the smooth
+// sqrt(L^2 + (2 pi R N)^2) as the tessellation refines.
+TEST(Helix, CylinderHelixHasTheClosedFormLength) {
+  const double R = 50.0, L = 200.0;
+  const int n = 96;
+  const Mesh m(test::open_cylinder(R, L, n, 30));
+  const auto loops = loops_by_z(m);
+  const HarmonicCoordinates hc = compute_harmonic_coordinates(m, loops);
+  for (int N : {1, 3}) {
+    const SurfacePath init = trace_helix(m, hc, start_point(m, hc, loops, 0.3), N, +1);
+    std::string why;
+    ASSERT_TRUE(is_valid_path(m, init, &why)) << why;
+    const GeodesicResult r = refine_path(m, init);
+    ASSERT_TRUE(r.summary.converged()) << r.summary.brief_report();
+    const double P = n * 2.0 * R * std::sin(M_PI / n);
+    const double prism = std::sqrt(L * L + (N * P) * (N * P));
+    const double smooth = std::sqrt(L * L + std::pow(2.0 * M_PI * R * N, 2));
+    EXPECT_NEAR(r.summary.euclidean_length, prism, 1e-6 * prism) << "N = " << N;
+    EXPECT_NEAR(r.summary.euclidean_length, smooth, 1e-3 * smooth) << "N = " << N;
+    // The level set itself is already that line (conformal coordinates of a cylinder).
+    EXPECT_NEAR(euclidean_length(m, init), prism, 1e-6 * prism);
+    // Constant winding angle: tan a = 2 pi R N / L, up to the facets.
+    const std::vector<Vec3> pl = polyline(m, r.path);
+    const double a_exact = std::atan2(N * P, L) * 180.0 / M_PI;
+    for (std::size_t i = 0; i + 1 < pl.size(); ++i) {
+      if ((pl[i + 1] - pl[i]).norm() < 1e-6) continue;
+      ASSERT_NEAR(test::segment_angle(pl[i], pl[i + 1], 0.0), a_exact, 0.5 + 180.0 / n)
+          << "segment " << i;
+    }
+  }
+}
+
+// rho = 1 / (2 pi r) on a cone: the density geodesics are loxodromes (constant winding angle),
+// while plain geodesics (Clairaut: r sin a = const) are not.
+TEST(Helix, ConeUnderInverseGirthDensityIsALoxodrome) {
+  const double r0 = 60.0, slope = -0.2, len = 150.0;
+  auto r = [&](double z) { return r0 + slope * z; };
+  const Mesh m(test::revolution_soup(r, 0.0, len, 128, 60));
+  const auto loops = loops_by_z(m);
+  const HarmonicCoordinates hc = compute_harmonic_coordinates(m, loops);
+  std::vector<double> rho(m.num_faces());
+  for (int f = 0; f < m.num_faces(); ++f) {
+    rho[f] = 1.0 / (2.0 * M_PI * r(m.face_centroid(f).z()));
+  }
+  const SurfacePath init = trace_helix(m, hc, start_point(m, hc, loops, 0.1), 2, +1);
+  // (funnel_start off: the planner's workaround for the core under density metrics.)
+  GeodesicOptions go;
+  go.funnel_start = false;
+  const GeodesicResult lox = refine_path(m, init, PathMetric::density(m, rho), go);
+  const GeodesicResult geo = refine_path(m, init);
+  ASSERT_TRUE(lox.summary.converged()) << lox.summary.brief_report();
+  ASSERT_TRUE(geo.summary.converged()) << geo.summary.brief_report();
+  auto angle_range = [&](const SurfacePath& p) {
+    const std::vector<Vec3> pl = polyline(m, p);
+    double lo = 90.0, hi = 0.0;
+    // Average over ~10 mm windows to filter the facets.
+    std::size_t i = 0;
+    while (i + 1 < pl.size()) {
+      std::size_t j = i + 1;
+      while (j + 1 < pl.size() && (pl[j] - pl[i]).norm() < 10.0) ++j;
+      const double a = test::segment_angle(pl[i], pl[j], slope);
+      lo = std::min(lo, a);
+      hi = std::max(hi, a);
+      i = j;
+    }
+    return hi - lo;
+  };
+  EXPECT_LT(angle_range(lox.path), 1.5) << "loxodrome angle spread (deg)";
+  EXPECT_GT(angle_range(geo.path), 5.0) << "a plain geodesic on a cone changes its angle";
+}
+
+// beta = 0 on a vessel-like bulge: Clairaut's relation r sin a = const along the refined path.
+TEST(Helix, PlainGeodesicObeysClairaut) {
+  auto r = [](double z) { return 40.0 + 25.0 * std::sin(M_PI * z / 200.0); };
+  auto drdz = [](double z) { return 25.0 * M_PI / 200.0 * std::cos(M_PI * z / 200.0); };
+  const Mesh m(test::revolution_soup(r, 0.0, 200.0, 160, 100));
+  const auto loops = loops_by_z(m);
+  const HarmonicCoordinates hc = compute_harmonic_coordinates(m, loops);
+  const SurfacePath init = trace_helix(m, hc, start_point(m, hc, loops, 0.0), 1, +1);
+  const GeodesicResult g = refine_path(m, init);
+  ASSERT_TRUE(g.summary.converged()) << g.summary.brief_report();
+  const std::vector<Vec3> pl = polyline(m, g.path);
+  std::vector<double> c;
+  std::size_t i = 0;
+  while (i + 1 < pl.size()) {
+    std::size_t j = i + 1;
+    while (j + 1 < pl.size() && (pl[j] - pl[i]).norm() < 8.0) ++j;
+    const Vec3 mid = 0.5 * (pl[i] + pl[j]);
+    const double a = test::segment_angle(pl[i], pl[j], drdz(mid.z())) * M_PI / 180.0;
+    c.push_back(std::hypot(mid.x(), mid.y()) * std::sin(a));
+    i = j;
+  }
+  ASSERT_GT(c.size(), 10u);
+  const double c0 = c[c.size() / 2];
+  for (double x : c) EXPECT_NEAR(x, c0, 0.02 * c0);
+}
+
+TEST(Helix, CircuitsAreContinuousAndClosePattern) {
+  const Mesh m(test::open_cylinder(40.0, 150.0, 64, 20));
+  const auto loops = loops_by_z(m);
+  WindingOptions o;
+  o.turns = 2;
+  o.circuits = 5;
+  const HelixPlan plan = plan_helices(m, loops, {}, SpindleAxis{}, o);
+  ASSERT_EQ(plan.summary.circuits, 5);
+  ASSERT_EQ(plan.passes.size(), 10u);
+  ASSERT_EQ(plan.turnarounds.size(), 10u);
+  for (int k = 0; k < 5; ++k) {
+    const HelixPass& out = plan.passes[2 * k];
+    const HelixPass& back = plan.passes[2 * k + 1];
+    const Turnaround& top = plan.turnarounds[2 * k];
+    const Turnaround& bottom = plan.turnarounds[2 * k + 1];
+    EXPECT_EQ(out.hand, 1);
+    EXPECT_EQ(back.hand, -1);
+    // Each piece starts where the previous one ends.
+    EXPECT_LT((top.arc.points.front() - position(m, out.path.end)).norm(), 1e-9);
+    EXPECT_LT((position(m, back.path.start) - top.arc.points.back()).norm(), 1e-9);
+    EXPECT_LT((bottom.arc.points.front() - position(m, back.path.end)).norm(), 1e-9);
+    const HelixPass& next = plan.passes[(2 * k + 2) % 10];
+    EXPECT_NEAR((position(m, next.path.start) - bottom.arc.points.back()).norm(), 0.0,
+                k == 4 ? 1e-3 : 1e-9);
+    // Ends on the right loops.
+    EXPECT_NEAR(position(m, out.path.start).z(), 0.0, 1e-9);
+    EXPECT_NEAR(position(m, out.path.end).z(), 150.0, 1e-9);
+    // Dwell = pi + pi / K of the loop (R = 40): arc length ~ R (pi + pi / 5).
+    EXPECT_NEAR(top.arc.length, 40.0 * (M_PI + M_PI / 5), 0.02 * 40.0 * M_PI);
+  }
+  // Circuit starts advance by 1/K turn.
+  for (int k = 0; k + 1 < 5; ++k) {
+    const Vec3 a = position(m, plan.passes[2 * k].path.start);
+    const Vec3 b = position(m, plan.passes[2 * k + 2].path.start);
+    double d = std::atan2(b.y(), b.x()) - std::atan2(a.y(), a.x());
+    d -= 2.0 * M_PI * std::floor(d / (2.0 * M_PI));
+    EXPECT_NEAR(std::min(d, 2.0 * M_PI - d), 2.0 * M_PI / 5, 1e-3);
+  }
+}
+
+TEST(Helix, AutoCircuitsFromTheBandWidth) {
+  const double R = 40.0, L = 150.0;
+  const Mesh m(test::open_cylinder(R, L, 64, 20));
+  WindingOptions o;
+  o.turns = 1;
+  o.circuits = 0;
+  o.band_width = 12.0;
+  const HelixPlan plan = plan_helices(m, loops_by_z(m), {}, SpindleAxis{}, o);
+  const double a = std::atan2(2.0 * M_PI * R, L);
+  EXPECT_TRUE(plan.summary.circuits_auto);
+  EXPECT_NEAR(plan.summary.auto_angle_deg, a * 180.0 / M_PI, 0.5);
+  EXPECT_EQ(plan.summary.circuits,
+            static_cast<int>(std::ceil(2.0 * M_PI * R * std::cos(a) / 12.0)));
+}
+
+TEST(Helix, BadOptionsAreRejected) {
+  const Mesh m(test::open_cylinder(40.0, 150.0, 32, 10));
+  const auto loops = loops_by_z(m);
+  auto expect_config = [&](WindingOptions o, const std::string& word) {
+    try {
+      plan_helices(m, loops, {}, SpindleAxis{}, o);
+      FAIL() << "accepted: " << word;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+    }
+  };
+  WindingOptions o;
+  o.turns = 0;
+  expect_config(o, "turns");
+  o = {};
+  o.circuits = -1;
+  expect_config(o, "circuits");
+  o = {};
+  o.beta = 1.5;
+  expect_config(o, "beta");
+  o = {};
+  o.beta = -0.1;
+  expect_config(o, "beta");
+  o = {};
+  o.band_width = 0.0;
+  expect_config(o, "band_width");
+  // A disk is not an annulus.
+  const Mesh disk(test::grid(3, 3));
+  EXPECT_THROW(plan_helices(disk, loops, {}, SpindleAxis{}, WindingOptions{}), TopologyError);
+  // A start that is not on the boundary.
+  const HarmonicCoordinates hc = compute_harmonic_coordinates(m, loops);
+  EXPECT_THROW(trace_helix(m, hc, SurfacePoint::at_vertex(0), 1, 1), InputError);
+}
+
+TEST(Helix, DensityFromGirthIsNormalised) {
+  const Mesh m(test::open_cylinder(40.0, 150.0, 32, 10));
+  std::vector<double> g(m.num_faces(), 251.0);
+  for (double x : density_from_girth(m, g, 1.0)) EXPECT_NEAR(x, 1.0, 1e-12);
+  g[3] = 0.0;
+  EXPECT_THROW(density_from_girth(m, g, 1.0), InputError);
+}
+
+}  // namespace
+}  // namespace windplan
