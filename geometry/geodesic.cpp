@@ -668,11 +668,24 @@ Refiner::Action Refiner::handle_vertex(int idx, int v, bool pushed_out, int* run
   // Under a density or anisotropic metric the Euclidean angle test is only a heuristic: a single
   // crossing that the gradient pushes past v (the bound's multiplier, the paper's rule) is
   // rerouted to the other side; collapsed runs (zero-length segments, no gradient) use the test.
-  const bool by_multiplier = metric_.kind() != PathMetric::Kind::Euclidean && pushed_out;
+  // The angle test is exact only for the plain Euclidean length; with a density, an anisotropic
+  // metric or a constraint penalty, a crossing that the gradient pushes past v is rerouted.
+  const bool by_multiplier =
+      (metric_.kind() != PathMetric::Kind::Euclidean || penalty_on_) && pushed_out;
   if (!by_multiplier && theta < M_PI - kAngleTol && tries < kMaxTries) {
     std::vector<double> before_lift(run.size());
     for (std::size_t q = 0; q < run.size(); ++q) before_lift[q] = lambda_[run[q]];
-    fan_lift(run, v, P, Q, true, &theta);
+    if (penalty_on_) {
+      // Under a penalty the straight line of the unfolded fan is not the local optimum: move the
+      // run just off v and let the optimiser place it.
+      for (int m : run) {
+        const bool at_from = mesh_.from(path_.halfedges[m]) == v;
+        if (at_from ? lambda_[m] < kNearVertex : lambda_[m] > 1.0 - kNearVertex)
+          lambda_[m] = at_from ? kNearVertex : 1.0 - kNearVertex;
+      }
+    } else {
+      fan_lift(run, v, P, Q, true, &theta);
+    }
     double change = 0.0;
     for (std::size_t q = 0; q < run.size(); ++q)
       change = std::max(change, std::fabs(lambda_[run[q]] - before_lift[q]));
@@ -749,6 +762,8 @@ bool Refiner::process_vertex_events(const Eval& ev) {
     const bool at_bound = l <= 0.0 || l >= 1.0;
     const int h = path_.halfedges[i];
     if (!at_bound) {
+      // Snapping is for the plain Euclidean length, where the vertex test is exact.
+      if (metric_.kind() != PathMetric::Kind::Euclidean || penalty_on_) continue;
       const double gn = ev.g[i] / d_[i].norm();
       if (l < kNearVertex && gn > 1e-9) {
         lambda_[i] = 0.0;
