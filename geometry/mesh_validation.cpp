@@ -183,7 +183,11 @@ Analysis analyze(const TriangleSoup& soup, const MeshCheckOptions& opt) {
     }
     for (int v = 0; v < nv; ++v) {
       auto b = a.halfedges.begin() + start[v], e = a.halfedges.begin() + start[v + 1];
-      // Insertion sort: buckets hold a vertex's few edges.
+      // Insertion sort for the usual few edges; std::sort for high-valence vertices (fan apexes).
+      if (e - b > 32) {
+        std::sort(b, e);
+        continue;
+      }
       for (auto i = b; i != e; ++i)
         for (auto j = i; j != b && *j < *(j - 1); --j) std::iter_swap(j, j - 1);
     }

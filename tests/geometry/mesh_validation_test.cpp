@@ -188,6 +188,29 @@ TEST(CheckMesh, NonManifoldVertexHasTwoFans) {
   EXPECT_FALSE(h.manifold);
 }
 
+TEST(CheckMesh, HighValenceFanApex) {
+  // A closed cone-like surface: a fan of n triangles around an apex, closed by a fan around the
+  // base centre; two vertices of valence n.
+  const int n = 500;
+  TriangleSoup s;
+  s.points.push_back(Vec3(0, 0, 1));   // apex
+  s.points.push_back(Vec3(0, 0, -1));  // base centre
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * M_PI * i / n;
+    s.points.push_back(Vec3(std::cos(t), std::sin(t), 0));
+  }
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 + i, b = 2 + (i + 1) % n;
+    s.triangles.push_back({0, a, b});
+    s.triangles.push_back({1, b, a});
+  }
+  const MeshHealth h = check_mesh(s);
+  EXPECT_EQ(h.num_edges, 3 * n);
+  EXPECT_TRUE(h.closed && h.manifold && h.oriented);
+  EXPECT_EQ(h.genus, 0);
+  EXPECT_EQ(h.num_nonmanifold_vertices, 0);
+}
+
 TEST(CheckMesh, ZeroAreaTrianglesAreFoundByTolerance) {
   TriangleSoup s = test::grid(1, 1);
   s.points.push_back(Vec3(2, 0, 0));
