@@ -8,6 +8,10 @@ const std::vector<Command>& commands() {
        run_mandrel},
       {"mesh", "check a mesh (or a job's mesh mandrel), repair it, convert it", kMeshHelp,
        run_mesh},
+      {"geodesic", "a geodesic between two surface points (vertex or x,y,z), optional metric",
+       kGeodesicHelp, run_geodesic},
+      {"loop", "refine a closed curve into a closed geodesic loop, optional metric", kLoopHelp,
+       run_loop},
   };
   return list;
 }

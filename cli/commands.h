@@ -27,4 +27,11 @@ extern const char* const kMandrelHelp;
 int run_mesh(const std::vector<std::string>& args);
 extern const char* const kMeshHelp;
 
+/// cmd_geodesic.cpp: a geodesic between two surface points (geodesic) and a closed geodesic loop
+/// refined from a curve (loop), under a Euclidean, density or anisotropic metric.
+int run_geodesic(const std::vector<std::string>& args);
+extern const char* const kGeodesicHelp;
+int run_loop(const std::vector<std::string>& args);
+extern const char* const kLoopHelp;
+
 }  // namespace windplan::cli

@@ -1,0 +1,254 @@
+// Table 2 of Liu et al. (an optimization-driven approach for geodesic paths on triangle meshes):
+// time per geodesic path between random vertex pairs on meshes of 20K to 300K faces, for both
+// solvers of the geodesic core (projected Newton, projected L-BFGS), with the length excess over
+// the CGAL exact geodesic (geometry/exact_geodesic.h). Prints a markdown table and per-mesh
+// details; see bench/README.md. Needs ../shared/data/meshes (or mesh files as arguments).
+//
+// usage: bench_geodesic [--pairs N] [--targets-per-source K] [--exact-sources S]
+//                       [--exact-sources-small S] [--seed N] [--quick] [mesh files...]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "geometry/exact_geodesic.h"
+#include "geometry/geodesic.h"
+#include "geometry/mesh.h"
+#include "geometry/mesh_io.h"
+#include "geometry/mesh_validation.h"
+
+using namespace windplan;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+/// Quantile q in [0, 1] (nearest rank) of a copy of v.
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  const std::size_t i = std::min(v.size() - 1, static_cast<std::size_t>(std::ceil(q * v.size())) -
+                                                   (q > 0.0 ? 1 : 0));
+  return v[i];
+}
+
+struct Pair {
+  int source, target;
+};
+
+struct SolverRun {
+  std::vector<double> init, refine, total, iterations, length;
+  int not_converged = 0;
+  std::vector<std::string> failures;
+};
+
+std::string fmt(double v, const char* f = "%.3g") {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+double load_average() {
+  std::ifstream in("/proc/loadavg");
+  double l = std::nan("");
+  in >> l;
+  return l;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int num_pairs = 50, per_source = 5, exact_sources = 1, exact_sources_small = -1;
+  unsigned seed = 20240611;
+  std::vector<std::filesystem::path> files;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> int {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "%s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return std::atoi(argv[++i]);
+    };
+    if (a == "--pairs") num_pairs = next();
+    else if (a == "--targets-per-source") per_source = next();
+    else if (a == "--exact-sources") exact_sources = next();
+    else if (a == "--exact-sources-small") exact_sources_small = next();
+    else if (a == "--seed") seed = static_cast<unsigned>(next());
+    else if (a == "--quick") { num_pairs = 10; exact_sources = 0; exact_sources_small = 1; }
+    else if (a == "-h" || a == "--help") {
+      std::printf("usage: bench_geodesic [--pairs N] [--targets-per-source K] [--exact-sources S]\n"
+                  "       [--exact-sources-small S] [--seed N] [--quick] [mesh files...]\n"
+                  "Pairs are drawn as sources with K targets each; the CGAL exact distance is\n"
+                  "computed for S sources (one sequence tree each) on meshes above 50K faces and\n"
+                  "for all sources below (or --exact-sources-small).\n");
+      return 0;
+    } else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    } else {
+      files.emplace_back(a);
+    }
+  }
+  if (files.empty()) {
+    const std::filesystem::path root = WINDPLAN_SHARED_MESHES;
+    for (const char* name : {"derived/bunny-remesh-20k.obj", "derived/bunny-remesh-100k.obj",
+                             "derived/bunny-remesh-300k.obj", "kitten-106k.obj"})
+      files.push_back(root / name);
+  }
+  per_source = std::max(1, per_source);
+  const int num_sources = (num_pairs + per_source - 1) / per_source;
+
+  std::printf("# bench_geodesic: %d vertex pairs per mesh (%d sources x %d targets), seed %u\n",
+              num_sources * per_source, num_sources, per_source, seed);
+  std::printf("# load average at start: %.2f\n\n", load_average());
+
+  struct Row {
+    std::string mesh;
+    int faces = 0;
+    std::string solver;
+    SolverRun run;
+    std::vector<double> excess;  // per pair with an exact distance
+    int pairs = 0;
+  };
+  std::vector<Row> rows;
+  std::vector<std::string> notes;
+
+  for (const auto& file : files) {
+    if (!std::filesystem::exists(file)) {
+      std::printf("%s: missing, skipped\n", file.c_str());
+      continue;
+    }
+    auto t = Clock::now();
+    const Mesh mesh = build_mesh(read_mesh(file), false);
+    const double load_ms = ms_since(t);
+    t = Clock::now();
+    const GeodesicContext ctx(mesh);
+    const double context_ms = ms_since(t);
+    const std::string name = file.filename().string();
+    std::printf("## %s: V=%d F=%d, load %.0f ms, edge graph %.1f ms\n", name.c_str(),
+                mesh.num_vertices(), mesh.num_faces(), load_ms, context_ms);
+
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
+    std::vector<Pair> pairs;
+    for (int s = 0; s < num_sources; ++s) {
+      int v = pick(rng);
+      while (mesh.vertex_halfedge(v) < 0) v = pick(rng);
+      for (int k = 0; k < per_source; ++k) {
+        int w = pick(rng);
+        while (w == v || mesh.vertex_halfedge(w) < 0) w = pick(rng);
+        pairs.push_back({v, w});
+      }
+    }
+
+    // Exact distances: one CGAL tree per source, for the first sources.
+    const int sources_exact =
+        mesh.num_faces() <= 50000 ? (exact_sources_small < 0 ? num_sources : exact_sources_small)
+                                  : exact_sources;
+    std::vector<double> exact(pairs.size(), std::nan(""));
+    if (sources_exact > 0) {
+      t = Clock::now();
+      ExactGeodesic cgal(mesh);
+      for (int s = 0; s < std::min(sources_exact, num_sources); ++s) {
+        std::vector<SurfacePoint> targets;
+        for (int k = 0; k < per_source; ++k)
+          targets.push_back(SurfacePoint::at_vertex(pairs[s * per_source + k].target));
+        const auto t1 = Clock::now();
+        const std::vector<double> d =
+            cgal.distances(SurfacePoint::at_vertex(pairs[s * per_source].source), targets);
+        std::printf("   CGAL tree for source %d: %.0f ms\n", pairs[s * per_source].source,
+                    ms_since(t1));
+        for (int k = 0; k < per_source; ++k) exact[s * per_source + k] = d[k];
+      }
+      std::printf("   CGAL exact total: %.0f ms\n", ms_since(t));
+    }
+
+    for (const GeodesicSolver solver : {GeodesicSolver::Newton, GeodesicSolver::Lbfgs}) {
+      Row row;
+      row.mesh = name;
+      row.faces = mesh.num_faces();
+      row.solver = solver == GeodesicSolver::Newton ? "Newton" : "L-BFGS";
+      GeodesicOptions options;
+      options.solver = solver;
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const OpenGeodesicResult r =
+            geodesic_between(ctx, SurfacePoint::at_vertex(pairs[i].source),
+                             SurfacePoint::at_vertex(pairs[i].target), options);
+        row.run.init.push_back(r.init_ms);
+        row.run.refine.push_back(r.refine_ms);
+        row.run.total.push_back(r.init_ms + r.refine_ms);
+        row.run.iterations.push_back(r.summary.iterations);
+        row.run.length.push_back(r.summary.final_length);
+        if (!r.summary.converged()) {
+          ++row.run.not_converged;
+          row.run.failures.push_back(std::to_string(pairs[i].source) + "->" +
+                                     std::to_string(pairs[i].target) + ": " +
+                                     r.summary.brief_report());
+        }
+        if (std::isfinite(exact[i])) {
+          const double e = (r.summary.final_length - exact[i]) / exact[i];
+          row.excess.push_back(e);
+          if (e > 1e-4) {
+            notes.push_back(name + " " + row.solver + " " + std::to_string(pairs[i].source) +
+                            "->" + std::to_string(pairs[i].target) + ": excess " + fmt(e) +
+                            " (" + fmt(r.summary.final_length, "%.9g") + " vs exact " +
+                            fmt(exact[i], "%.9g") + ", " + to_string(r.summary.termination) +
+                            ", " + std::to_string(r.summary.reroutes) + " reroutes)");
+          } else if (e < -1e-9) {
+            notes.push_back(name + " " + row.solver + " " + std::to_string(pairs[i].source) +
+                            "->" + std::to_string(pairs[i].target) +
+                            ": SHORTER than exact, excess " + fmt(e));
+          }
+        }
+      }
+      row.pairs = static_cast<int>(pairs.size());
+      for (const std::string& f : row.run.failures) notes.push_back(name + " " + row.solver +
+                                                                    " not converged " + f);
+      rows.push_back(std::move(row));
+    }
+  }
+
+  std::printf("\n| mesh | faces | solver | init ms (med / p90) | refine ms (med / p90) | "
+              "total ms (med / p90) | iterations (med / p90) | not conv. | exact pairs | "
+              "excess median | excess max | within 1e-4 | other geodesic |\n");
+  std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const Row& r : rows) {
+    int within = 0, other = 0;
+    for (double e : r.excess) {
+      if (e <= 1e-4) ++within;
+      else ++other;
+    }
+    const bool have = !r.excess.empty();
+    std::printf("| %s | %d | %s | %s / %s | %s / %s | %s / %s | %s / %s | %d | %d | %s | %s | "
+                "%s | %s |\n",
+                r.mesh.c_str(), r.faces, r.solver.c_str(), fmt(quantile(r.run.init, 0.5)).c_str(),
+                fmt(quantile(r.run.init, 0.9)).c_str(), fmt(quantile(r.run.refine, 0.5)).c_str(),
+                fmt(quantile(r.run.refine, 0.9)).c_str(), fmt(quantile(r.run.total, 0.5)).c_str(),
+                fmt(quantile(r.run.total, 0.9)).c_str(),
+                fmt(quantile(r.run.iterations, 0.5), "%.0f").c_str(),
+                fmt(quantile(r.run.iterations, 0.9), "%.0f").c_str(), r.run.not_converged,
+                static_cast<int>(r.excess.size()),
+                have ? fmt(quantile(r.excess, 0.5), "%.1e").c_str() : "-",
+                have ? fmt(quantile(r.excess, 1.0), "%.1e").c_str() : "-",
+                have ? (std::to_string(within) + "/" + std::to_string(r.excess.size())).c_str()
+                     : "-",
+                have ? (std::to_string(other) + "/" + std::to_string(r.excess.size())).c_str()
+                     : "-");
+  }
+  if (!notes.empty()) {
+    std::printf("\nnotes:\n");
+    for (const std::string& n : notes) std::printf("- %s\n", n.c_str());
+  }
+  std::printf("\n# load average at end: %.2f\n", load_average());
+  return 0;
+}

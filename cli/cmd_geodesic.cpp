@@ -1,0 +1,410 @@
+// windplan geodesic / windplan loop: the geodesic core (geometry/geodesic.h) on the command line.
+// A geodesic between two surface points, or a closed geodesic loop refined from a curve, under
+// the Euclidean, a density or an anisotropic metric; the result as text, JSON or CSV.
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "export/csv.h"
+#include "geometry/atomic_file.h"
+#include "geometry/closest_point.h"
+#include "geometry/edge_path.h"
+#include "geometry/errors.h"
+#include "geometry/geodesic.h"
+#include "geometry/json.h"
+#include "geometry/mesh_io.h"
+#include "geometry/mesh_validation.h"
+#include "planner/job.h"
+#include "planner/mandrel_builder.h"
+
+namespace windplan::cli {
+
+#define WINDPLAN_GEODESIC_COMMON_HELP                                                             \
+  "Mesh: a mesh file (OBJ, PLY, STL, OFF; loaded as is, not repaired, so vertex indices are\n"   \
+  "the file's) or a job file (.yaml/.yml: its mandrel, in mm).\n"                                \
+  "\n"                                                                                           \
+  "options:\n"                                                                                   \
+  "  --density FILE     density metric: one value rho > 0 per face (whitespace separated, in\n"  \
+  "                     face order); the length of a segment in face f is rho_f times |w|\n"     \
+  "  --metric FILE      anisotropic metric: three values a b c per face, the symmetric positive\n" \
+  "                     definite [[a, b], [b, c]] in the face frame (e1 along the face's first\n" \
+  "                     edge, e2 = n x e1); cannot be combined with --density\n"                 \
+  "  --solver NAME      newton (default: projected Newton) or lbfgs (the paper's L-BFGS)\n"      \
+  "  --snap-tolerance MM  largest distance of a given point from the mesh (default: 1e-3 times\n" \
+  "                     the bounding-box diagonal)\n"                                            \
+  "  --json             print one JSON object: length, initial_length, euclidean_length,\n"     \
+  "                     iterations, reroutes, termination, time_ms (= init_ms + refine_ms),\n"   \
+  "                     init_ms, refine_ms, setup_ms and points (the polyline, [x, y, z])\n"     \
+  "  -o FILE            write the polyline as CSV: x [mm], y [mm], z [mm]\n"                     \
+  "  -h, --help         this text\n"                                                             \
+  "\n"                                                                                           \
+  "Exit codes: 0 ok (also when the solver did not converge: see termination), 1 bad input\n"   \
+  "(missing file, a point far from the mesh, a vertex out of range, endpoints on different\n"    \
+  "components, a density <= 0, a metric that is not positive definite), 2 usage error.\n"
+
+const char* const kGeodesicHelp =
+    "usage: windplan geodesic <mesh | job.yaml> --from <vertex | x,y,z> --to <vertex | x,y,z>\n"
+    "                         [--density faces.txt | --metric faces.txt] [--solver newton|lbfgs]\n"
+    "                         [--json] [-o path.csv]\n"
+    "\n"
+    "Computes a locally shortest path between two surface points: the shortest path along mesh\n"
+    "edges (A*), turned into a strip of faces, then refined over its edge crossings (Liu et al.,\n"
+    "an optimization-driven approach for geodesic paths on triangle meshes). A point is a vertex\n"
+    "index (0-based) or x,y,z (mm), projected to the closest surface point.\n"
+    "\n" WINDPLAN_GEODESIC_COMMON_HELP;
+
+const char* const kLoopHelp =
+    "usage: windplan loop <mesh | job.yaml> --init curve.csv\n"
+    "                     [--density faces.txt | --metric faces.txt] [--solver newton|lbfgs]\n"
+    "                     [--json] [-o loop.csv]\n"
+    "\n"
+    "Refines a closed curve into a closed geodesic loop. The curve file holds one point x,y,z\n"
+    "(mm) per line, comma or space separated, first point not repeated at the end; an optional\n"
+    "header line and lines starting with '#' are skipped. Each point is snapped to the surface,\n"
+    "consecutive points are joined by shortest edge paths, and the closed strip is refined.\n"
+    "\n" WINDPLAN_GEODESIC_COMMON_HELP;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// A mesh file as is (indices kept), or a job's mandrel.
+Mesh load_geodesic_mesh(const std::filesystem::path& input) {
+  const std::string ext = lower(input.extension().string());
+  if (ext == ".yaml" || ext == ".yml") return build_mandrel(load_job(input)).mesh;
+  return build_mesh(read_mesh(input), false);
+}
+
+/// Strict number parsing; false when `s` is not entirely one finite-or-not double.
+bool parse_double(const std::string& s, double* out) {
+  const char* b = s.c_str();
+  char* end = nullptr;
+  *out = std::strtod(b, &end);
+  return end != b && *end == '\0';
+}
+
+/// Whitespace-separated numbers of a file, each with its 1-based line number.
+struct NumberToken {
+  double value;
+  int line;
+  std::string text;
+};
+std::vector<NumberToken> read_numbers(const std::filesystem::path& file) {
+  const std::string text = read_text_file(file);
+  std::vector<NumberToken> out;
+  std::istringstream in(text);
+  std::string line;
+  int no = 0;
+  while (std::getline(in, line)) {
+    ++no;
+    std::istringstream ls(line);
+    std::string tok;
+    while (ls >> tok) {
+      if (tok[0] == '#') break;
+      double v = 0.0;
+      if (!parse_double(tok, &v)) {
+        throw InputError(file.string() + ":" + std::to_string(no) + ": '" + tok +
+                         "' is not a number");
+      }
+      out.push_back({v, no, tok});
+    }
+  }
+  return out;
+}
+
+std::string where(const std::filesystem::path& file, const NumberToken& t) {
+  return file.string() + ":" + std::to_string(t.line);
+}
+
+PathMetric load_density(const Mesh& mesh, const std::filesystem::path& file) {
+  const std::vector<NumberToken> v = read_numbers(file);
+  const int F = mesh.num_faces();
+  if (static_cast<int>(v.size()) != F) {
+    const std::string at =
+        v.size() > static_cast<std::size_t>(F) ? where(file, v[F]) + ": value " +
+                                                     std::to_string(F + 1) + " is one too many"
+                                               : file.string() + ": ends after " +
+                                                     std::to_string(v.size()) + " values";
+    throw InputError(at + ": a density file needs one value per face, the mesh has " +
+                     std::to_string(F) + " faces (found " + std::to_string(v.size()) + ")");
+  }
+  std::vector<double> rho(F);
+  for (int f = 0; f < F; ++f) {
+    if (!(std::isfinite(v[f].value) && v[f].value > 0.0)) {
+      throw InputError(where(file, v[f]) + ": density of face " + std::to_string(f) + " is " +
+                       v[f].text + "; it must be a finite number > 0");
+    }
+    rho[f] = v[f].value;
+  }
+  return PathMetric::density(mesh, std::move(rho));
+}
+
+PathMetric load_anisotropic(const Mesh& mesh, const std::filesystem::path& file) {
+  const std::vector<NumberToken> v = read_numbers(file);
+  const int F = mesh.num_faces();
+  if (v.size() != 3 * static_cast<std::size_t>(F)) {
+    const std::string at =
+        v.size() > 3 * static_cast<std::size_t>(F)
+            ? where(file, v[3 * static_cast<std::size_t>(F)]) + ": value " +
+                  std::to_string(3 * F + 1) + " is one too many"
+            : file.string() + ": ends after " + std::to_string(v.size()) + " values";
+    throw InputError(at + ": a metric file needs three values (a b c) per face, the mesh has " +
+                     std::to_string(F) + " faces, so " + std::to_string(3 * F) +
+                     " values (found " + std::to_string(v.size()) + ")");
+  }
+  std::vector<std::array<double, 3>> abc(F);
+  for (int f = 0; f < F; ++f) {
+    const double a = v[3 * f].value, b = v[3 * f + 1].value, c = v[3 * f + 2].value;
+    if (!(std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && a > 0.0 &&
+          a * c - b * b > 0.0)) {
+      throw InputError(where(file, v[3 * f]) + ": the metric of face " + std::to_string(f) +
+                       " [[" + v[3 * f].text + ", " + v[3 * f + 1].text + "], [" +
+                       v[3 * f + 1].text + ", " + v[3 * f + 2].text +
+                       "]] is not symmetric positive definite (needs a > 0 and a c - b^2 > 0)");
+    }
+    abc[f] = {a, b, c};
+  }
+  return PathMetric::anisotropic(mesh, abc);
+}
+
+/// --from / --to: a vertex index or x,y,z projected to the surface.
+SurfacePoint parse_point(const Mesh& mesh, const ClosestPointQuery& query, double tolerance,
+                         const std::string& option, const std::string& text) {
+  if (text.find(',') == std::string::npos) {
+    char* end = nullptr;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (end == text.c_str() || *end != '\0') {
+      throw UsageError(option + " expects a vertex index or x,y,z, got '" + text + "'");
+    }
+    if (v < 0 || v >= mesh.num_vertices()) {
+      throw InputError(option + " " + text + ": vertex index out of range (the mesh has " +
+                       std::to_string(mesh.num_vertices()) + " vertices, 0 to " +
+                       std::to_string(mesh.num_vertices() - 1) + ")");
+    }
+    if (mesh.vertex_halfedge(static_cast<int>(v)) < 0) {
+      throw InputError(option + " " + text + ": vertex " + text +
+                       " is not used by any face of the mesh");
+    }
+    return SurfacePoint::at_vertex(static_cast<int>(v));
+  }
+  Vec3 p;
+  std::istringstream in(text);
+  std::string part;
+  int n = 0;
+  while (std::getline(in, part, ',')) {
+    double d = 0.0;
+    if (n >= 3 || !parse_double(part, &d) || !std::isfinite(d)) {
+      throw UsageError(option + " expects a vertex index or x,y,z, got '" + text + "'");
+    }
+    p[n++] = d;
+  }
+  if (n != 3) throw UsageError(option + " expects a vertex index or x,y,z, got '" + text + "'");
+  const ClosestPointQuery::Hit hit = query.closest(p);
+  if (!(hit.distance <= tolerance)) {
+    std::ostringstream s;
+    s << option << " " << text << ": the point is " << hit.distance
+      << " mm from the mesh (more than the snap tolerance " << tolerance << " mm)";
+    throw InputError(s.str());
+  }
+  return hit.point;
+}
+
+/// The curve of `loop --init`: x,y,z per line.
+std::vector<Vec3> read_curve(const std::filesystem::path& file) {
+  const std::string text = read_text_file(file);
+  std::istringstream in(text);
+  std::string line;
+  std::vector<Vec3> points;
+  int no = 0;
+  while (std::getline(in, line)) {
+    ++no;
+    for (char& c : line)
+      if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
+    std::istringstream ls(line);
+    std::vector<std::string> toks;
+    std::string tok;
+    while (ls >> tok) toks.push_back(tok);
+    if (toks.empty() || toks[0][0] == '#') continue;
+    Vec3 p;
+    bool ok = toks.size() == 3;
+    for (int k = 0; ok && k < 3; ++k) ok = parse_double(toks[k], &p[k]) && std::isfinite(p[k]);
+    if (!ok) {
+      double d = 0.0;
+      if (points.empty() && !parse_double(toks[0], &d)) continue;  // a header line
+      throw InputError(file.string() + ":" + std::to_string(no) +
+                       ": expected three finite numbers x,y,z, got '" + line + "'");
+    }
+    points.push_back(p);
+  }
+  if (points.size() < 3) {
+    throw InputError(file.string() + ": a closed curve needs at least 3 points (found " +
+                     std::to_string(points.size()) + ")");
+  }
+  return points;
+}
+
+struct Setup {
+  Mesh mesh;
+  PathMetric metric;
+  GeodesicOptions options;
+  double tolerance = 0.0;
+  double setup_ms = 0.0;
+};
+
+Setup setup(const Args& args, Clock::time_point t0) {
+  if (args.has("--density") && args.has("--metric")) {
+    throw UsageError("give --density or --metric, not both");
+  }
+  Setup s;
+  const std::string solver = args.value("--solver", "newton");
+  if (solver == "newton") {
+    s.options.solver = GeodesicSolver::Newton;
+  } else if (solver == "lbfgs") {
+    s.options.solver = GeodesicSolver::Lbfgs;
+  } else {
+    throw UsageError("--solver must be newton or lbfgs, got '" + solver + "'");
+  }
+  s.mesh = load_geodesic_mesh(args.positional()[0]);
+  if (s.mesh.num_faces() == 0) {
+    throw InputError(args.positional()[0] + ": the mesh has no faces");
+  }
+  if (args.has("--density")) s.metric = load_density(s.mesh, args.value("--density"));
+  if (args.has("--metric")) s.metric = load_anisotropic(s.mesh, args.value("--metric"));
+  s.tolerance = 1e-3 * s.mesh.bounding_box().diagonal_length();
+  if (args.has("--snap-tolerance")) {
+    s.tolerance = args.number("--snap-tolerance", s.tolerance);
+    if (!(s.tolerance >= 0.0)) throw UsageError("--snap-tolerance must be >= 0");
+  }
+  s.setup_ms = ms_since(t0);
+  return s;
+}
+
+const char* metric_name(const PathMetric& m) {
+  switch (m.kind()) {
+    case PathMetric::Kind::Euclidean: return "euclidean";
+    case PathMetric::Kind::Density: return "density";
+    case PathMetric::Kind::Anisotropic: return "anisotropic";
+  }
+  return "?";
+}
+
+int report(const Args& args, const Setup& s, const GeodesicResult& r, double init_ms,
+           double refine_ms, bool closed) {
+  const std::vector<Vec3> points = polyline(s.mesh, r.path);
+  if (args.has("-o")) {
+    CsvTable table;
+    table.header = {"x [mm]", "y [mm]", "z [mm]"};
+    table.digits = 17;
+    for (const Vec3& p : points) table.rows.push_back({p.x(), p.y(), p.z()});
+    write_csv_file(args.value("-o"), table);
+  }
+  const GeodesicSummary& m = r.summary;
+  if (args.flag("--json")) {
+    JsonWriter j;
+    j.begin_object();
+    j.field("closed", closed);
+    j.field("metric", metric_name(s.metric));
+    j.field("solver", s.options.solver == GeodesicSolver::Newton ? "newton" : "lbfgs");
+    j.field("length", m.final_length);
+    j.field("initial_length", m.initial_length);
+    j.field("euclidean_length", m.euclidean_length);
+    j.field("iterations", m.iterations);
+    j.field("reroutes", m.reroutes);
+    j.field("pinned_vertices", m.pinned_vertices);
+    j.field("termination", to_string(m.termination));
+    j.field("converged", m.converged());
+    j.field("crossings", r.path.num_crossings());
+    j.field("time_ms", init_ms + refine_ms);
+    j.field("init_ms", init_ms);
+    j.field("refine_ms", refine_ms);
+    j.field("setup_ms", s.setup_ms);
+    j.key("points").begin_array();
+    for (const Vec3& p : points) {
+      j.begin_array();
+      j.value(p.x()).value(p.y()).value(p.z());
+      j.end_array();
+    }
+    j.end_array();
+    if (args.has("-o")) j.field("written", args.value("-o"));
+    j.end_object();
+    std::cout << j.str() << "\n";
+    return 0;
+  }
+  std::cout << (closed ? "loop" : "geodesic") << ": " << metric_name(s.metric) << " metric, "
+            << (s.options.solver == GeodesicSolver::Newton ? "newton" : "lbfgs") << " solver\n"
+            << "  length " << m.final_length << " mm (initial " << m.initial_length
+            << ", euclidean " << m.euclidean_length << ")\n"
+            << "  " << r.path.num_crossings() << " edge crossings, " << points.size()
+            << " points, " << m.iterations << " iterations, " << m.reroutes << " reroutes, "
+            << m.pinned_vertices << " pinned vertices\n"
+            << "  termination: " << to_string(m.termination)
+            << (m.message.empty() ? "" : " (" + m.message + ")") << "\n"
+            << "  time: init " << init_ms << " ms, refine " << refine_ms << " ms (setup "
+            << s.setup_ms << " ms)\n";
+  if (args.has("-o")) std::cout << "written: " << args.value("-o") << "\n";
+  return 0;
+}
+
+const std::set<std::string> kFlags = {"--json"};
+
+}  // namespace
+
+int run_geodesic(const std::vector<std::string>& argv) {
+  const auto t0 = Clock::now();
+  const Args args(argv, kFlags,
+                  {"--from", "--to", "--density", "--metric", "--solver", "-o",
+                   "--snap-tolerance"});
+  args.expect_positional(1, "one mesh file or job file");
+  if (!args.has("--from") || !args.has("--to")) throw UsageError("--from and --to are required");
+  Setup s = setup(args, t0);
+  const ClosestPointQuery query(s.mesh);
+  const SurfacePoint a = parse_point(s.mesh, query, s.tolerance, "--from", args.value("--from"));
+  const SurfacePoint b = parse_point(s.mesh, query, s.tolerance, "--to", args.value("--to"));
+  const auto t1 = Clock::now();
+  const GeodesicContext ctx(s.mesh, s.metric);
+  s.setup_ms += ms_since(t1);
+  const OpenGeodesicResult r = geodesic_between(ctx, a, b, s.options);
+  return report(args, s, r, r.init_ms, r.refine_ms, false);
+}
+
+int run_loop(const std::vector<std::string>& argv) {
+  const auto t0 = Clock::now();
+  const Args args(argv, kFlags,
+                  {"--init", "--density", "--metric", "--solver", "-o", "--snap-tolerance"});
+  args.expect_positional(1, "one mesh file or job file");
+  if (!args.has("--init")) throw UsageError("--init curve.csv is required");
+  Setup s = setup(args, t0);
+  const std::vector<Vec3> curve = read_curve(args.value("--init"));
+  const auto t1 = Clock::now();
+  const EdgeGraph graph = build_edge_graph(s.mesh, s.metric);
+  s.setup_ms += ms_since(t1);
+  const auto t2 = Clock::now();
+  SurfacePath init;
+  try {
+    init = path_from_curve(s.mesh, graph, curve, true, s.tolerance);
+  } catch (const InputError& e) {
+    throw InputError(args.value("--init") + ": " + e.what());
+  }
+  const double init_ms = ms_since(t2);
+  const auto t3 = Clock::now();
+  const GeodesicResult r = refine_path(s.mesh, init, s.metric, s.options);
+  const double refine_ms = ms_since(t3);
+  return report(args, s, r, init_ms, refine_ms, true);
+}
+
+}  // namespace windplan::cli

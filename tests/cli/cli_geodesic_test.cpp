@@ -1,0 +1,337 @@
+// windplan geodesic / windplan loop (cli/cmd_geodesic.cpp), run as the built binary
+// (WINDPLAN_BINARY): closed-form lengths on planes and cylinders, metrics, outputs, bad input.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include "geometry/mesh_io.h"
+#include "tests/mesh_fixtures.h"
+#include "tests/test_data.h"
+
+namespace windplan {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string has(const std::string& text, const std::string& what) {
+  return text.find(what) != std::string::npos ? "" : "'" + what + "' not in: " + text;
+}
+
+class CliGeodesic : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("windplan_cli_geodesic_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+    plane_ = (dir_ / "plane.obj").string();
+    write_mesh(plane_, test::grid(10, 10));  // 121 vertices, 200 faces, [0, 10]^2
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  RunResult run(const std::vector<std::string>& args) const {
+    std::string cmd = quote(WINDPLAN_BINARY);
+    for (const auto& a : args) cmd += " " + quote(a);
+    cmd += " >" + quote((dir_ / "out.txt").string()) + " 2>" + quote((dir_ / "err.txt").string());
+    const int status = std::system(cmd.c_str());
+    RunResult r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(dir_ / "out.txt");
+    r.err = slurp(dir_ / "err.txt");
+    return r;
+  }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
+  /// `count` copies of `value`, one per line.
+  std::string per_face(const std::string& name, int count, const std::string& value) const {
+    std::string text;
+    for (int i = 0; i < count; ++i) text += value + "\n";
+    return write(name, text);
+  }
+  fs::path dir_;
+  std::string plane_;
+};
+
+double json_length(const RunResult& r) { return YAML::Load(r.out)["length"].as<double>(); }
+
+TEST_F(CliGeodesic, Help) {
+  const RunResult g = run({"geodesic", "--help"});
+  EXPECT_EQ(g.code, 0);
+  EXPECT_EQ(has(g.out, "--from"), "");
+  EXPECT_EQ(has(g.out, "--density"), "");
+  const RunResult l = run({"loop", "--help"});
+  EXPECT_EQ(l.code, 0);
+  EXPECT_EQ(has(l.out, "--init"), "");
+  const RunResult all = run({"--help"});
+  EXPECT_EQ(has(all.out, "geodesic"), "");
+  EXPECT_EQ(has(all.out, "loop"), "");
+}
+
+TEST_F(CliGeodesic, PlaneBetweenVerticesIsTheStraightSegment) {
+  // Vertex j * 11 + i sits at (i, j, 0).
+  for (const char* solver : {"newton", "lbfgs"}) {
+    const RunResult r = run({"geodesic", plane_, "--from", "2", "--to", "119", "--json",
+                             "--solver", solver});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const YAML::Node j = YAML::Load(r.out);
+    EXPECT_NEAR(j["length"].as<double>(), std::hypot(7.0, 10.0), 1e-9) << solver;
+    EXPECT_NEAR(j["euclidean_length"].as<double>(), std::hypot(7.0, 10.0), 1e-9);
+    EXPECT_GE(j["initial_length"].as<double>(), j["length"].as<double>() - 1e-12);
+    EXPECT_EQ(j["solver"].as<std::string>(), solver);
+    EXPECT_EQ(j["termination"].as<std::string>().empty(), false);
+    for (const char* key : {"iterations", "reroutes", "time_ms", "init_ms", "refine_ms"})
+      EXPECT_TRUE(j[key].IsDefined()) << key;
+    EXPECT_NEAR(j["time_ms"].as<double>(),
+                j["init_ms"].as<double>() + j["refine_ms"].as<double>(), 1e-6);
+    const YAML::Node pts = j["points"];
+    ASSERT_GE(pts.size(), 2u);
+    EXPECT_NEAR(pts[0][0].as<double>(), 2.0, 1e-12);
+    EXPECT_NEAR(pts[0][1].as<double>(), 0.0, 1e-12);
+    EXPECT_NEAR(pts[pts.size() - 1][0].as<double>(), 9.0, 1e-12);
+    EXPECT_NEAR(pts[pts.size() - 1][1].as<double>(), 10.0, 1e-12);
+    // Every point lies on the segment.
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const double x = pts[k][0].as<double>(), y = pts[k][1].as<double>();
+      EXPECT_NEAR(10.0 * (x - 2.0) - 7.0 * y, 0.0, 1e-9) << k;
+    }
+  }
+}
+
+TEST_F(CliGeodesic, PointsGivenAsCoordinatesAreProjected) {
+  // 1e-3 above the plane: within the default tolerance (1e-3 x diagonal = 0.014 mm).
+  const RunResult r =
+      run({"geodesic", plane_, "--from", "0.5,0.25,0.001", "--to", "9.5,7.75,-0.001", "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NEAR(json_length(r), std::hypot(9.0, 7.5), 1e-9);
+  // Text output too.
+  const RunResult t = run({"geodesic", plane_, "--from", "0.5,0.25,0", "--to", "3,3,0"});
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_EQ(has(t.out, "length"), "");
+  EXPECT_EQ(has(t.out, "termination"), "");
+}
+
+TEST_F(CliGeodesic, CsvOutputHoldsThePolyline) {
+  const std::string csv = (dir_ / "sub" / "path.csv").string();
+  const RunResult r = run({"geodesic", plane_, "--from", "0", "--to", "120", "-o", csv, "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const YAML::Node pts = YAML::Load(r.out)["points"];
+  std::istringstream in(slurp(csv));
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line));
+  EXPECT_EQ(has(line, "x [mm]"), "");
+  std::size_t rows = 0;
+  double last_x = -1.0, last_y = -1.0;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream ls(line);
+    double x = 0, y = 0, z = 0;
+    ASSERT_TRUE(static_cast<bool>(ls >> x >> y >> z)) << line;
+    EXPECT_NEAR(x, y, 1e-9);  // the diagonal of the grid
+    EXPECT_NEAR(z, 0.0, 1e-12);
+    last_x = x;
+    last_y = y;
+    ++rows;
+  }
+  EXPECT_EQ(rows, pts.size());
+  EXPECT_NEAR(last_x, 10.0, 1e-9);
+  EXPECT_NEAR(last_y, 10.0, 1e-9);
+}
+
+TEST_F(CliGeodesic, CylinderUnrolls) {
+  const int n = 32, m = 12;
+  const double r = 3.0, len = 6.0;
+  const std::string tube = (dir_ / "tube.obj").string();
+  write_mesh(tube, test::open_cylinder(r, len, n, m));
+  // Vertex (i, j) = j * n + i; from (0, 0) to (9, 12): the developed strip gives the length.
+  const double chord = 2.0 * r * std::sin(M_PI / n);
+  const RunResult res = run({"geodesic", tube, "--from", "0", "--to", std::to_string(12 * n + 9),
+                             "--json"});
+  ASSERT_EQ(res.code, 0) << res.err;
+  EXPECT_NEAR(json_length(res), std::hypot(9 * chord, len), 1e-9);
+}
+
+TEST_F(CliGeodesic, DensityAndAnisotropicMetricsScaleTheLength) {
+  const double straight = std::hypot(7.0, 10.0);
+  const RunResult d = run({"geodesic", plane_, "--from", "2", "--to", "119", "--json",
+                           "--density", per_face("rho.txt", 200, "2.5")});
+  ASSERT_EQ(d.code, 0) << d.err;
+  EXPECT_NEAR(json_length(d), 2.5 * straight, 1e-9);
+  EXPECT_EQ(YAML::Load(d.out)["metric"].as<std::string>(), "density");
+  // T = 3 I in every face frame: every length triples.
+  const RunResult a = run({"geodesic", plane_, "--from", "2", "--to", "119", "--json",
+                           "--metric", per_face("abc.txt", 200, "3 0 3")});
+  ASSERT_EQ(a.code, 0) << a.err;
+  EXPECT_NEAR(json_length(a), 3.0 * straight, 1e-9);
+  EXPECT_EQ(YAML::Load(a.out)["metric"].as<std::string>(), "anisotropic");
+}
+
+TEST_F(CliGeodesic, BadDensityFilesNameTheLine) {
+  // Wrong count.
+  RunResult r = run({"geodesic", plane_, "--from", "0", "--to", "5", "--density",
+                     per_face("short.txt", 199, "1")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "short.txt"), "");
+  EXPECT_EQ(has(r.err, "200 faces"), "");
+  r = run({"geodesic", plane_, "--from", "0", "--to", "5", "--density",
+           per_face("long.txt", 201, "1")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "long.txt:201"), "");
+  // Zero, negative, NaN and garbage, on line 8 (face 7).
+  for (const std::string bad : {"0", "-1", "nan", "abc"}) {
+    std::string text;
+    for (int i = 0; i < 200; ++i) text += (i == 7 ? bad : "1.5") + "\n";
+    r = run({"geodesic", plane_, "--from", "0", "--to", "5", "--density", write("bad.txt", text)});
+    EXPECT_EQ(r.code, 1) << bad;
+    EXPECT_EQ(has(r.err, "bad.txt:8"), "") << bad;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  }
+  // Missing file.
+  r = run({"geodesic", plane_, "--from", "0", "--to", "5", "--density",
+           (dir_ / "none.txt").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "none.txt"), "");
+}
+
+TEST_F(CliGeodesic, MetricMustBePositiveDefinite) {
+  std::string text;
+  for (int i = 0; i < 200; ++i) text += i == 12 ? "1 2 1\n" : "1 0 1\n";
+  RunResult r = run({"geodesic", plane_, "--from", "0", "--to", "5", "--metric",
+                     write("abc.txt", text)});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "abc.txt:13"), "");
+  EXPECT_EQ(has(r.err, "face 12"), "");
+  EXPECT_EQ(has(r.err, "positive definite"), "");
+  r = run({"geodesic", plane_, "--from", "0", "--to", "5", "--metric",
+           per_face("two.txt", 200, "1 1")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "three values"), "");
+}
+
+TEST_F(CliGeodesic, BadEndpoints) {
+  RunResult r = run({"geodesic", plane_, "--from", "0", "--to", "121"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "--to 121"), "");
+  EXPECT_EQ(has(r.err, "out of range"), "");
+  r = run({"geodesic", plane_, "--from", "-3", "--to", "5"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "--from -3"), "");
+  r = run({"geodesic", plane_, "--from", "5,5,1", "--to", "5"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "from the mesh"), "");
+  // Two components: a second grid beside the first.
+  TriangleSoup two = test::grid(2, 2);
+  const TriangleSoup other = test::grid(2, 2);
+  for (const Vec3& p : other.points) two.points.push_back(p + Vec3(5, 0, 0));
+  for (const Tri& t : other.triangles) two.triangles.push_back({t[0] + 9, t[1] + 9, t[2] + 9});
+  const std::string file = (dir_ / "two.obj").string();
+  write_mesh(file, two);
+  r = run({"geodesic", file, "--from", "0", "--to", "12"});
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("internal"), std::string::npos) << r.err;
+  // Missing mesh.
+  r = run({"geodesic", (dir_ / "nothing.obj").string(), "--from", "0", "--to", "1"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "nothing.obj"), "");
+}
+
+TEST_F(CliGeodesic, UsageErrors) {
+  EXPECT_EQ(run({"geodesic", plane_, "--from", "0"}).code, 2);
+  EXPECT_EQ(run({"geodesic", plane_, "--from", "0", "--to", "1", "--solver", "gauss"}).code, 2);
+  EXPECT_EQ(run({"geodesic", plane_, "--from", "0", "--to", "1,2"}).code, 2);
+  EXPECT_EQ(run({"geodesic", plane_, "--from", "zero", "--to", "1"}).code, 2);
+  EXPECT_EQ(run({"geodesic", plane_, "--from", "0", "--to", "1", "--density", "a", "--metric",
+                 "b"}).code,
+            2);
+  EXPECT_EQ(run({"geodesic", "--from", "0", "--to", "1"}).code, 2);
+  EXPECT_EQ(run({"loop", plane_}).code, 2);
+}
+
+std::string oblique_ring_csv(double r, double z, double tilt, int n) {
+  std::string text = "x,y,z\n";
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * M_PI * (i + 0.5) / n;
+    std::ostringstream s;
+    s.precision(17);
+    s << r * std::cos(t) << "," << r * std::sin(t) << "," << z + tilt * std::cos(t) << "\n";
+    text += s.str();
+  }
+  return text;
+}
+
+TEST_F(CliGeodesic, LoopOnACylinderBecomesARing) {
+  // The closed geodesics around a polyhedral cylinder are its horizontal sections: n chords.
+  const int n = 24, m = 10;
+  const double r = 2.0, len = 8.0;
+  const std::string tube = (dir_ / "tube.obj").string();
+  write_mesh(tube, test::open_cylinder(r, len, n, m));
+  const double chord = 2.0 * r * std::sin(M_PI / n);
+  // The curve: an oblique ring near the polyhedral surface (the chords sag by r (1 - cos(pi/n))).
+  const std::string curve = write("curve.csv", oblique_ring_csv(r * std::cos(M_PI / n), 4.0, 1.0, 40));
+  for (const char* solver : {"newton", "lbfgs"}) {
+    const std::string out = (dir_ / "loop.csv").string();
+    const RunResult res = run({"loop", tube, "--init", curve, "--solver", solver, "--json", "-o", out,
+                               "--snap-tolerance", "0.1"});
+    ASSERT_EQ(res.code, 0) << res.err;
+    const YAML::Node j = YAML::Load(res.out);
+    EXPECT_TRUE(j["closed"].as<bool>());
+    EXPECT_NEAR(j["length"].as<double>(), n * chord, 1e-7) << solver;
+    EXPECT_GT(j["initial_length"].as<double>(), j["length"].as<double>());
+    // All points at one height.
+    const YAML::Node pts = j["points"];
+    ASSERT_GE(pts.size(), static_cast<std::size_t>(n));
+    for (std::size_t k = 1; k < pts.size(); ++k)
+      EXPECT_NEAR(pts[k][2].as<double>(), pts[0][2].as<double>(), 1e-6) << k;
+    EXPECT_TRUE(fs::exists(out));
+  }
+}
+
+TEST_F(CliGeodesic, BadCurves) {
+  const std::string tube = (dir_ / "tube.obj").string();
+  write_mesh(tube, test::open_cylinder(2.0, 8.0, 24, 10));
+  RunResult r = run({"loop", tube, "--init", write("c.csv", "x,y,z\n2,0,4\n0,2,4\n-2,0,abc\n")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "c.csv:4"), "");
+  r = run({"loop", tube, "--init", write("two.csv", "2,0,4\n0,2,4\n")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "at least 3"), "");
+  r = run({"loop", tube, "--init", write("far.csv", "2,0,4\n0,2,4\n-2,0,4\n0,-9,4\n")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "far.csv"), "");
+  r = run({"loop", tube, "--init", (dir_ / "none.csv").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(has(r.err, "none.csv"), "");
+}
+
+}  // namespace
+}  // namespace windplan
