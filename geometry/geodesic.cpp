@@ -945,25 +945,100 @@ void Refiner::funnel_straighten() {
 
 void Refiner::funnel_rounds() {
   if (path_.closed) return;
-  for (int round = 0; round < 10000; ++round) {
+  // Each round: the exact shortest path in the strip, then every vertex it wraps is tested with
+  // the angle rule; all reroutes of a round are spliced into the strip in one pass.
+  struct Splice {
+    int i, j;
+    std::vector<int> hs;
+  };
+  std::vector<Splice> splices;
+  const double eps_d = 1e-12 * scale_;
+  for (int round = 0; round < 100000; ++round) {
     funnel_straighten();
-    // Reroute around every wrapped vertex whose other side is shorter; pin the rest.
-    bool changed = false;
-    std::fill(fixed_.begin(), fixed_.end(), 0);
-    touched_.assign(k_, 0);
-    for (int i = k_ - 1; i >= 0; --i) {
+    splices.clear();
+    bool collapsed = false;
+    for (int i = 0; i < k_;) {
       const double l = lambda_[i];
-      if (fixed_[i] || (l > 0.0 && l < 1.0)) continue;
+      if (l > 0.0 && l < 1.0) {
+        ++i;
+        continue;
+      }
       const int h = path_.halfedges[i];
       const int v = l <= 0.0 ? mesh_.from(h) : mesh_.to(h);
-      int run_start = i, run_length = 1;
-      const Action a = handle_vertex(i, v, false, &run_start, &run_length);
-      if (a == Action::Rerouted || a == Action::Collapsed) changed = true;
-      if (a == Action::Pinned)
-        for (int q = 0; q < run_length; ++q) fixed_[run_start + q] = 1;
-      i = std::min(i, run_start);
+      int j = i;
+      while (j + 1 < k_ && (mesh_.from(path_.halfedges[j + 1]) == v ||
+                            mesh_.to(path_.halfedges[j + 1]) == v))
+        ++j;
+      const Vec3& pv = mesh_.position(v);
+      const Vec3 P = i > 0 ? point(i - 1, lambda_) : ps_;
+      const Vec3 Q = j + 1 < k_ ? point(j + 1, lambda_) : pt_;
+      if ((P - pv).norm() <= eps_d || (Q - pv).norm() <= eps_d) {
+        // The path starts or ends at v: let the general handler drop the crossings there.
+        int rs = i, rl = 1;
+        handle_vertex(i, v, false, &rs, &rl);
+        collapsed = true;
+        break;
+      }
+      std::vector<int> run(j - i + 1);
+      for (int q = i; q <= j; ++q) run[q - i] = q;
+      double theta = 0.0;
+      fan_lift(run, v, P, Q, false, &theta);
+      const double other = mesh_.cone_angle(v) - theta;
+      if (theta >= M_PI && !mesh_.is_boundary_vertex(v) && other < M_PI - 1e-12) {
+        std::vector<int> hs;
+        const int f_in = mesh_.face(path_.halfedges[i]);
+        const int f_out = mesh_.face(mesh_.twin(path_.halfedges[j]));
+        int hv = outgoing_in_face(mesh_, f_in, v);
+        const bool ccw = path_.halfedges[i] == hv;
+        int face = f_in;
+        bool ok = true;
+        const int limit = 2 * mesh_.valence(v) + 2;
+        for (int step = 0; step < limit && face != f_out; ++step) {
+          const int c = ccw ? mesh_.prev(hv) : hv;
+          const int t = mesh_.twin(c);
+          if (mesh_.is_boundary_halfedge(t)) {
+            ok = false;
+            break;
+          }
+          hs.push_back(c);
+          face = mesh_.face(t);
+          hv = ccw ? t : mesh_.next(t);
+        }
+        if (ok && face == f_out && !hs.empty()) splices.push_back({i, j, std::move(hs)});
+      }
+      i = j + 1;
     }
-    if (!changed || reroutes_ > max_reroutes_) break;
+    if (collapsed) continue;
+    if (splices.empty()) break;
+    // Splice every reroute in one pass.
+    std::vector<int> nh;
+    std::vector<double> nl;
+    nh.reserve(k_ + 16);
+    nl.reserve(k_ + 16);
+    int next = 0;
+    for (const Splice& s : splices) {
+      for (int q = next; q < s.i; ++q) {
+        nh.push_back(path_.halfedges[q]);
+        nl.push_back(lambda_[q]);
+      }
+      for (int c : s.hs) {
+        nh.push_back(c);
+        nl.push_back(0.5);
+      }
+      next = s.j + 1;
+      ++reroutes_;
+    }
+    for (int q = next; q < k_; ++q) {
+      nh.push_back(path_.halfedges[q]);
+      nl.push_back(lambda_[q]);
+    }
+    path_.halfedges = std::move(nh);
+    path_.lambdas = std::move(nl);
+    mu_.clear();
+    fixed_.clear();
+    rebuild();
+    if (k_ > 0) path_.start_face = mesh_.face(path_.halfedges[0]);
+    if (reroutes_ > max_reroutes_) break;
   }
   std::fill(fixed_.begin(), fixed_.end(), 0);
 }
