@@ -779,11 +779,53 @@ RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options) {
                           plural(removed, "zero-area triangle", "zero-area triangles") +
                           " by flipping its long edge (the surface is unchanged)");
     }
+    // What cannot be flipped may still be dropped when it lies on the open boundary: that opens
+    // no new hole and loses no area. Accepted only if the result stays an oriented manifold with
+    // the same number of components.
+    if (!left.empty()) {
+      const Analysis now = analyze(soup, options.check);
+      std::vector<char> drop(soup.triangles.size(), 0);
+      std::vector<int> still;
+      int ndrop = 0;
+      for (int f : left) {
+        bool on_boundary = false;
+        for (int k = 0; k < 3; ++k) {
+          const int g = now.group_of[3 * f + k];
+          on_boundary = on_boundary || (g >= 0 && now.group_start[g + 1] - now.group_start[g] == 1);
+        }
+        if (on_boundary) {
+          drop[f] = 1;
+          ++ndrop;
+        } else {
+          still.push_back(f);
+        }
+      }
+      if (ndrop > 0) {
+        TriangleSoup candidate;
+        candidate.points = soup.points;
+        for (std::size_t f = 0; f < soup.triangles.size(); ++f)
+          if (!drop[f]) candidate.triangles.push_back(soup.triangles[f]);
+        const int unreferenced = drop_unreferenced(&candidate);
+        const MeshHealth ch = analyze(candidate, options.check).health;
+        if (ch.manifold && ch.oriented && ch.num_components == now.health.num_components) {
+          soup = std::move(candidate);
+          r.removed_zero_area += ndrop;
+          r.removed_unreferenced += unreferenced;
+          r.changes.push_back(
+              "dropped " + plural(ndrop, "zero-area triangle", "zero-area triangles") +
+              " on the open boundary (no area lost, no new hole)" +
+              (unreferenced > 0
+                   ? " and the " + plural(unreferenced, "vertex", "vertices") + " only they used"
+                   : std::string()));
+          left = std::move(still);
+        }
+      }
+    }
     if (!left.empty()) {
       r.kept.push_back(
           "kept " +
           plural(static_cast<int>(left.size()), "zero-area triangle", "zero-area triangles") +
-          " (no safe edge flip; dropping would open a hole): " +
+          " (no safe edge flip, not droppable without opening a hole): " +
           list_str(left, static_cast<int>(left.size()), [](int i) { return std::to_string(i); }));
     }
   }

@@ -338,17 +338,41 @@ TEST(RepairMesh, RemovesAZeroAreaCapByAnEdgeFlipWithoutChangingTheSurface) {
   EXPECT_NO_THROW(Mesh(r.soup));
 }
 
-TEST(RepairMesh, KeepsAZeroAreaTriangleItCannotFlipAndSaysSo) {
+TEST(RepairMesh, DropsAZeroAreaTriangleOnTheBoundaryThatCannotBeFlipped) {
   // A cap hanging off the open grid: its long edge (0, 4) is a boundary edge, so there is no
-  // neighbour to flip with, and dropping it is left to the user.
+  // neighbour to flip with; dropping it opens no hole and loses no area.
   TriangleSoup s = test::grid(1, 1);
   s.points.push_back(Vec3(2, 0, 0));
   s.triangles.push_back({0, 4, 1});  // 1 lies on the segment (0, 4)
   const RepairResult r = repair_mesh(s);
+  EXPECT_EQ(r.removed_zero_area, 1);
+  EXPECT_EQ(r.removed_unreferenced, 1);  // vertex 4 was used by the cap only
+  EXPECT_TRUE(r.kept.empty());
+  ASSERT_EQ(r.changes.size(), 1u);
+  EXPECT_TRUE(contains(r.changes[0], "on the open boundary")) << r.changes[0];
+  EXPECT_EQ(r.soup.points, test::grid(1, 1).points);
+  EXPECT_EQ(r.soup.triangles, test::grid(1, 1).triangles);
+}
+
+TEST(RepairMesh, KeepsAZeroAreaTriangleItCannotFlipOrDropAndSaysSo) {
+  // The octahedron's top vertex 4 split into 4 (faces 0, 1) and 6 = 4 + 1e-13 x (faces 2, 3);
+  // two needles (0, 4, 6) and (4, 1, 6) close the seam. Each needle's flip would make another
+  // zero-area triangle, and the surface is closed, so both are kept.
+  TriangleSoup s = test::octahedron();
+  s.points.push_back(s.points[4] + Vec3(1e-13, 0, 0));
+  s.triangles[2] = {1, 3, 6};
+  s.triangles[3] = {3, 0, 6};
+  s.triangles.push_back({0, 4, 6});
+  s.triangles.push_back({4, 1, 6});
+  const MeshHealth h = check_mesh(s);
+  ASSERT_TRUE(h.closed && h.manifold && h.oriented) << h.brief_report();
+  ASSERT_EQ(h.num_zero_area_triangles, 2);
+  const RepairResult r = repair_mesh(s);
   EXPECT_EQ(r.removed_zero_area, 0);
   ASSERT_EQ(r.kept.size(), 1u);
-  EXPECT_TRUE(contains(r.kept[0], "zero-area")) << r.kept[0];
-  EXPECT_EQ(r.after.num_zero_area_triangles, 1);
+  EXPECT_TRUE(contains(r.kept[0], "2 zero-area triangles")) << r.kept[0];
+  EXPECT_TRUE(r.after.closed);
+  EXPECT_EQ(r.after.num_zero_area_triangles, 2);
 }
 
 TEST(RepairMesh, RefusesNonManifoldVerticesUnlessAskedToSplit) {
