@@ -250,6 +250,97 @@ void decode_output(ConfigNode n, const std::filesystem::path& base, OutputOption
   n.check(*o);
 }
 
+// ---- cutlines: (planner/cutlines.h) ----
+
+void decode_cutlines(ConfigNode& root, const std::filesystem::path& base,
+                     std::vector<CutLineOptions>* cuts) {
+  int i = 0;
+  for (ConfigNode n : root.list("cutlines")) {
+    CutLineOptions c;
+    c.name = "cut" + std::to_string(++i);
+    n.get("name", &c.name);
+    if (ConfigNode p = n.section("plane"); p.present()) {
+      std::array<double, 3> nrm{0.0, 0.0, 1.0};
+      p.require("normal", &nrm);
+      p.require("offset", &c.offset);
+      p.finish();
+      c.has_plane = true;
+      c.normal = Vec3(nrm[0], nrm[1], nrm[2]);
+      if (!(c.normal.norm() > 1e-12) || !std::isfinite(c.normal.norm())) {
+        p.fail("normal", "must be a non-zero vector");
+      }
+    }
+    c.has_station = n.get("station", &c.station);
+    std::string init;
+    if (n.get("init", &init)) {
+      if (init.empty()) n.fail("init", "must name a CSV file");
+      c.init = (base / init).lexically_normal();
+    }
+    n.get("closed", &c.closed);
+    std::array<double, 3> from{0.0, 0.0, 0.0}, to{0.0, 0.0, 0.0};
+    if (!c.closed) {
+      n.require("from", &from);
+      n.require("to", &to);
+    } else {
+      for (const char* k : {"from", "to"}) {
+        if (n.has(k)) n.fail(k, "is only for open cut-lines (closed: false)");
+      }
+    }
+    c.from = Vec3(from[0], from[1], from[2]);
+    c.to = Vec3(to[0], to[1], to[2]);
+    n.get_choice("normal_mode", {"free", "fixed", "cone"}, &c.normal_mode);
+    n.get("max_tilt_deg", &c.max_tilt_deg);
+    n.finish();
+    n.check(c);
+    cuts->push_back(std::move(c));
+  }
+}
+
+// ---- girth: (planner/girth.h) ----
+
+void decode_girth(ConfigNode n, GirthOptions* g) {
+  if (!n.present()) return;
+  n.get("samples", &g->samples);
+  n.get_choice("placement", {"rings", "farthest"}, &g->placement);
+  n.get("rings", &g->rings);
+  n.finish();
+  n.check(*g);
+}
+
+// ---- winding: (planner/winding_options.h) ----
+
+void decode_winding(ConfigNode n, WindingOptions* w) {
+  if (!n.present()) return;
+  n.get("turns", &w->turns);
+  std::string circuits;
+  if (n.get("circuits", &circuits)) {
+    if (circuits == "auto") {
+      w->circuits = 0;
+    } else {
+      std::size_t used = 0;
+      int k = 0;
+      try {
+        k = std::stoi(circuits, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != circuits.size() || k < 1) {
+        n.fail("circuits", "must be an integer >= 1 or auto (got '" + circuits + "')");
+      }
+      w->circuits = k;
+    }
+  }
+  n.get("band_width", &w->band_width);
+  n.get("beta", &w->beta);
+  n.get("mu", &w->mu);
+  n.get("start_station", &w->start_station);
+  n.get("end_station", &w->end_station);
+  n.get("curvature_window", &w->curvature_window);
+  n.get("meridians", &w->meridians);
+  n.finish();
+  n.check(*w);
+}
+
 Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   Job job;
   job.path = std::filesystem::absolute(file).lexically_normal();
@@ -259,6 +350,9 @@ Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   decode_mandrel(root.section("mandrel"), base, &job.mandrel);
   decode_machine(root.section("machine"), &job.machine);
   decode_output(root.section("output"), base, &job.output);
+  decode_winding(root.section("winding"), &job.winding);
+  decode_girth(root.section("girth"), &job.girth);
+  decode_cutlines(root, base, &job.cutlines);
   root.finish();
   return job;
 }

@@ -6,11 +6,15 @@
 // stage's Options, rejects unknown keys (file, line and key named) and calls is_valid().
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "geometry/axis.h"
 #include "geometry/parametric_mandrel.h"
 #include "geometry/tessellate.h"
+#include "planner/cutlines.h"
+#include "planner/girth.h"
 #include "planner/machine_options.h"
+#include "planner/winding_options.h"
 
 namespace windplan {
 
@@ -59,6 +63,9 @@ struct Job {
   MandrelOptions mandrel;
   MachineOptions machine;  ///< `machine:` (kinematics, axes, G-code)
   OutputOptions output;    ///< `output:` (files written, directory)
+  WindingOptions winding;  ///< `winding:` (helices, coverage, stability; planner/helix.h)
+  GirthOptions girth;      ///< `girth:` (girth field sampling, planner/girth.h)
+  std::vector<CutLineOptions> cutlines;  ///< `cutlines:` (planar trim lines, planner/cutlines.h)
 };
 
 /// Loads and validates a job file.

@@ -1,0 +1,830 @@
+#include "planner/cutlines.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cctype>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <tuple>
+
+#include <Eigen/Eigenvalues>
+
+#include "geometry/atomic_file.h"
+#include "geometry/closest_point.h"
+#include "geometry/edge_path.h"
+#include "geometry/errors.h"
+#include "geometry/path_constraint.h"
+#include "geometry/surface_path.h"
+#include "planner/mandrel_builder.h"
+
+namespace windplan {
+
+namespace {
+
+bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+std::string label(const CutLineOptions& cut) {
+  return "cut-line '" + (cut.name.empty() ? std::string("(unnamed)") : cut.name) + "'";
+}
+
+std::string vec_str(const Vec3& v) {
+  std::ostringstream s;
+  s << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+  return s.str();
+}
+
+// Signed turns of a closed polygon around the axis (projected onto the plane normal to it).
+int winding_number(const std::vector<Vec3>& pts, const SpindleAxis& axis) {
+  if (pts.size() < 3) return 0;
+  const Vec3 a = axis.direction.normalized();
+  const Vec3 e1 = a.unitOrthogonal(), e2 = a.cross(e1);
+  double total = 0.0;
+  auto angle = [&](const Vec3& p) {
+    const Vec3 d = p - axis.origin;
+    return std::atan2(d.dot(e2), d.dot(e1));
+  };
+  double prev = angle(pts.back());
+  for (const Vec3& p : pts) {
+    const double cur = angle(p);
+    double da = cur - prev;
+    while (da > M_PI) da -= 2.0 * M_PI;
+    while (da < -M_PI) da += 2.0 * M_PI;
+    total += da;
+    prev = cur;
+  }
+  return static_cast<int>(std::lround(total / (2.0 * M_PI)));
+}
+
+double polygon_length(const std::vector<Vec3>& pts, bool closed) {
+  double len = 0.0;
+  for (std::size_t i = 1; i < pts.size(); ++i) len += (pts[i] - pts[i - 1]).norm();
+  if (closed && pts.size() > 1) len += (pts.front() - pts.back()).norm();
+  return len;
+}
+
+// The least-squares plane normal of points, perpendicular to `u` when u is non-zero.
+Vec3 fit_normal(const std::vector<Vec3>& pts, const Vec3& u, const Vec3& fallback) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& p : pts) c += p;
+  c /= static_cast<double>(pts.size());
+  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+  for (const Vec3& p : pts) C += (p - c) * (p - c).transpose();
+  if (u.norm() == 0.0) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);
+    return es.eigenvectors().col(0).normalized();
+  }
+  // Restrict to the plane normal to u: a 2x2 problem in the basis (e1, e2).
+  const Vec3 e1 = u.unitOrthogonal(), e2 = u.cross(e1);
+  Eigen::Matrix2d M;
+  M << e1.dot(C * e1), e1.dot(C * e2), e2.dot(C * e1), e2.dot(C * e2);
+  if (M.trace() <= 1e-24) return fallback;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(M);
+  // A nearly straight curve (both eigenvalues ~0 relative to its extent) fits any plane.
+  const Eigen::Vector2d w = es.eigenvectors().col(0);
+  return (w.x() * e1 + w.y() * e2).normalized();
+}
+
+// A face point that sits on a corner is given as that vertex (geodesic_between rejects some
+// corner face points: "initial path: the end point is not in the last strip face").
+SurfacePoint clean_point(const Mesh& mesh, const SurfacePoint& p) {
+  if (p.kind != SurfacePoint::Kind::Face) return p;
+  for (int k = 0; k < 3; ++k) {
+    if (p.bary[k] >= 1.0 - 1e-12) return SurfacePoint::at_vertex(mesh.triangle(p.element)[k]);
+  }
+  return p;
+}
+
+PlaneConstraint::Mode constraint_mode(const std::string& m) {
+  return m == "fixed" ? PlaneConstraint::Mode::FixedNormal : PlaneConstraint::Mode::Free;
+}
+
+}  // namespace
+
+bool CutLineOptions::is_valid(std::string* why) const {
+  auto fail = [&](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (has_plane) {
+    if (!finite(normal) || !(normal.norm() > 1e-12)) return fail("plane.normal must be a non-zero vector");
+    if (!std::isfinite(offset)) return fail("plane.offset must be a finite number (mm)");
+  }
+  if (has_station && !std::isfinite(station)) return fail("station must be a finite number (mm)");
+  if (normal_mode != "free" && normal_mode != "fixed" && normal_mode != "cone") {
+    return fail("normal_mode '" + normal_mode + "' is not one of: free, fixed, cone");
+  }
+  if (!(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0)) {
+    return fail("max_tilt_deg must be in (0, 90] degrees");
+  }
+  const int starts = int(has_plane) + int(has_station) + int(!init.empty());
+  if (closed) {
+    if (starts != 1) {
+      return fail("a closed cut-line needs exactly one of plane, station, init (got " +
+                  std::to_string(starts) + ")");
+    }
+  } else {
+    if (has_station || !init.empty()) {
+      return fail("an open cut-line (closed: false) starts from its from/to points; station and "
+                  "init are for closed ones (plane may give the initial plane)");
+    }
+    if (!finite(from) || !finite(to)) return fail("from and to must be finite points (mm)");
+    if (!((to - from).norm() > 1e-9)) return fail("an open cut-line needs from and to apart");
+  }
+  return true;
+}
+
+std::string CutLineSummary::brief_report() const {
+  std::ostringstream s;
+  s << "start " << start << " (length " << initial_length << " mm); result by " << method;
+  if (polish_evaluations > 0) s << " (" << polish_evaluations << " sections evaluated)";
+  s << ", tilt " << tilt_deg << " deg; refine_path: length " << refine_length << " mm, residual "
+    << refine_residual << " mm, " << geodesic.brief_report();
+  return s.str();
+}
+
+namespace {
+
+// Plane sections of one mesh, with the precomputed data that tells whether a closed section loop
+// goes around the mandrel: on an annulus (two boundary loops) the edges of one edge path from the
+// first boundary loop to the second; a simple closed loop separates the two boundaries (is not
+// contractible) exactly when it crosses that path an odd number of times. Other meshes (closed
+// or with other boundaries) use the winding number around the axis.
+class Sectioner {
+ public:
+  Sectioner(const Mesh& mesh, const SpindleAxis& axis) : mesh_(mesh), axis_(axis) {
+    const auto loops = mesh.boundary_loops();
+    if (loops.size() != 2) return;
+    const int nv = mesh.num_vertices();
+    std::vector<std::vector<int>> adj(nv);
+    for (int h = 0; h < mesh.num_interior_halfedges(); ++h) {
+      adj[mesh.from(h)].push_back(h);
+      adj[mesh.to(h)].push_back(h);
+    }
+    std::vector<int> via(nv, -2);  // -2 unseen, -1 source, else the halfedge reached through
+    std::vector<char> target(nv, 0);
+    std::vector<int> queue;
+    for (int v : mesh.loop_vertices(loops[0])) via[v] = -1, queue.push_back(v);
+    for (int v : mesh.loop_vertices(loops[1])) target[v] = 1;
+    int hit = -1;
+    for (std::size_t q = 0; q < queue.size() && hit < 0; ++q) {
+      const int v = queue[q];
+      for (int h : adj[v]) {
+        const int w = mesh.from(h) == v ? mesh.to(h) : mesh.from(h);
+        if (via[w] != -2) continue;
+        via[w] = h;
+        if (target[w]) {
+          hit = w;
+          break;
+        }
+        queue.push_back(w);
+      }
+    }
+    if (hit < 0) return;
+    transversal_.assign(mesh.num_edges(), 0);
+    for (int v = hit; via[v] >= 0;) {
+      const int h = via[v];
+      transversal_[mesh.edge(h)] = 1;
+      v = mesh.from(h) == v ? mesh.to(h) : mesh.from(h);
+    }
+  }
+
+  std::vector<PlaneSection> sections(const Vec3& normal, double offset) const {
+    const Mesh& mesh = mesh_;
+    const Vec3 n = normal.normalized();
+    const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+    std::vector<double> s(nv);
+    for (int v = 0; v < nv; ++v) s[v] = n.dot(mesh.position(v)) - offset;
+    auto pos = [&](int v) { return s[v] >= 0.0; };
+    // Per face: the exit (from +, to -) and entry (from -, to +) halfedges; -1 when not cut.
+    auto exit_of = [&](int f) {
+      for (int k = 0; k < 3; ++k) {
+        const int h = 3 * f + k;
+        if (pos(mesh.from(h)) && !pos(mesh.to(h))) return h;
+      }
+      return -1;
+    };
+    auto entry_of = [&](int f) {
+      for (int k = 0; k < 3; ++k) {
+        const int h = 3 * f + k;
+        if (!pos(mesh.from(h)) && pos(mesh.to(h))) return h;
+      }
+      return -1;
+    };
+    auto point_on = [&](int h) {
+      const double sa = s[mesh.from(h)], sb = s[mesh.to(h)];
+      const double t = std::clamp(sa / (sa - sb), 0.0, 1.0);
+      return std::pair<double, Vec3>(
+          t, (1.0 - t) * mesh.position(mesh.from(h)) + t * mesh.position(mesh.to(h)));
+    };
+
+    std::vector<char> seen(nf, 0);
+    std::vector<PlaneSection> out;
+    for (int f0 = 0; f0 < nf; ++f0) {
+      if (seen[f0] || exit_of(f0) < 0) continue;
+      // Walk backwards to the start of an open chain (or all the way round a loop).
+      int first = f0;
+      bool closed = true;
+      for (;;) {
+        const int prev = mesh.face(mesh.twin(entry_of(first)));
+        if (prev < 0) {
+          closed = false;
+          break;
+        }
+        if (prev == f0) break;
+        first = prev;
+      }
+      PlaneSection sec;
+      sec.closed = closed;
+      sec.path.closed = closed;
+      if (!closed) sec.points.push_back(point_on(mesh.twin(entry_of(first))).second);
+      int f = closed ? f0 : first;
+      int crossings = 0;
+      for (;;) {
+        seen[f] = 1;
+        const int h = exit_of(f);
+        const auto [t, p] = point_on(h);
+        sec.points.push_back(p);
+        const int g = mesh.face(mesh.twin(h));
+        if (g < 0) break;  // open chain: the last point is on the boundary
+        sec.path.halfedges.push_back(h);
+        sec.path.lambdas.push_back(t);
+        if (!transversal_.empty()) crossings += transversal_[mesh.edge(h)];
+        if (closed && g == f0) break;
+        f = g;
+      }
+      sec.length = polygon_length(sec.points, closed);
+      if (closed) {
+        sec.winding = winding_number(sec.points, axis_);
+        sec.around = transversal_.empty() ? sec.winding != 0 : crossings % 2 == 1;
+      }
+      out.push_back(std::move(sec));
+    }
+    return out;
+  }
+
+  /// The loop around the mandrel: the longest (near == nullptr) or the one whose centroid is
+  /// nearest to *near. Returns false when there is none.
+  bool around_loop(const Vec3& n, double d, const Vec3* near, PlaneSection* out,
+                   std::vector<PlaneSection>* all = nullptr) const {
+    std::vector<PlaneSection> secs = sections(n, d);
+    int best = -1;
+    double best_key = 0.0;
+    for (int i = 0; i < static_cast<int>(secs.size()); ++i) {
+      if (!secs[i].around) continue;
+      const double key = near ? -(centroid(secs[i].points) - *near).norm() : secs[i].length;
+      if (best < 0 || key > best_key) best = i, best_key = key;
+    }
+    if (best >= 0 && out) *out = secs[best];
+    if (all) *all = std::move(secs);
+    return best >= 0;
+  }
+
+  static Vec3 centroid(const std::vector<Vec3>& pts) {
+    Vec3 c = Vec3::Zero();
+    for (const Vec3& p : pts) c += p;
+    return pts.empty() ? c : Vec3(c / static_cast<double>(pts.size()));
+  }
+
+ private:
+  const Mesh& mesh_;
+  SpindleAxis axis_;
+  std::vector<char> transversal_;
+};
+
+// Minimises the length of the section loop around the mandrel over the plane (Nelder-Mead with
+// restarts on a local parametrisation n = normalise(n_c + a t1 + b t2), d = d_c + c * scale).
+// The section of a plane is the only planar curve in that plane, so this is the coplanar
+// geodesic problem reduced to the plane's three degrees of freedom; the length is piecewise
+// smooth (it kinks where the plane passes a vertex), which a simplex method tolerates.
+struct SectionFit {
+  Vec3 n = Vec3::UnitZ();
+  double d = 0.0;
+  PlaneSection section;
+  int evaluations = 0;
+};
+
+SectionFit minimise_section(const Sectioner& S, const Vec3& n_start, double d_start,
+                            const Vec3& near, const std::string& mode, const Vec3& n_initial,
+                            double max_tilt) {
+  SectionFit best;
+  best.n = n_start.normalized();
+  best.d = d_start;
+  if (!S.around_loop(best.n, best.d, &near, &best.section)) return best;
+  const bool fixed = mode == "fixed";
+  const bool cone = mode == "cone";
+  const int dim = fixed ? 1 : 3;
+  double scale = std::max(best.section.length / (2.0 * M_PI), 1e-9);
+  double step_angle = 0.02, step_offset = 0.02;
+  for (int round = 0; round < 8; ++round) {
+    const Vec3 nc = best.n, t1 = nc.unitOrthogonal(), t2 = nc.cross(t1);
+    const double dc = best.d;
+    const Vec3 ref = Sectioner::centroid(best.section.points);
+    auto plane_of = [&](const std::vector<double>& x, Vec3* n, double* d) {
+      *n = fixed ? nc : Vec3((nc + x[0] * t1 + x[1] * t2).normalized());
+      if (cone) {
+        const double c = n->dot(n_initial);
+        if (c < std::cos(max_tilt)) {
+          Vec3 w = *n - c * n_initial;
+          if (w.norm() < 1e-300) w = n_initial.unitOrthogonal();
+          *n = std::cos(max_tilt) * n_initial + std::sin(max_tilt) * w.normalized();
+        }
+      }
+      *d = dc + x[dim - 1] * scale;
+    };
+    PlaneSection sec;
+    auto f = [&](const std::vector<double>& x) {
+      Vec3 n;
+      double d;
+      plane_of(x, &n, &d);
+      ++best.evaluations;
+      if (!S.around_loop(n, d, &ref, &sec)) return std::numeric_limits<double>::infinity();
+      return sec.length;
+    };
+    // Simplex.
+    std::vector<std::vector<double>> X(dim + 1, std::vector<double>(dim, 0.0));
+    for (int i = 0; i < dim; ++i) X[i + 1][i] = (fixed || i == dim - 1) ? step_offset : step_angle;
+    std::vector<double> F(dim + 1);
+    for (int i = 0; i <= dim; ++i) F[i] = f(X[i]);
+    const double start_value = F[0];
+    for (int it = 0; it < 400 * dim; ++it) {
+      std::vector<int> order(dim + 1);
+      for (int i = 0; i <= dim; ++i) order[i] = i;
+      std::sort(order.begin(), order.end(), [&](int a, int b) { return F[a] < F[b]; });
+      std::vector<std::vector<double>> X2;
+      std::vector<double> F2;
+      for (int i : order) X2.push_back(X[i]), F2.push_back(F[i]);
+      X.swap(X2);
+      F.swap(F2);
+      double size = 0.0;
+      for (int i = 1; i <= dim; ++i)
+        for (int k = 0; k < dim; ++k) size = std::max(size, std::fabs(X[i][k] - X[0][k]));
+      if (size < 1e-11 || (F[dim] - F[0]) <= 1e-15 * std::fabs(F[0])) break;
+      std::vector<double> c(dim, 0.0);
+      for (int i = 0; i < dim; ++i)
+        for (int k = 0; k < dim; ++k) c[k] += X[i][k] / dim;
+      auto along = [&](double t) {
+        std::vector<double> y(dim);
+        for (int k = 0; k < dim; ++k) y[k] = c[k] + t * (X[dim][k] - c[k]);
+        return y;
+      };
+      const std::vector<double> xr = along(-1.0);
+      const double fr = f(xr);
+      if (fr < F[0]) {
+        const std::vector<double> xe = along(-2.0);
+        const double fe = f(xe);
+        if (fe < fr) X[dim] = xe, F[dim] = fe;
+        else X[dim] = xr, F[dim] = fr;
+      } else if (fr < F[dim - 1]) {
+        X[dim] = xr, F[dim] = fr;
+      } else {
+        const std::vector<double> xc = fr < F[dim] ? along(-0.5) : along(0.5);
+        const double fc = f(xc);
+        if (fc < std::min(fr, F[dim])) {
+          X[dim] = xc, F[dim] = fc;
+        } else {
+          for (int i = 1; i <= dim; ++i) {
+            for (int k = 0; k < dim; ++k) X[i][k] = X[0][k] + 0.5 * (X[i][k] - X[0][k]);
+            F[i] = f(X[i]);
+          }
+        }
+      }
+    }
+    int b = 0;
+    for (int i = 1; i <= dim; ++i) if (F[i] < F[b]) b = i;
+    if (!(F[b] < best.section.length * (1.0 - 1e-13))) {
+      // No progress from this centre: restart once with smaller steps, then stop.
+      if (step_angle < 1e-3) break;
+      step_angle *= 0.1;
+      step_offset *= 0.1;
+      continue;
+    }
+    Vec3 n;
+    double d;
+    plane_of(X[b], &n, &d);
+    PlaneSection s2;
+    if (!S.around_loop(n, d, &ref, &s2)) break;
+    const double gain = best.section.length - s2.length;
+    best.n = n;
+    best.d = d;
+    best.section = std::move(s2);
+    scale = std::max(best.section.length / (2.0 * M_PI), 1e-9);
+    (void)start_value;
+    if (gain <= 1e-14 * best.section.length) break;
+  }
+  return best;
+}
+
+// The shorter piece of a section chain between two points lying on it (within tol), as a
+// polyline a, crossings..., b. Empty when no chain passes through both.
+std::vector<Vec3> arc_between(const std::vector<PlaneSection>& secs, const Vec3& a, const Vec3& b,
+                              double tol) {
+  std::vector<Vec3> best;
+  double best_len = std::numeric_limits<double>::infinity();
+  for (const PlaneSection& sec : secs) {
+    const std::vector<Vec3>& P = sec.points;
+    const int m = static_cast<int>(P.size());
+    const int nseg = sec.closed ? m : m - 1;
+    if (nseg < 1) continue;
+    auto locate = [&](const Vec3& q, int* seg, double* t) {
+      double dmin = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < nseg; ++i) {
+        const Vec3& p0 = P[i];
+        const Vec3& p1 = P[(i + 1) % m];
+        const Vec3 e = p1 - p0;
+        const double ee = e.squaredNorm();
+        const double u = ee > 0.0 ? std::clamp((q - p0).dot(e) / ee, 0.0, 1.0) : 0.0;
+        const double dist = (p0 + u * e - q).norm();
+        if (dist < dmin) dmin = dist, *seg = i, *t = u;
+      }
+      return dmin;
+    };
+    int ia = 0, ib = 0;
+    double ta = 0.0, tb = 0.0;
+    if (locate(a, &ia, &ta) > tol || locate(b, &ib, &tb) > tol) continue;
+    // Forward from (i0, t0) to (i1, t1) along the chain (cyclic when closed).
+    auto forward = [&](const Vec3& q0, int i0, double t0, const Vec3& q1, int i1, double t1) {
+      std::vector<Vec3> out{q0};
+      if (!(i0 == i1 && t0 <= t1)) {
+        for (int i = i0;;) {
+          i = (i + 1) % m;
+          out.push_back(P[i]);
+          if (i == i1) break;
+        }
+      }
+      out.push_back(q1);
+      return out;
+    };
+    std::vector<std::vector<Vec3>> candidates;
+    const bool a_first = ia < ib || (ia == ib && ta <= tb);
+    if (sec.closed || a_first) candidates.push_back(forward(a, ia, ta, b, ib, tb));
+    if (sec.closed || !a_first) {
+      std::vector<Vec3> r = forward(b, ib, tb, a, ia, ta);
+      std::reverse(r.begin(), r.end());
+      candidates.push_back(std::move(r));
+    }
+    for (std::vector<Vec3>& c : candidates) {
+      const double len = polygon_length(c, false);
+      if (len < best_len) best_len = len, best = std::move(c);
+    }
+  }
+  return best;
+}
+
+// Open cut-lines: the plane contains a and b, so only its rotation phi about the line a-b is
+// free; minimise the length of the section arc between them over phi (bracketing, then golden
+// section), starting at phi_start. phi is measured from e1 (the initial normal) towards e2.
+struct ArcFit {
+  Vec3 n = Vec3::UnitZ();
+  double d = 0.0;
+  std::vector<Vec3> points;
+  double length = std::numeric_limits<double>::infinity();
+  int evaluations = 0;
+};
+
+ArcFit minimise_arc(const Sectioner& S, const Vec3& a, const Vec3& b, const Vec3& e1,
+                    double phi_start, double max_phi, double tol) {
+  const Vec3 u = (b - a).normalized();
+  const Vec3 e2 = u.cross(e1).normalized();
+  ArcFit best;
+  auto eval = [&](double phi) {
+    const Vec3 n = std::cos(phi) * e1 + std::sin(phi) * e2;
+    const double d = n.dot(a);
+    ++best.evaluations;
+    std::vector<Vec3> pts = arc_between(S.sections(n, d), a, b, tol);
+    const double len = pts.empty() ? std::numeric_limits<double>::infinity()
+                                   : polygon_length(pts, false);
+    if (len < best.length) best.n = n, best.d = d, best.points = std::move(pts), best.length = len;
+    return len;
+  };
+  auto clampphi = [&](double p) { return std::clamp(p, -max_phi, max_phi); };
+  double x0 = clampphi(phi_start);
+  double f0 = eval(x0);
+  if (max_phi <= 0.0) return best;
+  // Bracket a minimum: walk downhill with growing steps.
+  double h = 0.01;
+  double xl = clampphi(x0 - h), xr = clampphi(x0 + h);
+  double fl = eval(xl), fr = eval(xr);
+  if (fl < f0 || fr < f0) {
+    const double dir = fl < fr ? -1.0 : 1.0;
+    double xa = x0, xb = dir < 0 ? xl : xr, fb = std::min(fl, fr);
+    for (int k = 0; k < 40; ++k) {
+      h *= 1.6;
+      const double xc = clampphi(xb + dir * h);
+      const double fc = eval(xc);
+      if (!(fc < fb) || xc == xb) {
+        xl = std::min(xa, xc), xr = std::max(xa, xc);
+        break;
+      }
+      xa = xb, xb = xc, fb = fc;
+      xl = std::min(xa, xb), xr = std::max(xa, xb);
+    }
+  }
+  // Golden section on [xl, xr].
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  double c = xr - g * (xr - xl), dd = xl + g * (xr - xl);
+  double fc = eval(c), fd = eval(dd);
+  for (int k = 0; k < 80 && xr - xl > 1e-11; ++k) {
+    if (fc < fd) {
+      xr = dd, dd = c, fd = fc, c = xr - g * (xr - xl), fc = eval(c);
+    } else {
+      xl = c, c = dd, fc = fd, dd = xl + g * (xr - xl), fd = eval(dd);
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<PlaneSection> plane_sections(const Mesh& mesh, const Vec3& normal, double offset,
+                                         const SpindleAxis& axis) {
+  return Sectioner(mesh, axis).sections(normal, offset);
+}
+
+PlaneSection axial_plane_section(const Mesh& mesh, const Vec3& normal, double offset,
+                                 const SpindleAxis& axis, const std::string& what) {
+  const Sectioner S(mesh, axis);
+  std::vector<PlaneSection> secs;
+  PlaneSection best;
+  if (S.around_loop(normal, offset, nullptr, &best, &secs)) return best;
+  std::ostringstream s;
+  if (secs.empty()) {
+    s << what << ": the plane n = " << vec_str(normal.normalized()) << ", d = " << offset
+      << " mm misses the mandrel";
+    throw InputError(s.str());
+  }
+  int open = 0;
+  for (const PlaneSection& p : secs) open += !p.closed;
+  s << what << ": the section by the plane n = " << vec_str(normal.normalized()) << ", d = "
+    << offset << " mm does not go around the mandrel (" << secs.size() << " piece(s), " << open
+    << " running into the boundary of the wound region)";
+  throw InputError(s.str());
+}
+
+std::vector<Vec3> section_arc(const Mesh& mesh, const Vec3& normal, double offset,
+                              const Vec3& a, const Vec3& b, double tolerance) {
+  return arc_between(Sectioner(mesh, SpindleAxis{}).sections(normal, offset), a, b, tolerance);
+}
+
+std::vector<Vec3> read_curve_csv(const std::filesystem::path& file) {
+  const std::string text = read_text_file(file);
+  std::vector<Vec3> pts;
+  std::istringstream in(text);
+  std::string line;
+  int lineno = 0;
+  bool header_allowed = true;  // the first non-comment line may be a header
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const auto b = line.find_first_not_of(" \t");
+    if (b == std::string::npos || line[b] == '#') continue;
+    std::string cell;
+    std::vector<std::string> cells;
+    std::istringstream ls(line);
+    while (std::getline(ls, cell, ',')) cells.push_back(cell);
+    double v[3];
+    bool ok = cells.size() == 3;
+    for (int k = 0; ok && k < 3; ++k) {
+      const char* c = cells[k].c_str();
+      char* end = nullptr;
+      v[k] = std::strtod(c, &end);
+      while (end && (*end == ' ' || *end == '\t')) ++end;
+      ok = end != c && end && *end == '\0' && std::isfinite(v[k]);
+    }
+    if (!ok) {
+      const char c0 = line[b];
+      if (header_allowed && (std::isalpha(static_cast<unsigned char>(c0)) || c0 == '"')) {
+        header_allowed = false;
+        continue;
+      }
+      throw IoError(file.string() + ":" + std::to_string(lineno) +
+                    ": expected three numbers x,y,z (mm), got '" + line + "'");
+    }
+    header_allowed = false;
+    pts.emplace_back(v[0], v[1], v[2]);
+  }
+  return pts;
+}
+
+CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const SpindleAxis& axis,
+                        const GeodesicOptions& geodesic, CutLineSummary* summary) {
+  const std::string what = label(cut);
+  if (std::string why; !cut.is_valid(&why)) throw ConfigError(what + ": " + why);
+  if (mesh.num_faces() == 0) throw InputError(what + ": the mesh has no faces");
+  CutLineSummary sum;
+  const double diag = mesh.bounding_box().diagonal_length();
+  const double snap_distance = 0.05 * diag;  // curve points farther from the surface are errors
+  GeodesicOptions opts = geodesic;
+  opts.constraint_tolerance = std::min(opts.constraint_tolerance, 1e-9);
+  if (std::string why; !opts.is_valid(&why)) throw ConfigError(what + ": geodesic options: " + why);
+
+  SurfacePath initial;
+  Vec3 n0;
+  double d0 = 0.0;
+  try {
+    if (cut.closed) {
+      if (cut.has_plane || cut.has_station) {
+        n0 = cut.has_plane ? cut.normal.normalized() : axis.direction.normalized();
+        d0 = cut.has_plane ? cut.offset : n0.dot(axis.origin) + cut.station;
+        sum.start = cut.has_plane ? "plane" : "station";
+        PlaneSection sec = axial_plane_section(mesh, n0, d0, axis, what);
+        initial = std::move(sec.path);
+        sum.initial_length = sec.length;
+      } else {
+        sum.start = "init";
+        std::vector<Vec3> pts = read_curve_csv(cut.init);
+        if (pts.size() >= 2 && (pts.front() - pts.back()).norm() <= 1e-9 * (1.0 + diag)) {
+          pts.pop_back();  // the closing point repeated
+        }
+        if (pts.size() < 3) {
+          throw InputError(what + ": " + cut.init.string() + " has " + std::to_string(pts.size()) +
+                           " point(s); a closed curve needs at least 3");
+        }
+        double longest = 0.0;
+        for (std::size_t i = 1; i < pts.size(); ++i) longest = std::max(longest, (pts[i] - pts[i - 1]).norm());
+        const double gap = (pts.front() - pts.back()).norm();
+        if (gap > 2.0 * longest) {
+          std::ostringstream s;
+          s << what << ": the curve in " << cut.init.string() << " is not closed: its first and "
+            << "last points are " << gap << " mm apart (the longest step between points is "
+            << longest << " mm); give a loop or set closed: false";
+          throw InputError(s.str());
+        }
+        n0 = fit_normal(pts, Vec3::Zero(), axis.direction);
+        if (n0.dot(axis.direction) < 0.0) n0 = -n0;
+        Vec3 c = Vec3::Zero();
+        for (const Vec3& p : pts) c += p;
+        d0 = n0.dot(c / static_cast<double>(pts.size()));
+        const EdgeGraph graph = build_edge_graph(mesh);
+        initial = path_from_curve(mesh, graph, pts, true, snap_distance);
+        sum.initial_length = euclidean_length(mesh, initial);
+        // The start's planar section (the fitted plane's loop), when there is one: the result is
+        // never longer than it.
+        PlaneSection fitted;
+        const Vec3 mid = Sectioner::centroid(pts);
+        if (Sectioner(mesh, axis).around_loop(n0, d0, &mid, &fitted)) {
+          sum.initial_length = std::min(sum.initial_length, fitted.length);
+        }
+      }
+    } else {
+      sum.start = "geodesic";
+      const ClosestPointQuery cpq(mesh);
+      const ClosestPointQuery::Hit ha = cpq.closest(cut.from), hb = cpq.closest(cut.to);
+      for (const auto& [hit, key, p] : {std::tuple{ha, "from", cut.from}, std::tuple{hb, "to", cut.to}}) {
+        if (!(hit.distance <= snap_distance)) {
+          std::ostringstream s;
+          s << what << ": " << key << " " << vec_str(p) << " is " << hit.distance
+            << " mm from the surface (at most " << snap_distance << " mm)";
+          throw InputError(s.str());
+        }
+      }
+      const Vec3 u = (hb.position - ha.position).normalized();
+      const GeodesicContext ctx(mesh);
+      const OpenGeodesicResult g =
+          geodesic_between(ctx, clean_point(mesh, ha.point), clean_point(mesh, hb.point), geodesic);
+      initial = g.path;
+      sum.initial_length = euclidean_length(mesh, initial);
+      const int fa = containing_face(mesh, ha.point);
+      const Vec3 fallback = u.cross(mesh.face_normal(fa)).normalized();
+      if (cut.has_plane) {
+        n0 = cut.normal.normalized();
+        n0 = n0 - n0.dot(u) * u;
+        if (!(n0.norm() > 1e-6)) {
+          throw InputError(what + ": plane.normal is parallel to the line from -> to; no plane "
+                           "with that normal contains both points");
+        }
+        n0.normalize();
+      } else {
+        n0 = fit_normal(polyline(mesh, initial), u, fallback);
+      }
+      d0 = n0.dot(ha.position);
+    }
+  } catch (const IoError&) {
+    throw;
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    throw InputError(m.rfind(what, 0) == 0 ? m : what + ": " + m);
+  }
+  sum.initial_normal = n0;
+  sum.initial_offset = d0;
+
+  const double tilt = cut.normal_mode == "cone" ? cut.max_tilt_deg * M_PI / 180.0 : M_PI;
+  PlaneConstraint plane(n0, d0, constraint_mode(cut.normal_mode), tilt);
+  GeodesicResult r = refine_path(mesh, initial, {}, opts, &plane);
+  Vec3 n = plane.normal(r.constraint_variables.data());
+  double d = plane.offset(r.constraint_variables.data());
+  if (n.dot(n0) < 0.0) {
+    n = -n;
+    d = -d;
+  }
+
+  CutLine out;
+  out.name = cut.name;
+  out.closed = cut.closed;
+  out.points = polyline(mesh, r.path);
+  out.plane_normal = n;
+  out.plane_offset = d;
+  out.length = euclidean_length(mesh, r.path);
+  for (const Vec3& p : out.points) out.residual = std::max(out.residual, std::fabs(n.dot(p) - d));
+  sum.method = "refine_path";
+  sum.refine_length = out.length;
+  sum.refine_residual = out.residual;
+  sum.refine_normal = n;
+
+  if (!cut.closed) {
+    // Polish the rotation of the plane about the line from -> to by minimising the exact section
+    // arc between the two points (the refinement can stall; see CutLineSummary::method).
+    const Sectioner S(mesh, axis);
+    const Vec3 a = out.points.front(), b = out.points.back();
+    const Vec3 u = (b - a).normalized();
+    const Vec3 e2 = u.cross(n0).normalized();
+    double phi = std::atan2(n.dot(e2), n.dot(n0));
+    if (phi > M_PI / 2) phi -= M_PI;
+    if (phi < -M_PI / 2) phi += M_PI;
+    const double max_phi = cut.normal_mode == "fixed" ? 0.0
+                           : cut.normal_mode == "cone" ? tilt
+                                                       : M_PI / 2;
+    const ArcFit fit = minimise_arc(S, a, b, n0, phi, max_phi, 1e-7 * (1.0 + diag));
+    sum.polish_evaluations = fit.evaluations;
+    const bool refine_ok = r.summary.converged() && out.residual <= 1e-6 * out.length;
+    if (!fit.points.empty() && (!refine_ok || fit.length <= out.length * (1.0 + 1e-9))) {
+      out.points = fit.points;
+      out.plane_normal = n = fit.n;
+      out.plane_offset = fit.d;
+      out.length = fit.length;
+      out.residual = 0.0;
+      for (const Vec3& p : out.points) {
+        out.residual = std::max(out.residual, std::fabs(fit.n.dot(p) - fit.d));
+      }
+      sum.method = "section polish";
+    }
+  }
+  if (cut.closed) {
+    // The refinement may stop early (it can get stuck on vertices while the plane turns): polish
+    // the plane by minimising the length of its exact section loop, from the refined plane (or
+    // the initial one), and keep the polished loop unless the refined one is clearly shorter.
+    const Sectioner S(mesh, axis);
+    SectionFit fit = minimise_section(S, n, d, Sectioner::centroid(out.points), cut.normal_mode,
+                                      n0, tilt);
+    if (!fit.section.around) {
+      fit = minimise_section(S, n0, d0, Sectioner::centroid(out.points), cut.normal_mode, n0, tilt);
+    }
+    sum.polish_evaluations = fit.evaluations;
+    const bool refine_ok = r.summary.converged() && out.residual <= 1e-6 * out.length;
+    if (fit.section.around &&
+        (!refine_ok || fit.section.length <= out.length * (1.0 + 1e-9))) {
+      Vec3 fn = fit.n;
+      double fd = fit.d;
+      if (fn.dot(n0) < 0.0) fn = -fn, fd = -fd;
+      out.points = std::move(fit.section.points);
+      out.plane_normal = fn;
+      out.plane_offset = fd;
+      out.length = fit.section.length;
+      out.residual = 0.0;
+      for (const Vec3& p : out.points) {
+        out.residual = std::max(out.residual, std::fabs(fn.dot(p) - fd));
+      }
+      n = fn;
+      sum.method = "section polish";
+    }
+  }
+
+  sum.tilt_deg = std::acos(std::clamp(n.dot(n0), -1.0, 1.0)) * 180.0 / M_PI;
+  sum.geodesic = r.summary;
+  {
+    const ClosestPointQuery cpq(mesh);
+    for (const Vec3& p : out.points) {
+      sum.max_surface_distance = std::max(sum.max_surface_distance, cpq.closest(p).distance);
+    }
+  }
+  if (!r.summary.converged() && sum.method == "refine_path") {
+    sum.warnings.push_back(what + ": the refinement stopped with " +
+                           std::string(to_string(r.summary.termination)) + " (" +
+                           r.summary.message + ")");
+  }
+  if (out.residual > 1e-6 * out.length) {
+    std::ostringstream s;
+    s << what << ": plane residual " << out.residual << " mm is above 1e-6 of the length "
+      << out.length << " mm";
+    sum.warnings.push_back(s.str());
+  }
+  if (summary) *summary = std::move(sum);
+  return out;
+}
+
+std::vector<CutLine> compute_cutlines(const Mandrel& mandrel, const std::vector<CutLineOptions>& cuts,
+                                      const GeodesicOptions& geodesic,
+                                      std::vector<CutLineSummary>* summaries) {
+  std::vector<CutLine> out;
+  if (summaries) summaries->clear();
+  for (const CutLineOptions& c : cuts) {
+    CutLineSummary s;
+    out.push_back(compute_cutline(mandrel.winding.mesh, c, mandrel.axis, geodesic, &s));
+    if (summaries) summaries->push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace windplan
