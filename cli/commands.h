@@ -34,4 +34,12 @@ extern const char* const kGeodesicHelp;
 int run_loop(const std::vector<std::string>& args);
 extern const char* const kLoopHelp;
 
+/// cmd_helices.cpp: plan a job's helices and circuits and report passes and plan metrics.
+int run_helices(const std::vector<std::string>& args);
+extern const char* const kHelicesHelp;
+
+/// cmd_run.cpp: run a job end to end (mandrel -> girth -> helices -> toolpath -> exports).
+int run_run(const std::vector<std::string>& args);
+extern const char* const kRunHelp;
+
 }  // namespace windplan::cli

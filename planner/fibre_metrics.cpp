@@ -119,7 +119,7 @@ void annotate_fibre_points(std::vector<FibrePoint>* points, const SpindleAxis& a
     // Chord tangents (unprojected) at both ends of the window: their difference over the span.
     const Vec3 ta = chord_direction(p, cum, lo, half), tb = chord_direction(p, cum, hi, half);
     const Vec3 dt = (tb - ta) / (hi - lo);
-    q.k_n = dt.dot(q.normal);
+    q.k_n = -dt.dot(q.normal);  // > 0 where the fibre bends towards the mandrel (convex)
     q.k_g = dt.dot(q.normal.cross(q.tangent));
     q.slippage = std::fabs(q.k_n) > 1e-12 ? std::fabs(q.k_g / q.k_n) : (std::fabs(q.k_g) > 1e-12 ? 1e12 : 0.0);
   }
@@ -164,6 +164,8 @@ std::vector<Circuit> build_circuits(const Mesh& m, const HelixPlan& plan,
       // The first point repeats the previous segment's last point: keep one copy.
       const int first = c.points.empty() ? 0 : static_cast<int>(c.points.size()) - 1;
       const std::size_t skip = c.points.empty() ? 0 : 1;
+      // A pass owns its first point's annotation (its direction, not the turnaround's).
+      if (!c.points.empty() && kind == CircuitSegment::Kind::Pass) c.points.back() = pts.front();
       for (std::size_t i = skip; i < pts.size(); ++i) c.points.push_back(pts[i]);
       c.segments.push_back({kind, first, static_cast<int>(c.points.size()) - 1});
     };

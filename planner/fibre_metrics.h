@@ -5,7 +5,8 @@
 // Curvatures are estimated robustly from the polyline and the mesh normals: the tangent at arc
 // length s is the unit chord P(s + w/2) - P(s - w/2) projected onto the tangent plane, and
 // t' = (T(s + w/2) - T(s - w/2)) / w, i.e. smoothed finite differences over a window w of about a
-// band width (WindingOptions::curvature_window, default band_width). Then k_n = t' . n and
+// band width (WindingOptions::curvature_window, default band_width). Then k_n = -t' . n (n the
+// outward normal, so k_n > 0 where the fibre presses on a convex mandrel) and
 // k_g = t' . (n x t) with n the interpolated (angle-weighted) vertex normal; slippage is
 // |k_g / k_n|. The window filters the tessellation's kinks (edge-crossing scale); curvature
 // radii well above w are resolved to O(w^2 / radius^2).

@@ -271,7 +271,11 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
 
   auto refine = [&](HelixPass* p) {
     const auto t0 = std::chrono::steady_clock::now();
-    GeodesicResult r = refine_path(m, p->initial, metric, gopt);
+    GeodesicOptions go = gopt;
+    // Level sets on long, thin CAD triangles need many strip changes on the way to the
+    // geodesic; the core's default cap (20 + 4 k) stops them early (see the report).
+    if (go.max_reroutes == 0) go.max_reroutes = 1000 + 100 * p->initial.num_crossings();
+    GeodesicResult r = refine_path(m, p->initial, metric, go);
     plan.summary.refine_ms += ms_since(t0);
     p->path = std::move(r.path);
     p->summary = r.summary;

@@ -1,0 +1,119 @@
+// windplan helices <job.yaml> [--json] [-o dir]
+// Plans the job's helices (mandrel -> girth -> density -> level-set helices -> refinement ->
+// circuits) and reports every pass and the plan metrics; -o writes the plan's CSV, PLY and report.
+#include <iostream>
+#include <sstream>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "export/export_plan.h"
+#include "geometry/json.h"
+#include "planner/job.h"
+#include "planner/pipeline.h"
+
+namespace windplan::cli {
+
+const char* const kHelicesHelp =
+    "usage: windplan helices <job.yaml> [--json] [-o DIR]\n\n"
+    "Plans the equally spaced geodesic helices of a job (winding: turns, circuits, band_width,\n"
+    "beta, mu): conformal coordinates of the wound region, level-set helices, refinement under\n"
+    "the density rho = (g / mean g)^-beta, continuous circuits with turnarounds. Prints one line\n"
+    "per pass (length, winding angle where it leaves and meets the openings, max slippage,\n"
+    "refinement) and the plan metrics (spacing, coverage, pattern, stability, warnings).\n\n"
+    "  --json          print the report as JSON on stdout\n"
+    "  -o, --out DIR   also write fibre_path.csv, paths.ply, mesh.ply and report.json/md there\n";
+
+int run_helices(const std::vector<std::string>& argv) {
+  const Args args(argv, {"--json"}, {"-o", "--out"});
+  args.expect_positional(1, "a job file");
+  const Job job = load_job(args.positional()[0]);
+  const PipelineResult r = plan_job(job);
+  const WindingPlan& plan = r.plan;
+  const PlanMetrics& m = plan.metrics;
+  const HelixPlanSummary& hs = r.helices.summary;
+
+  const std::string out = args.has("-o") ? args.value("-o") : args.value("--out");
+  if (!out.empty()) {
+    OutputOptions o = job.output;
+    o.gcode = false;
+    o.svg = false;
+    export_plan(plan, r.mandrel.mesh, job.machine, o, out);
+  }
+
+  if (args.flag("--json")) {
+    JsonWriter j;
+    j.begin_object();
+    j.field("job", job.name);
+    j.field("turns", job.winding.turns);
+    j.field("circuits", hs.circuits);
+    j.field("circuits_auto", hs.circuits_auto);
+    j.field("beta", job.winding.beta);
+    j.field("girth_field", r.has_girth);
+    j.field("conformal_error_deg", r.helices.coords.conformal_error);
+    j.key("passes").begin_array();
+    for (const PassReport& p : r.passes) {
+      j.begin_object();
+      j.field("circuit", p.circuit);
+      j.field("hand", p.hand);
+      j.field("length", p.length);
+      j.field("angle_start", p.angle_start);
+      j.field("angle_end", p.angle_end);
+      j.field("radius_start", p.radius_start);
+      j.field("radius_end", p.radius_end);
+      j.field("max_slippage", p.max_slippage);
+      j.field("iterations", p.iterations);
+      j.field("termination", p.termination);
+      j.end_object();
+    }
+    j.end_array();
+    j.key("metrics").begin_object();
+    j.field("fibre_length", m.fibre_length);
+    j.field("spacing_mean", m.spacing_mean);
+    j.field("spacing_cv", m.spacing_cv);
+    j.field("circuits_for_coverage", m.circuits_for_coverage);
+    j.field("cover_factor", m.cover_factor);
+    j.field("pattern", m.pattern);
+    j.field("max_slippage", m.max_slippage);
+    j.field("friction", m.friction);
+    j.field("slip_fraction", m.slip_fraction);
+    j.field("bridging_length", m.bridging_length);
+    j.key("warnings").begin_array();
+    for (const std::string& w : m.warnings) j.value(w);
+    j.end_array();
+    j.end_object();
+    j.key("timings_s").begin_object();
+    for (const StageTiming& t : m.timings) j.field(t.stage, t.seconds);
+    j.end_object();
+    j.end_object();
+    std::cout << j.str() << "\n";
+    return 0;
+  }
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(3);
+  s << "helices: " << job.name << ": K = " << hs.circuits << (hs.circuits_auto ? " (auto)" : "")
+    << " circuits of N = " << job.winding.turns << " turns per pass, beta = " << job.winding.beta
+    << (r.has_girth ? " (girth field)" : " (girth 2 pi r)") << "\n";
+  s << "  conformal error " << r.helices.coords.conformal_error << " deg\n";
+  for (const PassReport& p : r.passes) {
+    s << "  circuit " << p.circuit << (p.hand > 0 ? " out   " : " return") << ": length "
+      << p.length << " mm, angle " << p.angle_start << " deg at r = " << p.radius_start
+      << " mm -> " << p.angle_end << " deg at r = " << p.radius_end << " mm, max slippage "
+      << p.max_slippage << ", " << p.iterations << " it, " << p.termination << "\n";
+  }
+  s << "  fibre length " << m.fibre_length << " mm\n";
+  s << "  spacing: mean " << m.spacing_mean << " mm, CV (girth-normalised) " << m.spacing_cv
+    << "\n";
+  s << "  coverage: " << m.circuits_for_coverage << " circuits needed, cover factor "
+    << m.cover_factor << "; pattern " << m.pattern << "\n";
+  s << "  stability: max |k_g/k_n| " << m.max_slippage << " vs mu " << m.friction << ", "
+    << 100.0 * m.slip_fraction << "% above, bridging " << m.bridging_length << " mm\n";
+  for (const std::string& w : m.warnings) s << "  warning: " << w << "\n";
+  s << "  time:";
+  for (const StageTiming& t : m.timings) s << " " << t.stage << " " << t.seconds << " s";
+  s << "\n";
+  std::cout << s.str();
+  return 0;
+}
+
+}  // namespace windplan::cli

@@ -1,0 +1,44 @@
+#pragma once
+// The planning pipeline of a job: mandrel -> winding surface -> girth field -> density ->
+// helices (planner/helix.h) -> continuous circuits with their differential geometry and the plan
+// metrics (planner/fibre_metrics.h) -> cut-lines (planner/cutlines.h) -> WindingPlan.
+//
+// Export (export/export_plan.h) is the last stage of `windplan run`; it lives in export/, which
+// depends on planner/ (house style rule 1: no upward includes), so the CLI calls plan_job and
+// then export_plan. Stage wall times go into plan.metrics.timings in stage order (the files show
+// them only with output.timings, so two runs stay byte-identical).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "planner/fibre_metrics.h"
+#include "planner/girth.h"
+#include "planner/helix.h"
+#include "planner/job.h"
+#include "planner/mandrel_builder.h"
+#include "planner/plan.h"
+
+namespace windplan {
+
+struct PipelineOptions {
+  /// Called after each stage with its name and wall time (e.g. a progress line on stderr).
+  std::function<void(const StageTiming&)> on_stage;
+  /// Called before each stage starts with its name.
+  std::function<void(const std::string&)> on_stage_start;
+};
+
+struct PipelineResult {
+  Mandrel mandrel;
+  bool has_girth = false;            ///< the girth field was computed (beta > 0 or no revolution)
+  GirthField girth;
+  std::vector<double> face_girth;    ///< per winding-surface face (mm): girth field or 2 pi r
+  HelixPlan helices;
+  std::vector<PassReport> passes;
+  WindingPlan plan;
+};
+
+/// Runs a loaded job up to the WindingPlan.
+/// \throw what the stages throw: IoError/InputError/TopologyError/ConfigError for bad input.
+PipelineResult plan_job(const Job& job, const PipelineOptions& options = {});
+
+}  // namespace windplan
