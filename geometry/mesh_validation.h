@@ -119,10 +119,11 @@ struct RepairResult {
 
 /// Repairs what is safe, in this order: drop triangles with invalid indices; merge exactly
 /// duplicate vertices (only if that creates no non-manifold edge or vertex); drop degenerate
-/// triangles; drop duplicate triangles; remove zero-area "cap" triangles by flipping their long
-/// edge (kept, and reported, where that is impossible); refuse non-manifold edges; split or
-/// refuse non-manifold vertices; drop unreferenced vertices; orient each component consistently
-/// (BFS, keeping the majority orientation); turn closed components outward.
+/// triangles; drop duplicate triangles; refuse non-manifold edges; split or refuse non-manifold
+/// vertices; drop unreferenced vertices; orient each component consistently (BFS, keeping the
+/// majority orientation); turn closed components outward; finally remove zero-area "cap"
+/// triangles by flipping their long edge, or drop those on the open boundary (no hole, no area
+/// lost); the rest are kept and listed in `kept`.
 /// \throw TopologyError naming the first few elements for non-manifold edges, non-manifold
 ///        vertices (unless split_nonmanifold_vertices) and non-orientable components.
 RepairResult repair_mesh(TriangleSoup soup, const RepairOptions& options = {});
