@@ -70,6 +70,7 @@ int main(int argc, char** argv) {
   int num_pairs = 50, per_source = 5, exact_sources = 1, exact_sources_small = -1;
   unsigned seed = 20240611;
   std::vector<std::filesystem::path> files;
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress shows when redirected to a file
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> int {

@@ -142,6 +142,7 @@ struct Agreement {
   double median = 0.0;         ///< median relative excess
   double min_excess = 0.0;
   double max_same_excess = 0.0;///< worst |excess| among the same-geodesic pairs
+  int not_converged = 0;       ///< pairs whose summary is not converged()
 };
 
 /// `sources` random vertex sources with `per_source` random vertex targets each (fixed seed).
@@ -165,13 +166,17 @@ Agreement compare_with_exact(const Mesh& mesh, int sources, int per_source, unsi
       double exact_length = 0.0;
       const std::vector<Vec3> exact_path = exact.path(pa, pb, &exact_length);
       const OpenGeodesicResult r = geodesic_between(ctx, pa, pb, options);
-      EXPECT_TRUE(r.summary.converged()) << v << " -> " << w << ": " << r.summary.brief_report();
       std::string why;
       EXPECT_TRUE(is_valid_path(mesh, r.path, &why)) << why;
       const double length = euclidean_length(mesh, r.path);
       EXPECT_NEAR(length, r.summary.final_length, 1e-9 * length);
       const double e = (length - exact_length) / exact_length;
       excess.push_back(e);
+      // A solver that stops without its convergence test (e.g. a failed line search) must at
+      // least have stopped on the exact geodesic.
+      if (!r.summary.converged()) ++a.not_converged;
+      EXPECT_TRUE(r.summary.converged() || std::abs(e) < 1e-9)
+          << v << " -> " << w << ": excess " << e << ", " << r.summary.brief_report();
       const std::vector<Vec3> ours = polyline(mesh, r.path);
       const bool same = one_sided_distance(ours, exact_path) < same_tol &&
                         one_sided_distance(exact_path, ours) < same_tol;
@@ -198,7 +203,8 @@ Agreement compare_with_exact(const Mesh& mesh, int sources, int per_source, unsi
 void expect_agreement(const Agreement& a, const std::string& what) {
   std::cout << "[ " << what << " ] " << a.pairs << " pairs: " << a.same_geodesic
             << " on the exact geodesic (worst |excess| " << a.max_same_excess << "), "
-            << a.other_geodesic << " on another geodesic; median excess " << a.median
+            << a.other_geodesic << " on another geodesic, " << a.not_converged
+            << " not converged; median excess " << a.median
             << ", min " << a.min_excess << "\n";
   EXPECT_GE(a.within_1e4, (9 * a.pairs + 9) / 10) << what;
   EXPECT_LE(a.median, 1e-6) << what;
