@@ -8,6 +8,8 @@ const std::vector<Command>& commands() {
        run_mandrel},
       {"mesh", "check a mesh (or a job's mesh mandrel), repair it, convert it", kMeshHelp,
        run_mesh},
+      {"girth", "the girth field of a job's winding surface (shortest loops winding once)",
+       kGirthHelp, run_girth},
       {"helices", "plan a job's equally spaced geodesic helices and report the plan metrics",
        kHelicesHelp, run_helices},
       {"run", "run a job end to end: mandrel, girth, helices, toolpath, every output file",

@@ -27,6 +27,10 @@ extern const char* const kMandrelHelp;
 int run_mesh(const std::vector<std::string>& args);
 extern const char* const kMeshHelp;
 
+/// cmd_girth.cpp: the girth field of a job's winding surface (planner/girth.h).
+int run_girth(const std::vector<std::string>& args);
+extern const char* const kGirthHelp;
+
 /// cmd_geodesic.cpp: a geodesic between two surface points (geodesic) and a closed geodesic loop
 /// refined from a curve (loop), under a Euclidean, density or anisotropic metric.
 int run_geodesic(const std::vector<std::string>& args);

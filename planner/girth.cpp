@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <queue>
 #include <set>
+#include <thread>
 #include <utility>
 
 #include "geometry/edge_path.h"
@@ -20,7 +22,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Samples blended per vertex (the (k+1)-th nearest sets the support radius).
-constexpr int kBlend = 6;
+constexpr int kBlend = 8;
 
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -355,14 +357,43 @@ GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) co
   }
   const int initial_winding = winding_number(path);
 
+  // A loop lying exactly on mesh edges through flat vertices (a cylinder's ring) ends with no
+  // decrease along the search direction at the optimum: accepted as converged (non-smooth
+  // optimum); the summary keeps the core's own termination. A result that did not converge,
+  // lost the winding or got longer than the edge loop is retried without the funnel start
+  // (the Newton/reroute path of the core), which some core versions need for a path from p
+  // back to p.
+  auto acceptable = [&](const GeodesicResult& r, int winding) {
+    const bool done = r.summary.converged() ||
+                      r.summary.termination == GeodesicTermination::LineSearchFailed;
+    return done && std::abs(winding) == 1 &&
+           r.summary.euclidean_length <= loop.edge_length * (1 + 1e-9);
+  };
   GeodesicResult r = refine_path(mesh, path, PathMetric{}, GeodesicOptions{});
-  loop.winding = winding_number(r.path);
-  loop.converged = r.summary.converged();
-  if (std::abs(loop.winding) == 1 && r.summary.euclidean_length <= loop.edge_length * (1 + 1e-12)) {
+  int winding = winding_number(r.path);
+  if (!acceptable(r, winding)) {
+    GeodesicOptions retry;
+    retry.funnel_start = false;
+    GeodesicResult r2 = refine_path(mesh, path, PathMetric{}, retry);
+    const int winding2 = winding_number(r2.path);
+    loop.retried = true;
+    const bool better = acceptable(r2, winding2) ||
+                        (std::abs(winding2) == 1 && std::abs(winding) != 1) ||
+                        (std::abs(winding2) == 1 &&
+                         r2.summary.euclidean_length < r.summary.euclidean_length);
+    if (better) {
+      r = std::move(r2);
+      winding = winding2;
+    }
+  }
+  loop.summary = r.summary;
+  loop.winding = winding;
+  loop.converged = acceptable(r, winding);
+  if (std::abs(winding) == 1 && r.summary.euclidean_length <= loop.edge_length * (1 + 1e-9)) {
     loop.girth = r.summary.euclidean_length;
     loop.path = std::move(r.path);
   } else {
-    // The refinement lost the winding (it must not): keep the initial loop, flag it.
+    // The refinement lost the winding or did not shorten the loop: keep the initial loop.
     loop.girth = euclidean_length(mesh, path);
     loop.winding = initial_winding;
     loop.converged = false;
@@ -410,18 +441,19 @@ std::vector<int> farthest_euclidean(const Mesh& mesh, const std::vector<int>& ca
 // Samples on rings of the intrinsic axial coordinate t = d0 / (d0 + d1).
 std::vector<int> ring_samples(const Mesh& mesh, const EdgeGraph& graph,
                               const std::array<std::vector<int>, 2>& loops,
+                              const std::vector<double>& t, double meridian,
                               const GirthOptions& options) {
   const int nv = mesh.num_vertices();
-  const std::vector<double> d0 = graph_distances(graph, loops[0]);
-  const std::vector<double> d1 = graph_distances(graph, loops[1]);
-  std::vector<double> t(nv, 0.5);
-  for (int v = 0; v < nv; ++v) {
-    const double s = d0[v] + d1[v];
-    t[v] = s > 0.0 ? d0[v] / s : 0.5;
+  // Auto: about as far apart along the axis as around it. With S samples on R rings over a
+  // meridian of length L and a mean circumference A / L: L / (R - 1) ~ (A / L) / (S / R), i.e.
+  // R ~ sqrt(S L^2 / A): sqrt(S) for a surface as long as it is round.
+  int rings = options.rings;
+  if (rings <= 0) {
+    const double area = mesh.total_area();
+    const double aspect = area > 0.0 ? meridian * meridian / area : 1.0;
+    rings = static_cast<int>(std::lround(std::sqrt(options.samples * aspect)));
+    rings = std::clamp(rings, 2, std::max(2, options.samples / 3));
   }
-  int rings = options.rings > 0
-                  ? options.rings
-                  : std::max(2, static_cast<int>(std::lround(std::sqrt(double(options.samples)))));
   rings = std::min(rings, options.samples);
   std::vector<int> chosen;
   std::set<int> seen;
@@ -465,58 +497,130 @@ GirthField compute_girth_field(const Mesh& annulus, const std::array<std::vector
   const int nv = mesh.num_vertices();
   const int samples = std::min(options.samples, nv);
 
-  // The (kBlend + 1) nearest samples of every vertex, by distance, ascending.
-  constexpr int kKeep = kBlend + 1;
-  std::vector<double> near_d(static_cast<std::size_t>(nv) * kKeep, kInf);
-  std::vector<int> near_s(static_cast<std::size_t>(nv) * kKeep, -1);
-  std::vector<double> nearest(nv, kInf);
-
   GirthField field;
-  std::vector<int> planned;
-  if (options.placement == "rings") {
-    // The context's graph is private; an equal one is cheap to rebuild.
-    planned = ring_samples(mesh, build_edge_graph(mesh), loops, options);
+  // Intrinsic axial coordinate t = d0 / (d0 + d1) in [0, 1] (0 on loop 0, 1 on loop 1).
+  const EdgeGraph graph = build_edge_graph(mesh);
+  const std::vector<double> d0 = graph_distances(graph, loops[0]);
+  const std::vector<double> d1 = graph_distances(graph, loops[1]);
+  std::vector<double> t(nv, 0.5);
+  double meridian = 0.0;
+  for (int v = 0; v < nv; ++v) {
+    const double s = d0[v] + d1[v];
+    t[v] = s > 0.0 ? d0[v] / s : 0.5;
+    meridian += s / nv;
   }
-  std::vector<double> dist;
-  for (int k = 0; k < samples; ++k) {
-    int v = -1;
-    if (options.placement == "rings") {
-      if (k >= static_cast<int>(planned.size())) break;
-      v = planned[k];
-    } else if (k == 0) {
-      v = loops[0].front();
-    } else {
+
+  // 1. Where: the planned rings, then farthest-point sampling (which also tops up rings that
+  // had fewer candidates than samples). `nearest` is kept by a Dijkstra from each new sample
+  // pruned to where it improves (it only explores the new sample's Voronoi cell).
+  std::vector<int> chosen;
+  if (options.placement == "rings") chosen = ring_samples(mesh, graph, loops, t, meridian, options);
+  if (static_cast<int>(chosen.size()) > samples) chosen.resize(samples);
+  std::vector<double> nearest(nv, kInf);
+  {
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    auto add = [&](int v) {
+      nearest[v] = 0.0;
+      queue.emplace(0.0, v);
+      while (!queue.empty()) {
+        const auto [d, u] = queue.top();
+        queue.pop();
+        if (d > nearest[u]) continue;
+        for (int i = graph.offsets[u]; i < graph.offsets[u + 1]; ++i) {
+          const int w = graph.neighbors[i];
+          if (d + graph.weights[i] < nearest[w]) {
+            nearest[w] = d + graph.weights[i];
+            queue.emplace(nearest[w], w);
+          }
+        }
+      }
+    };
+    for (int v : chosen) add(v);
+    if (chosen.empty()) {
+      chosen.push_back(loops[0].front());
+      add(chosen.back());
+    }
+    while (static_cast<int>(chosen.size()) < samples) {
+      int v = -1;
       double best = 0.0;
       for (int u = 0; u < nv; ++u)
         if (nearest[u] > best) best = nearest[u], v = u;
       if (v < 0) break;  // every vertex is a sample
+      chosen.push_back(v);
+      add(v);
     }
-    GirthContext::Loop loop = context.girth(v, &dist);
-    if (!loop.converged || std::abs(loop.winding) != 1) ++field.unconverged_samples;
-    const int id = static_cast<int>(field.samples.size());
-    field.samples.push_back({v, loop.girth, mesh.position(v)});
-    for (int u = 0; u < nv; ++u) {
-      const double d = dist[u];
-      nearest[u] = std::min(nearest[u], d);
-      double* nd = &near_d[static_cast<std::size_t>(u) * kKeep];
-      int* ns = &near_s[static_cast<std::size_t>(u) * kKeep];
-      if (!(d < nd[kKeep - 1])) continue;
-      int j = kKeep - 1;
-      while (j > 0 && nd[j - 1] > d) {
-        nd[j] = nd[j - 1];
-        ns[j] = ns[j - 1];
-        --j;
+  }
+  for (int v = 0; v < nv; ++v) field.lipschitz_bound = std::max(field.lipschitz_bound, 2.0 * nearest[v]);
+
+  // 2. The exact loops, independent of each other: spread over the hardware threads.
+  const int count = static_cast<int>(chosen.size());
+  std::vector<GirthContext::Loop> exact(count);
+  {
+    const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1,
+                                   std::min(8, count));
+    std::vector<std::exception_ptr> errors(threads);
+    auto work = [&](int id) {
+      try {
+        for (int k = id; k < count; k += threads) exact[k] = context.girth(chosen[k]);
+      } catch (...) {
+        errors[id] = std::current_exception();
       }
-      nd[j] = d;
-      ns[j] = id;
+    };
+    std::vector<std::thread> pool;
+    for (int id = 1; id < threads; ++id) pool.emplace_back(work, id);
+    work(0);
+    for (std::thread& th : pool) th.join();
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
+  }
+  for (int k = 0; k < count; ++k) {
+    const GirthContext::Loop& loop = exact[k];
+    if (!loop.converged || std::abs(loop.winding) != 1) ++field.unconverged_samples;
+    field.samples.push_back({chosen[k], loop.girth, mesh.position(chosen[k])});
+  }
+
+  // 3. The (kBlend + 1) nearest samples of every vertex, ascending, by one Dijkstra that carries
+  // up to kKeep labels per vertex: a sample stops spreading through a vertex that already has
+  // kKeep nearer ones (then they are nearer at every vertex beyond too).
+  constexpr int kKeep = kBlend + 1;
+  std::vector<double> near_d(static_cast<std::size_t>(nv) * kKeep, kInf);
+  std::vector<int> near_s(static_cast<std::size_t>(nv) * kKeep, -1);
+  std::vector<int> labels(nv, 0);
+  {
+    struct Item {
+      double d;
+      int v, s;
+      bool operator>(const Item& o) const { return d > o.d; }
+    };
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    auto has = [&](int v, int s) {
+      const int* ns = &near_s[static_cast<std::size_t>(v) * kKeep];
+      for (int j = 0; j < labels[v]; ++j)
+        if (ns[j] == s) return true;
+      return false;
+    };
+    for (int k = 0; k < count; ++k) queue.push({0.0, chosen[k], k});
+    while (!queue.empty()) {
+      const Item it = queue.top();
+      queue.pop();
+      if (labels[it.v] >= kKeep || has(it.v, it.s)) continue;
+      const std::size_t slot = static_cast<std::size_t>(it.v) * kKeep + labels[it.v]++;
+      near_d[slot] = it.d;
+      near_s[slot] = it.s;
+      for (int i = graph.offsets[it.v]; i < graph.offsets[it.v + 1]; ++i) {
+        const int w = graph.neighbors[i];
+        if (labels[w] < kKeep && !has(w, it.s)) queue.push({it.d + graph.weights[i], w, it.s});
+      }
     }
   }
 
+  std::vector<double> sample_t;
+  for (const GirthSample& s : field.samples) sample_t.push_back(t[s.vertex]);
   field.vertex_girth.assign(nv, 0.0);
   for (int u = 0; u < nv; ++u) {
     const double* nd = &near_d[static_cast<std::size_t>(u) * kKeep];
     const int* ns = &near_s[static_cast<std::size_t>(u) * kKeep];
-    field.lipschitz_bound = std::max(field.lipschitz_bound, 2.0 * nearest[u]);
     if (ns[0] < 0) continue;
     if (nd[0] <= 0.0) {
       field.vertex_girth[u] = field.samples[ns[0]].girth;
@@ -526,22 +630,35 @@ GirthField compute_girth_field(const Mesh& annulus, const std::array<std::vector
     while (used < kBlend && ns[used] >= 0) ++used;
     // Support radius: the next nearest sample, or past the farthest one used.
     const double radius = ns[kKeep - 1] >= 0 ? nd[kKeep - 1] : 2.0 * nd[used - 1];
-    double sw = 0.0, swg = 0.0, lo = -kInf, hi = kInf;
+    // Weighted linear least squares g ~ a + b (t_j - t_u); the value is a. Falls back to the
+    // weighted mean (b = 0) when the samples used span no range of t.
+    double w[kKeep], sw = 0.0, lo = -kInf, hi = kInf;
     for (int j = 0; j < used; ++j) {
-      const double gj = field.samples[ns[j]].girth;
-      const double w = std::pow(std::max(0.0, radius - nd[j]) / (radius * nd[j]), 2);
-      sw += w;
-      swg += w * gj;
+      w[j] = std::pow(std::max(0.0, radius - nd[j]) / (radius * nd[j]), 2);
+      sw += w[j];
+    }
+    if (!(sw > 0.0))
+      for (int j = 0; j < used; ++j) w[j] = 1.0, sw += 1.0;
+    double st = 0.0, sg = 0.0;
+    for (int j = 0; j < used; ++j) {
+      const int i = ns[j];
+      st += w[j] * (sample_t[i] - t[u]);
+      sg += w[j] * field.samples[i].girth;
+    }
+    st /= sw;
+    sg /= sw;
+    double stt = 0.0, stg = 0.0;
+    for (int j = 0; j < used; ++j) {
+      const int i = ns[j];
+      const double dt = sample_t[i] - t[u] - st;
+      stt += w[j] * dt * dt;
+      stg += w[j] * dt * (field.samples[i].girth - sg);
+      const double gj = field.samples[i].girth;
       lo = std::max(lo, gj - 2.0 * nd[j]);
       hi = std::min(hi, gj + 2.0 * nd[j]);
     }
-    double value;
-    if (sw > 0.0) {
-      value = swg / sw;
-    } else {
-      value = 0.0;
-      for (int j = 0; j < used; ++j) value += field.samples[ns[j]].girth / used;
-    }
+    double value = sg;
+    if (stt > 1e-12 * sw) value = sg - (stg / stt) * st;
     if (lo <= hi) value = std::clamp(value, lo, hi);
     field.vertex_girth[u] = value;
   }

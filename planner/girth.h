@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/geodesic.h"
 #include "geometry/mesh.h"
 #include "geometry/surface_path.h"
 
@@ -93,8 +94,10 @@ class GirthContext {
     double girth = 0.0;       ///< refined loop length (mm)
     double edge_length = 0.0; ///< length of the initial edge loop (mm)
     int winding = 0;          ///< net signed seam crossings of the refined loop (+-1 expected)
-    bool converged = false;   ///< the geodesic refinement converged
+    bool converged = false;   ///< the geodesic refinement converged (see summary)
     SurfacePath path;         ///< open path from p to p
+    GeodesicSummary summary;  ///< the refinement's summary
+    bool retried = false;     ///< the first refinement failed and was retried without funnel start
   };
   /// Exact girth at vertex p. When `distances` is given, it receives the edge-graph distance
   /// from p to every vertex (the lifted search then runs to completion).
