@@ -203,6 +203,8 @@ Analysis analyze(const TriangleSoup& soup, const MeshCheckOptions& opt) {
   a.group_start.push_back(static_cast<int>(a.halfedges.size()));
   h.num_edges = ng;
 
+  UnionFind faces(nf);
+  UnionFind corners(3 * nf);
   UnionFind boundary(nv);
   std::vector<char> on_boundary(nv, 0);
   double len_sum = 0.0;
@@ -228,86 +230,52 @@ Analysis analyze(const TriangleSoup& soup, const MeshCheckOptions& opt) {
       ++h.num_inconsistent_edges;
       if (h.inconsistent_edges.size() < max_listed) h.inconsistent_edges.push_back({u, w});
     }
+    // Link the triangles (components) and the corners at both ends (fans).
+    for (int i = b + 1; i < e; ++i) {
+      const int hi = a.halfedges[i].second;
+      faces.unite(h0 / 3, hi / 3);
+    }
+    for (int i = b; i < e; ++i) {
+      const int hi = a.halfedges[i].second;
+      const int fi = hi / 3;
+      // Corner of u and of w in triangle fi.
+      for (int k = 0; k < 3; ++k) {
+        const int c = 3 * fi + k;
+        const int v = soup.triangles[fi][k];
+        if (v == u) corners.unite(c, 3 * (h0 / 3) + (from(h0) == u ? h0 % 3 : (h0 % 3 + 1) % 3));
+        if (v == w) corners.unite(c, 3 * (h0 / 3) + (from(h0) == w ? h0 % 3 : (h0 % 3 + 1) % 3));
+      }
+    }
   }
   h.mean_edge_length = ng > 0 ? len_sum / ng : 0.0;
 
-  // Fans, vertex by vertex: two corners at v are in the same fan when their triangles share an
-  // edge (v, w), i.e. the corners have a neighbour w in common. Local union-find over the few
-  // corners of v (cache-friendly, unlike one union-find over all 3F corners).
+  // Fans per vertex: count root corners per vertex.
   a.corner_fan.assign(3 * static_cast<std::size_t>(nf), -1);
-  {
-    std::vector<int> vstart(static_cast<std::size_t>(nv) + 1, 0);
-    for (int f = 0; f < nf; ++f) {
-      if (!a.usable[f]) continue;
-      for (int k = 0; k < 3; ++k) ++vstart[soup.triangles[f][k] + 1];
+  std::vector<int> fans(nv, 0);
+  for (int f = 0; f < nf; ++f) {
+    if (!a.usable[f]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int c = 3 * f + k;
+      a.corner_fan[c] = corners.find(c);
+      if (a.corner_fan[c] == c) ++fans[soup.triangles[f][k]];
     }
-    for (int v = 0; v < nv; ++v) vstart[v + 1] += vstart[v];
-    std::vector<int> vcorner(vstart[nv]);
-    std::vector<int> fill(vstart.begin(), vstart.end() - 1);
-    for (int f = 0; f < nf; ++f) {
-      if (!a.usable[f]) continue;
-      for (int k = 0; k < 3; ++k) vcorner[fill[soup.triangles[f][k]]++] = 3 * f + k;
-    }
-    std::vector<int> parent;
-    std::vector<std::pair<int, int>> nbr;  // (neighbour vertex, local corner)
-    auto find = [&parent](int x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
-    for (int v = 0; v < nv; ++v) {
-      const int b = vstart[v], d = vstart[v + 1] - b;
-      if (d == 0) continue;
-      parent.resize(d);
-      std::iota(parent.begin(), parent.end(), 0);
-      nbr.clear();
-      for (int i = 0; i < d; ++i) {
-        const int c = vcorner[b + i];
-        const Tri& t = soup.triangles[c / 3];
-        nbr.push_back({t[(c % 3 + 1) % 3], i});
-        nbr.push_back({t[(c % 3 + 2) % 3], i});
-      }
-      std::sort(nbr.begin(), nbr.end());
-      for (std::size_t i = 1; i < nbr.size(); ++i) {
-        if (nbr[i].first != nbr[i - 1].first) continue;
-        const int x = find(nbr[i].second), y = find(nbr[i - 1].second);
-        if (x != y) parent[std::max(x, y)] = std::min(x, y);
-      }
-      int fans = 0;
-      for (int i = 0; i < d; ++i) {
-        const int r = find(i);
-        fans += r == i;
-        a.corner_fan[vcorner[b + i]] = vcorner[b + r];
-      }
-      if (fans > 1) {
-        ++h.num_nonmanifold_vertices;
-        if (h.nonmanifold_vertices.size() < max_listed) h.nonmanifold_vertices.push_back(v);
-      }
+  }
+  for (int v = 0; v < nv; ++v) {
+    if (fans[v] > 1) {
+      ++h.num_nonmanifold_vertices;
+      if (h.nonmanifold_vertices.size() < max_listed) h.nonmanifold_vertices.push_back(v);
     }
   }
 
-  // Components (through edges, by a depth-first search over the edge groups) and boundary loops.
+  // Components and boundary loops.
   a.face_component.assign(nf, -1);
   {
-    std::vector<int> stack;
-    for (int seed = 0; seed < nf; ++seed) {
-      if (!a.usable[seed] || a.face_component[seed] >= 0) continue;
-      const int c = h.num_components++;
-      a.face_component[seed] = c;
-      stack.push_back(seed);
-      while (!stack.empty()) {
-        const int f = stack.back();
-        stack.pop_back();
-        for (int k = 0; k < 3; ++k) {
-          const int g = a.group_of[3 * f + k];
-          for (int i = a.group_start[g]; i < a.group_start[g + 1]; ++i) {
-            const int fo = a.halfedges[i].second / 3;
-            if (a.face_component[fo] < 0) {
-              a.face_component[fo] = c;
-              stack.push_back(fo);
-            }
-          }
-        }
-      }
+    std::vector<int> id(nf, -1);
+    for (int f = 0; f < nf; ++f) {
+      if (!a.usable[f]) continue;
+      const int r = faces.find(f);
+      if (id[r] < 0) id[r] = h.num_components++;
+      a.face_component[f] = id[r];
     }
   }
   for (int v = 0; v < nv; ++v) {
