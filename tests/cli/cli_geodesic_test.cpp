@@ -180,6 +180,25 @@ TEST_F(CliGeodesic, CylinderUnrolls) {
   EXPECT_NEAR(json_length(res), std::hypot(9 * chord, len), 1e-9);
 }
 
+TEST_F(CliGeodesic, JobFileUsesTheMandrel) {
+  // configs/pipe.yaml: a parametric pipe. The geodesic is at least the chord between its ends
+  // and at most the initial edge path.
+  const std::string job = (test::source_dir() / "configs/pipe.yaml").string();
+  const RunResult r = run({"geodesic", job, "--from", "0", "--to", "100", "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const YAML::Node j = YAML::Load(r.out);
+  const YAML::Node pts = j["points"];
+  ASSERT_GE(pts.size(), 2u);
+  Vec3 a, b;
+  for (int k = 0; k < 3; ++k) {
+    a[k] = pts[0][k].as<double>();
+    b[k] = pts[pts.size() - 1][k].as<double>();
+  }
+  EXPECT_GE(j["length"].as<double>(), (b - a).norm() - 1e-9);
+  EXPECT_LE(j["length"].as<double>(), j["initial_length"].as<double>() + 1e-9);
+  EXPECT_EQ(run({"geodesic", job, "--from", "0", "--to", "100000"}).code, 1);
+}
+
 TEST_F(CliGeodesic, DensityAndAnisotropicMetricsScaleTheLength) {
   const double straight = std::hypot(7.0, 10.0);
   const RunResult d = run({"geodesic", plane_, "--from", "2", "--to", "119", "--json",
