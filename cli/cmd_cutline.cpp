@@ -175,6 +175,8 @@ int run_cutline(const std::vector<std::string>& argv) {
       j.field("tilt_deg", s.tilt_deg);
       j.field("method", s.method);
       j.field("polish_evaluations", s.polish_evaluations);
+      j.field("polish_ms", s.polish_ms);
+      j.field("time_ms", s.time_ms);
       j.key("refine_path").begin_object();
       j.field("termination", to_string(s.geodesic.termination));
       j.field("length_mm", s.refine_length);
@@ -204,10 +206,12 @@ int run_cutline(const std::vector<std::string>& argv) {
       << c.plane_normal.z() << "), offset " << c.plane_offset << " mm, residual " << c.residual
       << " mm, tilt " << s.tilt_deg << " deg from the start\n";
     o << "  by " << s.method;
-    if (s.polish_evaluations > 0) o << " (" << s.polish_evaluations << " sections)";
+    if (s.polish_evaluations > 0) {
+      o << " (" << s.polish_evaluations << " sections, " << s.polish_ms << " ms)";
+    }
     o << "; refine_path: " << to_string(s.geodesic.termination) << ", length " << s.refine_length
       << " mm, residual " << s.refine_residual << " mm, " << s.geodesic.iterations
-      << " iterations, " << s.geodesic.time_ms << " ms\n";
+      << " iterations, " << s.geodesic.time_ms << " ms; total " << s.time_ms << " ms\n";
   }
   std::cout << o.str();
   return 0;

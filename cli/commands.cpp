@@ -8,16 +8,18 @@ const std::vector<Command>& commands() {
        run_mandrel},
       {"mesh", "check a mesh (or a job's mesh mandrel), repair it, convert it", kMeshHelp,
        run_mesh},
-      {"girth", "the girth field of a job's winding surface (shortest loops winding once)",
-       kGirthHelp, run_girth},
       {"helices", "plan a job's equally spaced geodesic helices and report the plan metrics",
        kHelicesHelp, run_helices},
       {"run", "run a job end to end: mandrel, girth, helices, toolpath, every output file",
        kRunHelp, run_run},
+      {"girth", "the girth field of a job's winding surface (shortest loops winding once)",
+       kGirthHelp, run_girth},
       {"geodesic", "a geodesic between two surface points (vertex or x,y,z), optional metric",
        kGeodesicHelp, run_geodesic},
       {"loop", "refine a closed curve into a closed geodesic loop, optional metric", kLoopHelp,
        run_loop},
+      {"cutline", "coplanar cut-lines: the shortest planar trim loop near a plane or station",
+       kCutlineHelp, run_cutline},
   };
   return list;
 }

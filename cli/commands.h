@@ -38,6 +38,11 @@ extern const char* const kGeodesicHelp;
 int run_loop(const std::vector<std::string>& args);
 extern const char* const kLoopHelp;
 
+/// cmd_cutline.cpp: coplanar cut-lines of a job (its cutlines: list) or from flags, on a job's
+/// winding surface or a mesh file (planner/cutlines.h).
+int run_cutline(const std::vector<std::string>& args);
+extern const char* const kCutlineHelp;
+
 /// cmd_helices.cpp: plan a job's helices and circuits and report passes and plan metrics.
 int run_helices(const std::vector<std::string>& args);
 extern const char* const kHelicesHelp;

@@ -1,6 +1,7 @@
 #include "planner/cutlines.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cctype>
 #include <cstdlib>
@@ -137,9 +138,11 @@ bool CutLineOptions::is_valid(std::string* why) const {
 std::string CutLineSummary::brief_report() const {
   std::ostringstream s;
   s << "start " << start << " (length " << initial_length << " mm); result by " << method;
-  if (polish_evaluations > 0) s << " (" << polish_evaluations << " sections evaluated)";
+  if (polish_evaluations > 0) {
+    s << " (" << polish_evaluations << " sections evaluated, " << polish_ms << " ms)";
+  }
   s << ", tilt " << tilt_deg << " deg; refine_path: length " << refine_length << " mm, residual "
-    << refine_residual << " mm, " << geodesic.brief_report();
+    << refine_residual << " mm, " << geodesic.brief_report() << "; total " << time_ms << " ms";
   return s.str();
 }
 
@@ -608,6 +611,11 @@ std::vector<Vec3> read_curve_csv(const std::filesystem::path& file) {
 
 CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const SpindleAxis& axis,
                         const GeodesicOptions& geodesic, CutLineSummary* summary) {
+  using Clock = std::chrono::steady_clock;
+  auto ms_since = [](Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+  };
+  const Clock::time_point t_start = Clock::now();
   const std::string what = label(cut);
   if (std::string why; !cut.is_valid(&why)) throw ConfigError(what + ": " + why);
   if (mesh.num_faces() == 0) throw InputError(what + ": the mesh has no faces");
@@ -733,6 +741,7 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
   sum.refine_residual = out.residual;
   sum.refine_normal = n;
 
+  const Clock::time_point t_polish = Clock::now();
   if (!cut.closed) {
     // Polish the rotation of the plane about the line from -> to by minimising the exact section
     // arc between the two points (the refinement can stall; see CutLineSummary::method).
@@ -791,6 +800,7 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
     }
   }
 
+  sum.polish_ms = ms_since(t_polish);
   sum.tilt_deg = std::acos(std::clamp(n.dot(n0), -1.0, 1.0)) * 180.0 / M_PI;
   sum.geodesic = r.summary;
   {
@@ -810,6 +820,7 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
       << out.length << " mm";
     sum.warnings.push_back(s.str());
   }
+  sum.time_ms = ms_since(t_start);
   if (summary) *summary = std::move(sum);
   return out;
 }

@@ -74,6 +74,8 @@ struct CutLineSummary {
   /// section of the plane that minimises the section length, started at refine_path's plane).
   std::string method;
   int polish_evaluations = 0;      ///< plane sections evaluated by the polish
+  double polish_ms = 0.0;          ///< wall time of the polish
+  double time_ms = 0.0;            ///< wall time of the whole cut-line
   std::vector<std::string> warnings;  ///< e.g. residual above 1e-6 of the length
   std::string brief_report() const;
 };
