@@ -38,10 +38,11 @@ int main(int argc, char** argv) {
   const std::array<std::vector<int>, 2> loops{md.winding.loops[0].vertices,
                                               md.winding.loops[1].vertices};
   const auto el = mesh.edge_length_stats();
-  std::printf("vessel R=100 L=300 isotensoid r0=30, linear deflection %.3f mm, remesh %.2f mm: "
-              "winding surface %d vertices, %d faces, edges %.2f/%.2f/%.2f mm (min/mean/max), mandrel %.0f ms\n",
-              deflection, remesh, mesh.num_vertices(), mesh.num_faces(), el[0], el[1], el[2],
-              md.total_ms);
+  std::printf(
+      "vessel R=100 L=300 isotensoid r0=30, linear deflection %.3f mm, remesh %.2f mm: "
+      "winding surface %d vertices, %d faces, edges %.2f/%.2f/%.2f mm (min/mean/max), mandrel %.0f "
+      "ms\n",
+      deflection, remesh, mesh.num_vertices(), mesh.num_faces(), el[0], el[1], el[2], md.total_ms);
 
   std::printf("%10s %8s %10s %10s %10s %10s %12s %12s %6s\n", "placement", "samples", "time_ms",
               "ms/sample", "min_g", "max_g", "bound_mm", "heldout_err", "unconv");
@@ -62,8 +63,8 @@ int main(int argc, char** argv) {
       worst = std::max(worst, std::abs(field.vertex_girth[v] - exact));
     }
     std::printf("%10s %8zu %10.1f %10.2f %10.2f %10.2f %12.2f %12.3f %6d\n", placement,
-                field.samples.size(), field.time_ms, field.time_ms / field.samples.size(), *lo,
-                *hi, field.lipschitz_bound, worst, field.unconverged_samples);
+                field.samples.size(), field.time_ms, field.time_ms / field.samples.size(), *lo, *hi,
+                field.lipschitz_bound, worst, field.unconverged_samples);
   }
   // One exact evaluation (no distance field), for the cost of girth_at on this mesh.
   const auto t0 = std::chrono::steady_clock::now();

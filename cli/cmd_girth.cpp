@@ -21,7 +21,8 @@ const char* const kGirthHelp =
     "length of the shortest loop through p that winds once around the mandrel. g is computed\n"
     "exactly at girth.samples vertices (placement: rings | farthest) and interpolated to every\n"
     "vertex; the report gives the samples, min/max girth, the sampling error bound\n"
-    "(|g(p) - g(q)| <= 2 d(p, q): twice the largest distance to the nearest sample) and the time.\n\n"
+    "(|g(p) - g(q)| <= 2 d(p, q): twice the largest distance to the nearest sample) and the "
+    "time.\n\n"
     "  -o, --out FILE   write the per-vertex field as CSV: vertex, x, y, z [mm], girth [mm]\n"
     "                   (winding-surface vertices; positions in the job's frame)\n"
     "  --json           print the report as JSON on stdout\n";

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <exception>
 #include <cmath>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <queue>
@@ -37,18 +37,18 @@ void check_annulus(const Mesh& mesh, const std::array<std::vector<int>, 2>& loop
   const int components = mesh.num_components();
   const int genus = mesh.genus();
   if (boundary.size() != 2 || components != 1 || genus != 0) {
-    throw TopologyError("girth: the winding surface is not an annulus: it has " +
-                        std::to_string(boundary.size()) + " boundary loop(s), " +
-                        std::to_string(components) + " component(s) and genus " +
-                        std::to_string(genus) +
-                        " (an annulus has 2 boundary loops, 1 component, genus 0)");
+    throw TopologyError(
+        "girth: the winding surface is not an annulus: it has " + std::to_string(boundary.size()) +
+        " boundary loop(s), " + std::to_string(components) + " component(s) and genus " +
+        std::to_string(genus) + " (an annulus has 2 boundary loops, 1 component, genus 0)");
   }
   std::vector<int> loop_of(mesh.num_vertices(), -1);
   for (int i = 0; i < 2; ++i)
     for (int v : mesh.loop_vertices(boundary[i])) loop_of[v] = i;
   int ids[2] = {-1, -1};
   for (int i = 0; i < 2; ++i) {
-    if (loops[i].empty()) throw InputError("girth: boundary loop " + std::to_string(i) + " is empty");
+    if (loops[i].empty())
+      throw InputError("girth: boundary loop " + std::to_string(i) + " is empty");
     for (int v : loops[i]) {
       if (v < 0 || v >= mesh.num_vertices()) {
         throw InputError("girth: boundary loop " + std::to_string(i) + " names vertex " +
@@ -349,7 +349,8 @@ GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) co
     path.halfedges.pop_back();
     path.lambdas.pop_back();
   }
-  if (path.halfedges.empty()) throw InvariantError("girth: empty loop strip at vertex " + std::to_string(p));
+  if (path.halfedges.empty())
+    throw InvariantError("girth: empty loop strip at vertex " + std::to_string(p));
   path.start_face = mesh.face(path.halfedges.front());
   std::string why;
   if (!is_valid_path(mesh, path, &why)) {
@@ -364,23 +365,27 @@ GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) co
   // (the Newton/reroute path of the core), which some core versions need for a path from p
   // back to p.
   auto acceptable = [&](const GeodesicResult& r, int winding) {
-    const bool done = r.summary.converged() ||
-                      r.summary.termination == GeodesicTermination::LineSearchFailed;
+    const bool done =
+        r.summary.converged() || r.summary.termination == GeodesicTermination::LineSearchFailed;
     return done && std::abs(winding) == 1 &&
            r.summary.euclidean_length <= loop.edge_length * (1 + 1e-9);
   };
-  GeodesicResult r = refine_path(mesh, path, PathMetric{}, GeodesicOptions{});
+  // A loop winding around the mandrel is rerouted around many vertices (on a cone every one
+  // between the edge loop and the chord): the core's default cap (20 + 4 crossings) is too
+  // tight for the funnel start, so the cap is raised.
+  GeodesicOptions first;
+  first.max_reroutes = 1000 + 32 * path.num_crossings();
+  GeodesicResult r = refine_path(mesh, path, PathMetric{}, first);
   int winding = winding_number(r.path);
   if (!acceptable(r, winding)) {
-    GeodesicOptions retry;
+    GeodesicOptions retry = first;
     retry.funnel_start = false;
     GeodesicResult r2 = refine_path(mesh, path, PathMetric{}, retry);
     const int winding2 = winding_number(r2.path);
     loop.retried = true;
-    const bool better = acceptable(r2, winding2) ||
-                        (std::abs(winding2) == 1 && std::abs(winding) != 1) ||
-                        (std::abs(winding2) == 1 &&
-                         r2.summary.euclidean_length < r.summary.euclidean_length);
+    const bool better =
+        acceptable(r2, winding2) || (std::abs(winding2) == 1 && std::abs(winding) != 1) ||
+        (std::abs(winding2) == 1 && r2.summary.euclidean_length < r.summary.euclidean_length);
     if (better) {
       r = std::move(r2);
       winding = winding2;
@@ -551,14 +556,15 @@ GirthField compute_girth_field(const Mesh& annulus, const std::array<std::vector
       add(v);
     }
   }
-  for (int v = 0; v < nv; ++v) field.lipschitz_bound = std::max(field.lipschitz_bound, 2.0 * nearest[v]);
+  for (int v = 0; v < nv; ++v)
+    field.lipschitz_bound = std::max(field.lipschitz_bound, 2.0 * nearest[v]);
 
   // 2. The exact loops, independent of each other: spread over the hardware threads.
   const int count = static_cast<int>(chosen.size());
   std::vector<GirthContext::Loop> exact(count);
   {
-    const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1,
-                                   std::min(8, count));
+    const int threads =
+        std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::min(8, count));
     std::vector<std::exception_ptr> errors(threads);
     auto work = [&](int id) {
       try {

@@ -40,22 +40,24 @@
 namespace windplan {
 
 struct GirthOptions {
-  int samples = 64;                 ///< sample points where g is computed exactly (count, >= 4)
-  std::string placement = "rings";  ///< "rings": rings of stations along the axis; "farthest": farthest-point sampling
-  int rings = 0;                    ///< for "rings": stations along the axis (0: auto ~ sqrt(samples))
+  int samples = 64;  ///< sample points where g is computed exactly (count, >= 4)
+  std::string placement =
+      "rings";  ///< "rings": rings of stations along the axis; "farthest": farthest-point sampling
+  int rings = 0;  ///< for "rings": stations along the axis (0: auto ~ sqrt(samples))
   bool is_valid(std::string* why) const;
 };
 
 struct GirthSample {
-  int vertex;       ///< winding-surface vertex
-  double girth;     ///< exact g at the vertex (mm)
-  Vec3 position;    ///< the vertex's position (mm)
+  int vertex;     ///< winding-surface vertex
+  double girth;   ///< exact g at the vertex (mm)
+  Vec3 position;  ///< the vertex's position (mm)
 };
 
 struct GirthField {
-  std::vector<double> vertex_girth;   ///< per winding-surface vertex (mm), interpolated
-  std::vector<GirthSample> samples;   ///< exact evaluations
-  double lipschitz_bound = 0.0;       ///< max over vertices of 2 * d(vertex, nearest sample) (mm): |g(p)-g(q)| <= 2 d(p,q)
+  std::vector<double> vertex_girth;  ///< per winding-surface vertex (mm), interpolated
+  std::vector<GirthSample> samples;  ///< exact evaluations
+  double lipschitz_bound =
+      0.0;  ///< max over vertices of 2 * d(vertex, nearest sample) (mm): |g(p)-g(q)| <= 2 d(p,q)
   double time_ms = 0.0;
   /// Diagnostics: samples whose refined loop did not converge or did not wind exactly once
   /// (their value is still the length of the best loop found).
@@ -65,11 +67,10 @@ struct GirthField {
 
 /// Exact girth at one surface vertex: the shortest loop through p winding once around the annulus.
 /// \param annulus a single-component mesh with exactly two boundary loops, genus 0
-/// \param loops the two boundary loops as vertex index lists (e.g. Mandrel::winding.loops[i].vertices)
-/// \param vertex the vertex p, in [0, #V)
-/// \param loop_out when given, receives the refined loop as an open SurfacePath from p to p
-/// \return g(p) (mm)
-/// \throw TopologyError when the mesh is not an annulus (naming its number of boundary loops and
+/// \param loops the two boundary loops as vertex index lists (e.g.
+/// Mandrel::winding.loops[i].vertices) \param vertex the vertex p, in [0, #V) \param loop_out when
+/// given, receives the refined loop as an open SurfacePath from p to p \return g(p) (mm) \throw
+/// TopologyError when the mesh is not an annulus (naming its number of boundary loops and
 ///        components); InputError for a vertex out of range or loops that are not the mesh's
 ///        boundary loops.
 double girth_at(const Mesh& annulus, const std::array<std::vector<int>, 2>& loops, int vertex,
@@ -91,13 +92,13 @@ class GirthContext {
   GirthContext& operator=(const GirthContext&) = delete;
 
   struct Loop {
-    double girth = 0.0;       ///< refined loop length (mm)
-    double edge_length = 0.0; ///< length of the initial edge loop (mm)
-    int winding = 0;          ///< net signed seam crossings of the refined loop (+-1 expected)
-    bool converged = false;   ///< the geodesic refinement converged (see summary)
-    SurfacePath path;         ///< open path from p to p
-    GeodesicSummary summary;  ///< the refinement's summary
-    bool retried = false;     ///< the first refinement failed and was retried without funnel start
+    double girth = 0.0;        ///< refined loop length (mm)
+    double edge_length = 0.0;  ///< length of the initial edge loop (mm)
+    int winding = 0;           ///< net signed seam crossings of the refined loop (+-1 expected)
+    bool converged = false;    ///< the geodesic refinement converged (see summary)
+    SurfacePath path;          ///< open path from p to p
+    GeodesicSummary summary;   ///< the refinement's summary
+    bool retried = false;      ///< the first refinement failed and was retried without funnel start
   };
   /// Exact girth at vertex p. When `distances` is given, it receives the edge-graph distance
   /// from p to every vertex (the lifted search then runs to completion).

@@ -13,6 +13,7 @@
 
 #include "geometry/errors.h"
 #include "geometry/surface_path.h"
+#include "planner/job.h"
 #include "tests/mesh_fixtures.h"
 
 namespace windplan {
@@ -116,8 +117,8 @@ TEST(GirthAt, ConeMatchesTheUnrolledChord) {
 TEST(GirthAt, NeckOfASurfaceOfRevolution) {
   const int n = 128, m = 64;
   const double z0 = 10.0 * M_PI / 2, z1 = 10.0 * 5 * M_PI / 2;  // neck at the middle ring
-  const Mesh mesh(revolve([](double z) { return 10.0 * (1.0 + 0.3 * std::sin(z / 10.0)); }, z0,
-                          z1, n, m));
+  const Mesh mesh(
+      revolve([](double z) { return 10.0 * (1.0 + 0.3 * std::sin(z / 10.0)); }, z0, z1, n, m));
   const auto loops = ring_loops(n, m);
   const double expected = polygon_perimeter(7.0, n);
   const GirthContext context(mesh, loops);
@@ -256,6 +257,37 @@ TEST(GirthBadInput, OptionsAndArguments) {
   EXPECT_THROW(girth_at(mesh, {loops[0], loops[0]}, 20), InputError);
   EXPECT_THROW(girth_at(mesh, {loops[0], std::vector<int>{20}}, 20), InputError);  // interior
   EXPECT_THROW(girth_at(mesh, {loops[0], std::vector<int>{}}, 20), InputError);
+}
+
+// ---- the girth: job section ----
+
+constexpr const char* kPipeJob = "mandrel: {source: pipe, pipe: {radius: 50, length: 100}}\n";
+
+TEST(GirthJob, SectionIsDecodedAndChecked) {
+  const Job job = load_job_from_string(
+      std::string(kPipeJob) + "girth:\n  samples: 40\n  placement: farthest\n  rings: 5\n",
+      "job.yaml");
+  EXPECT_EQ(job.girth.samples, 40);
+  EXPECT_EQ(job.girth.placement, "farthest");
+  EXPECT_EQ(job.girth.rings, 5);
+  const Job defaults = load_job_from_string(kPipeJob, "job.yaml");
+  EXPECT_EQ(defaults.girth.samples, 64);
+  EXPECT_EQ(defaults.girth.placement, "rings");
+  EXPECT_EQ(defaults.girth.rings, 0);
+  auto error_of = [](const std::string& yaml) {
+    try {
+      load_job_from_string(kPipeJob + yaml, "job.yaml");
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string unknown = error_of("girth:\n  sample: 10\n");
+  EXPECT_NE(unknown.find("job.yaml:3:"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("girth.sample"), std::string::npos) << unknown;
+  EXPECT_NE(error_of("girth: {samples: 3}\n").find("samples"), std::string::npos);
+  EXPECT_NE(error_of("girth: {placement: random}\n").find("placement"), std::string::npos);
+  EXPECT_NE(error_of("girth: {rings: -2}\n").find("rings"), std::string::npos);
 }
 
 }  // namespace
