@@ -24,7 +24,8 @@ namespace windplan::cli {
 
 const char* const kCutlineHelp =
     "usage: windplan cutline <job.yaml | mesh-file> [--name N] [--plane nx,ny,nz,d | --station z]\n"
-    "                        [--normal-mode free|fixed|cone] [--max-tilt deg] [--json] [-o cut.csv]\n\n"
+    "                        [--normal-mode free|fixed|cone] [--max-tilt deg] [--json] [-o "
+    "cut.csv]\n\n"
     "Computes coplanar cut-lines (trim lines): the shortest planar loop around the mandrel near a\n"
     "start plane (the paper's coplanar geodesic, eq. 7/8). With a job file: its cutlines: list\n"
     "(--name picks one) on the winding surface, or one cut-line from the flags. With a mesh file\n"
@@ -77,8 +78,8 @@ int run_cutline(const std::vector<std::string>& argv) {
                   {"-o", "--out", "--name", "--plane", "--station", "--normal-mode", "--max-tilt"});
   args.expect_positional(1, "a job file or a mesh file");
   const std::filesystem::path input = args.positional()[0];
-  const bool is_job = lower(input.extension().string()) == ".yaml" ||
-                      lower(input.extension().string()) == ".yml";
+  const bool is_job =
+      lower(input.extension().string()) == ".yaml" || lower(input.extension().string()) == ".yml";
   if (args.has("--plane") && args.has("--station")) {
     throw UsageError("give --plane or --station, not both");
   }
@@ -118,7 +119,8 @@ int run_cutline(const std::vector<std::string>& argv) {
         if (!args.has("--name") || c.name == args.value("--name")) cuts.push_back(c);
       }
       if (job.cutlines.empty()) {
-        throw InputError(input.string() + ": the job has no cutlines: section (or give --plane "
+        throw InputError(input.string() +
+                         ": the job has no cutlines: section (or give --plane "
                          "or --station)");
       }
       if (cuts.empty()) {

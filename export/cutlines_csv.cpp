@@ -33,7 +33,8 @@ void write_cutlines_csv(std::ostream& out, const std::vector<CutLine>& cutlines,
 
 void write_cutlines_csv(const std::filesystem::path& path, const std::vector<CutLine>& cutlines,
                         int digits) {
-  write_file_atomically(path, [&](std::ostream& out) { write_cutlines_csv(out, cutlines, digits); });
+  write_file_atomically(path,
+                        [&](std::ostream& out) { write_cutlines_csv(out, cutlines, digits); });
 }
 
 }  // namespace windplan

@@ -1,9 +1,9 @@
 #include "planner/cutlines.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
-#include <cctype>
 #include <cstdlib>
 #include <limits>
 #include <sstream>
@@ -23,7 +23,9 @@ namespace windplan {
 
 namespace {
 
-bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+bool finite(const Vec3& v) {
+  return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
+}
 
 std::string label(const CutLineOptions& cut) {
   return "cut-line '" + (cut.name.empty() ? std::string("(unnamed)") : cut.name) + "'";
@@ -108,7 +110,8 @@ bool CutLineOptions::is_valid(std::string* why) const {
     return false;
   };
   if (has_plane) {
-    if (!finite(normal) || !(normal.norm() > 1e-12)) return fail("plane.normal must be a non-zero vector");
+    if (!finite(normal) || !(normal.norm() > 1e-12))
+      return fail("plane.normal must be a non-zero vector");
     if (!std::isfinite(offset)) return fail("plane.offset must be a finite number (mm)");
   }
   if (has_station && !std::isfinite(station)) return fail("station must be a finite number (mm)");
@@ -126,8 +129,9 @@ bool CutLineOptions::is_valid(std::string* why) const {
     }
   } else {
     if (has_station || !init.empty()) {
-      return fail("an open cut-line (closed: false) starts from its from/to points; station and "
-                  "init are for closed ones (plane may give the initial plane)");
+      return fail(
+          "an open cut-line (closed: false) starts from its from/to points; station and "
+          "init are for closed ones (plane may give the initial plane)");
     }
     if (!finite(from) || !finite(to)) return fail("from and to must be finite points (mm)");
     if (!((to - from).norm() > 1e-9)) return fail("an open cut-line needs from and to apart");
@@ -376,8 +380,10 @@ SectionFit minimise_section(const Sectioner& S, const Vec3& n_start, double d_st
       if (fr < F[0]) {
         const std::vector<double> xe = along(-2.0);
         const double fe = f(xe);
-        if (fe < fr) X[dim] = xe, F[dim] = fe;
-        else X[dim] = xr, F[dim] = fr;
+        if (fe < fr)
+          X[dim] = xe, F[dim] = fe;
+        else
+          X[dim] = xr, F[dim] = fr;
       } else if (fr < F[dim - 1]) {
         X[dim] = xr, F[dim] = fr;
       } else {
@@ -394,7 +400,8 @@ SectionFit minimise_section(const Sectioner& S, const Vec3& n_start, double d_st
       }
     }
     int b = 0;
-    for (int i = 1; i <= dim; ++i) if (F[i] < F[b]) b = i;
+    for (int i = 1; i <= dim; ++i)
+      if (F[i] < F[b]) b = i;
     if (!(F[b] < best.section.length * (1.0 - 1e-13))) {
       // No progress from this centre: restart once with smaller steps, then stop.
       if (step_angle < 1e-3) break;
@@ -495,8 +502,8 @@ ArcFit minimise_arc(const Sectioner& S, const Vec3& a, const Vec3& b, const Vec3
     const double d = n.dot(a);
     ++best.evaluations;
     std::vector<Vec3> pts = arc_between(S.sections(n, d), a, b, tol);
-    const double len = pts.empty() ? std::numeric_limits<double>::infinity()
-                                   : polygon_length(pts, false);
+    const double len =
+        pts.empty() ? std::numeric_limits<double>::infinity() : polygon_length(pts, false);
     if (len < best.length) best.n = n, best.d = d, best.points = std::move(pts), best.length = len;
     return len;
   };
@@ -558,14 +565,14 @@ PlaneSection axial_plane_section(const Mesh& mesh, const Vec3& normal, double of
   }
   int open = 0;
   for (const PlaneSection& p : secs) open += !p.closed;
-  s << what << ": the section by the plane n = " << vec_str(normal.normalized()) << ", d = "
-    << offset << " mm does not go around the mandrel (" << secs.size() << " piece(s), " << open
-    << " running into the boundary of the wound region)";
+  s << what << ": the section by the plane n = " << vec_str(normal.normalized())
+    << ", d = " << offset << " mm does not go around the mandrel (" << secs.size() << " piece(s), "
+    << open << " running into the boundary of the wound region)";
   throw InputError(s.str());
 }
 
-std::vector<Vec3> section_arc(const Mesh& mesh, const Vec3& normal, double offset,
-                              const Vec3& a, const Vec3& b, double tolerance) {
+std::vector<Vec3> section_arc(const Mesh& mesh, const Vec3& normal, double offset, const Vec3& a,
+                              const Vec3& b, double tolerance) {
   return arc_between(Sectioner(mesh, SpindleAxis{}).sections(normal, offset), a, b, tolerance);
 }
 
@@ -649,7 +656,8 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
                            " point(s); a closed curve needs at least 3");
         }
         double longest = 0.0;
-        for (std::size_t i = 1; i < pts.size(); ++i) longest = std::max(longest, (pts[i] - pts[i - 1]).norm());
+        for (std::size_t i = 1; i < pts.size(); ++i)
+          longest = std::max(longest, (pts[i] - pts[i - 1]).norm());
         const double gap = (pts.front() - pts.back()).norm();
         if (gap > 2.0 * longest) {
           std::ostringstream s;
@@ -678,7 +686,8 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
       sum.start = "geodesic";
       const ClosestPointQuery cpq(mesh);
       const ClosestPointQuery::Hit ha = cpq.closest(cut.from), hb = cpq.closest(cut.to);
-      for (const auto& [hit, key, p] : {std::tuple{ha, "from", cut.from}, std::tuple{hb, "to", cut.to}}) {
+      for (const auto& [hit, key, p] :
+           {std::tuple{ha, "from", cut.from}, std::tuple{hb, "to", cut.to}}) {
         if (!(hit.distance <= snap_distance)) {
           std::ostringstream s;
           s << what << ": " << key << " " << vec_str(p) << " is " << hit.distance
@@ -698,7 +707,8 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
         n0 = cut.normal.normalized();
         n0 = n0 - n0.dot(u) * u;
         if (!(n0.norm() > 1e-6)) {
-          throw InputError(what + ": plane.normal is parallel to the line from -> to; no plane "
+          throw InputError(what +
+                           ": plane.normal is parallel to the line from -> to; no plane "
                            "with that normal contains both points");
         }
         n0.normalize();
@@ -752,7 +762,7 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
     double phi = std::atan2(n.dot(e2), n.dot(n0));
     if (phi > M_PI / 2) phi -= M_PI;
     if (phi < -M_PI / 2) phi += M_PI;
-    const double max_phi = cut.normal_mode == "fixed" ? 0.0
+    const double max_phi = cut.normal_mode == "fixed"  ? 0.0
                            : cut.normal_mode == "cone" ? tilt
                                                        : M_PI / 2;
     const ArcFit fit = minimise_arc(S, a, b, n0, phi, max_phi, 1e-7 * (1.0 + diag));
@@ -775,15 +785,14 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
     // the plane by minimising the length of its exact section loop, from the refined plane (or
     // the initial one), and keep the polished loop unless the refined one is clearly shorter.
     const Sectioner S(mesh, axis);
-    SectionFit fit = minimise_section(S, n, d, Sectioner::centroid(out.points), cut.normal_mode,
-                                      n0, tilt);
+    SectionFit fit =
+        minimise_section(S, n, d, Sectioner::centroid(out.points), cut.normal_mode, n0, tilt);
     if (!fit.section.around) {
       fit = minimise_section(S, n0, d0, Sectioner::centroid(out.points), cut.normal_mode, n0, tilt);
     }
     sum.polish_evaluations = fit.evaluations;
     const bool refine_ok = r.summary.converged() && out.residual <= 1e-6 * out.length;
-    if (fit.section.around &&
-        (!refine_ok || fit.section.length <= out.length * (1.0 + 1e-9))) {
+    if (fit.section.around && (!refine_ok || fit.section.length <= out.length * (1.0 + 1e-9))) {
       Vec3 fn = fit.n;
       double fd = fit.d;
       if (fn.dot(n0) < 0.0) fn = -fn, fd = -fd;
@@ -825,7 +834,8 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
   return out;
 }
 
-std::vector<CutLine> compute_cutlines(const Mandrel& mandrel, const std::vector<CutLineOptions>& cuts,
+std::vector<CutLine> compute_cutlines(const Mandrel& mandrel,
+                                      const std::vector<CutLineOptions>& cuts,
                                       const GeodesicOptions& geodesic,
                                       std::vector<CutLineSummary>* summaries) {
   std::vector<CutLine> out;

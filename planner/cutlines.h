@@ -49,33 +49,33 @@ struct CutLineOptions {
   Vec3 normal = Vec3::UnitZ();  ///< plane normal (any length > 0; normalised when used)
   double offset = 0.0;          ///< mm: the plane is {p : n . p = offset} with n normalised
   bool has_station = false;
-  double station = 0.0;         ///< mm, axial position along the spindle axis (normal = axis)
-  std::filesystem::path init;   ///< CSV of x,y,z points (mm) of a closed curve near the surface
-  bool closed = true;           ///< loop around the mandrel (true) or open curve from -> to
+  double station = 0.0;        ///< mm, axial position along the spindle axis (normal = axis)
+  std::filesystem::path init;  ///< CSV of x,y,z points (mm) of a closed curve near the surface
+  bool closed = true;          ///< loop around the mandrel (true) or open curve from -> to
   Vec3 from = Vec3::Zero(), to = Vec3::Zero();  ///< open curves: the two surface points (mm)
-  std::string normal_mode = "free";  ///< free | fixed (only translate) | cone
-  double max_tilt_deg = 90.0;   ///< deg, for "cone": max angle between final and initial normal
+  std::string normal_mode = "free";             ///< free | fixed (only translate) | cone
+  double max_tilt_deg = 90.0;  ///< deg, for "cone": max angle between final and initial normal
   bool is_valid(std::string* why) const;
 };
 
 /// Diagnostics of one cut-line.
 struct CutLineSummary {
-  std::string start;               ///< "plane", "station", "init", "geodesic" (open curves)
-  double initial_length = 0.0;     ///< mm, the start curve (the planar section for plane/station)
+  std::string start;            ///< "plane", "station", "init", "geodesic" (open curves)
+  double initial_length = 0.0;  ///< mm, the start curve (the planar section for plane/station)
   Vec3 initial_normal = Vec3::UnitZ();
-  double initial_offset = 0.0;     ///< mm
-  double tilt_deg = 0.0;           ///< angle between the final and the initial normal
-  double max_surface_distance = 0.0;  ///< mm, largest distance of a result point from the mesh
-  GeodesicSummary geodesic;        ///< the refinement (termination, iterations, residual, time)
-  double refine_length = 0.0;      ///< mm, the loop refine_path gave
-  double refine_residual = 0.0;    ///< mm, its max distance from its plane
+  double initial_offset = 0.0;         ///< mm
+  double tilt_deg = 0.0;               ///< angle between the final and the initial normal
+  double max_surface_distance = 0.0;   ///< mm, largest distance of a result point from the mesh
+  GeodesicSummary geodesic;            ///< the refinement (termination, iterations, residual, time)
+  double refine_length = 0.0;          ///< mm, the loop refine_path gave
+  double refine_residual = 0.0;        ///< mm, its max distance from its plane
   Vec3 refine_normal = Vec3::UnitZ();  ///< its plane's normal
   /// Where the result comes from: "refine_path" or "section polish" (closed loops: the exact
   /// section of the plane that minimises the section length, started at refine_path's plane).
   std::string method;
-  int polish_evaluations = 0;      ///< plane sections evaluated by the polish
-  double polish_ms = 0.0;          ///< wall time of the polish
-  double time_ms = 0.0;            ///< wall time of the whole cut-line
+  int polish_evaluations = 0;         ///< plane sections evaluated by the polish
+  double polish_ms = 0.0;             ///< wall time of the polish
+  double time_ms = 0.0;               ///< wall time of the whole cut-line
   std::vector<std::string> warnings;  ///< e.g. residual above 1e-6 of the length
   std::string brief_report() const;
 };
@@ -124,7 +124,8 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
 
 /// All cut-lines of a job on the mandrel's winding surface, in order.
 /// \param summaries optional, filled with one summary per cut-line
-std::vector<CutLine> compute_cutlines(const Mandrel& mandrel, const std::vector<CutLineOptions>& cuts,
+std::vector<CutLine> compute_cutlines(const Mandrel& mandrel,
+                                      const std::vector<CutLineOptions>& cuts,
                                       const GeodesicOptions& geodesic = {},
                                       std::vector<CutLineSummary>* summaries = nullptr);
 

@@ -88,8 +88,9 @@ TEST_F(CutlineCli, BadInputAndUsage) {
   r = run({kVessel, "--name", "nope"});
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("split, trim_oblique"), std::string::npos) << r.err;
-  std::ofstream(dir_ / "bad.yaml") << "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 200}\n"
-                                      "cutlines:\n  - {name: a, station: 10, colour: red}\n";
+  std::ofstream(dir_ / "bad.yaml")
+      << "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 200}\n"
+         "cutlines:\n  - {name: a, station: 10, colour: red}\n";
   r = run({(dir_ / "bad.yaml").string()});
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("bad.yaml:5: unknown key 'cutlines[0].colour'"), std::string::npos) << r.err;

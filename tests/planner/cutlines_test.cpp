@@ -50,12 +50,15 @@ void expect_valid(const Mesh& mesh, const CutLine& c, const CutLineSummary& s, b
   EXPECT_LT(c.residual, 1e-6 * c.length);
   EXPECT_NEAR(c.plane_normal.norm(), 1.0, 1e-12);
   double residual = 0.0, len = 0.0;
-  for (const Vec3& p : c.points) residual = std::max(residual, std::fabs(c.plane_normal.dot(p) - c.plane_offset));
+  for (const Vec3& p : c.points)
+    residual = std::max(residual, std::fabs(c.plane_normal.dot(p) - c.plane_offset));
   for (std::size_t i = 1; i < c.points.size(); ++i) len += (c.points[i] - c.points[i - 1]).norm();
   if (closed) len += (c.points.front() - c.points.back()).norm();
   EXPECT_NEAR(residual, c.residual, 1e-12);  // the reported residual is the real one
   EXPECT_NEAR(len, c.length, 1e-9 * len);
-  if (closed) EXPECT_LE(c.length, s.initial_length * (1.0 + 1e-12));
+  if (closed) {
+    EXPECT_LE(c.length, s.initial_length * (1.0 + 1e-12));
+  }
   const ClosestPointQuery q(mesh);
   for (const Vec3& p : c.points) EXPECT_LT(q.closest(p).distance, 1e-9);
   EXPECT_TRUE(s.warnings.empty());
@@ -274,8 +277,8 @@ TEST(CutLine, ObliqueStartInABendGivesTheCircularCrossSection) {
   EXPECT_GT(std::fabs(r.plane_normal.dot(tangent_there)), std::cos(3.0 * M_PI / 180.0))
       << "normal " << r.plane_normal.transpose() << ", tangent " << tangent_there.transpose();
   // ... and no longer than the mesh's section by the exact cross-section plane there.
-  const PlaneSection exact = axial_plane_section(m.winding.mesh, tangent_there,
-                                                 tangent_there.dot(foot), m.axis, "exact");
+  const PlaneSection exact =
+      axial_plane_section(m.winding.mesh, tangent_there, tangent_there.dot(foot), m.axis, "exact");
   EXPECT_LE(r.length, exact.length + 1e-9);
   EXPECT_NEAR(r.plane_normal.y(), 0.0, 1e-3);
   for (const Vec3& p : r.points) {
@@ -292,7 +295,8 @@ TEST(CutLineJob, DecodesTheSection) {
   const Job job = load_job_from_string(
       "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 200}\n"
       "cutlines:\n"
-      "  - {name: a, plane: {normal: [0, 0.2, 1], offset: 40}, normal_mode: cone, max_tilt_deg: 10}\n"
+      "  - {name: a, plane: {normal: [0, 0.2, 1], offset: 40}, normal_mode: cone, max_tilt_deg: "
+      "10}\n"
       "  - {station: 150, normal_mode: fixed}\n"
       "  - {name: c, init: curves/c.csv}\n"
       "  - {name: d, closed: false, from: [50, 0, 10], to: [0, 50, 90]}\n",
@@ -329,8 +333,9 @@ TEST(CutLineJob, RejectsBadSections) {
                       "unknown key 'cutlines[0].plane.d'");
   expect_config_error("cutlines:\n  - {name: a, plane: {normal: [0, 0, 0], offset: 1}}\n",
                       "non-zero");
-  expect_config_error("cutlines:\n  - {name: a, station: 10, plane: {normal: [0, 0, 1], offset: 1}}\n",
-                      "exactly one of plane, station, init");
+  expect_config_error(
+      "cutlines:\n  - {name: a, station: 10, plane: {normal: [0, 0, 1], offset: 1}}\n",
+      "exactly one of plane, station, init");
   expect_config_error("cutlines:\n  - {name: a}\n", "exactly one of plane, station, init");
   expect_config_error("cutlines:\n  - {name: a, station: 1, normal_mode: tilt}\n", "normal_mode");
   expect_config_error("cutlines:\n  - {name: a, station: 1, max_tilt_deg: 0}\n", "max_tilt_deg");
@@ -420,4 +425,3 @@ TEST(CutLineBadInput, ZeroNormalAndOpenCurveFarFromTheSurface) {
 
 }  // namespace
 }  // namespace windplan
-
