@@ -142,23 +142,36 @@ std::vector<int> faces_containing(const Mesh& mesh, const SurfacePoint& p) {
 
 }  // namespace
 
-EdgeGraph build_edge_graph(const Mesh& mesh, const PathMetric& metric) {
+namespace {
+
+// Places the third corner of a triangle in the plane (see geodesic.cpp).
+Vec2 place_corner(const Vec2& a, const Vec2& b, double la, double lb, bool left) {
+  const Vec2 ab = b - a;
+  const double L = ab.norm();
+  const double x = (la * la - lb * lb + L * L) / (2.0 * L);
+  const double y = std::sqrt(std::max(0.0, la * la - x * x));
+  const Vec2 u = ab / L;
+  const Vec2 n(-u.y(), u.x());
+  return a + x * u + (left ? y : -y) * n;
+}
+
+}  // namespace
+
+EdgeGraph build_edge_graph(const Mesh& mesh, const PathMetric& metric, bool diagonals) {
   EdgeGraph g;
   const int nv = mesh.num_vertices();
-  g.offsets.assign(nv + 1, 0);
-  for (int e = 0; e < mesh.num_edges(); ++e) {
-    const int h = mesh.edge_halfedge(e);
-    ++g.offsets[mesh.from(h) + 1];
-    ++g.offsets[mesh.to(h) + 1];
-  }
-  for (int v = 0; v < nv; ++v) g.offsets[v + 1] += g.offsets[v];
-  g.neighbors.resize(g.offsets[nv]);
-  g.weights.resize(g.offsets[nv]);
-  std::vector<int> fill(g.offsets.begin(), g.offsets.end() - 1);
   g.anisotropic = metric.kind() == PathMetric::Kind::Anisotropic;
   if (metric.kind() == PathMetric::Kind::Density) {
     g.min_density = *std::min_element(metric.densities().begin(), metric.densities().end());
   }
+  diagonals = diagonals && !g.anisotropic;
+  struct Entry {
+    int a, b;
+    double w;
+    int via_ab, via_ba;
+  };
+  std::vector<Entry> entries;
+  entries.reserve(mesh.num_edges() * (diagonals ? 2 : 1));
   for (int e = 0; e < mesh.num_edges(); ++e) {
     const int h = mesh.edge_halfedge(e);
     const int a = mesh.from(h), b = mesh.to(h);
@@ -166,10 +179,47 @@ EdgeGraph build_edge_graph(const Mesh& mesh, const PathMetric& metric) {
     double weight = metric.cost(mesh.face(h), w);
     const int t = mesh.twin(h);
     if (!mesh.is_boundary_halfedge(t)) weight = std::min(weight, metric.cost(mesh.face(t), w));
-    g.neighbors[fill[a]] = b;
-    g.weights[fill[a]++] = weight;
-    g.neighbors[fill[b]] = a;
-    g.weights[fill[b]++] = weight;
+    entries.push_back({a, b, weight, -1, -1});
+    if (!diagonals || mesh.is_boundary_halfedge(t)) continue;
+    // The diagonal c-d across edge a-b, when the unfolded quad is convex there.
+    const int c = mesh.opposite_vertex(h), d = mesh.opposite_vertex(t);
+    if (c == d) continue;
+    const Vec3 &A = mesh.position(a), &B = mesh.position(b), &C = mesh.position(c),
+               &D = mesh.position(d);
+    const double L = (B - A).norm();
+    if (!(L > 0.0)) continue;
+    const Vec2 a2(0, 0), b2(L, 0);
+    const Vec2 c2 = place_corner(a2, b2, (C - A).norm(), (C - B).norm(), true);
+    const Vec2 d2 = place_corner(a2, b2, (D - A).norm(), (D - B).norm(), false);
+    if (!(c2.y() > 0.0) || !(d2.y() < 0.0)) continue;
+    const double s = c2.y() / (c2.y() - d2.y());
+    const double x = c2.x() + s * (d2.x() - c2.x());
+    if (!(x > 1e-6 * L && x < (1.0 - 1e-6) * L)) continue;
+    const Vec2 X(x, 0.0);
+    double wd = (c2 - X).norm() + (X - d2).norm();
+    if (metric.kind() == PathMetric::Kind::Density) {
+      wd = metric.densities()[mesh.face(h)] * (c2 - X).norm() +
+           metric.densities()[mesh.face(t)] * (X - d2).norm();
+    }
+    entries.push_back({c, d, wd, h, t});
+  }
+  g.offsets.assign(nv + 1, 0);
+  for (const Entry& en : entries) {
+    ++g.offsets[en.a + 1];
+    ++g.offsets[en.b + 1];
+  }
+  for (int v = 0; v < nv; ++v) g.offsets[v + 1] += g.offsets[v];
+  g.neighbors.resize(g.offsets[nv]);
+  g.weights.resize(g.offsets[nv]);
+  if (diagonals) g.via.assign(g.offsets[nv], -1);
+  std::vector<int> fill(g.offsets.begin(), g.offsets.end() - 1);
+  for (const Entry& en : entries) {
+    if (diagonals) g.via[fill[en.a]] = en.via_ab;
+    g.neighbors[fill[en.a]] = en.b;
+    g.weights[fill[en.a]++] = en.w;
+    if (diagonals) g.via[fill[en.b]] = en.via_ba;
+    g.neighbors[fill[en.b]] = en.a;
+    g.weights[fill[en.b]++] = en.w;
   }
   return g;
 }
@@ -184,6 +234,7 @@ EdgePath shortest_edge_path(const Mesh& mesh, const EdgeGraph& graph, const Surf
 
   std::vector<double> dist(nv, kInf);
   std::vector<int> parent(nv, -1);
+  std::vector<int> parent_via(graph.via.empty() ? 0 : nv, -1);
   std::vector<char> done(nv, 0);
   // Target legs: straight distance from each target vertex to b (within b's face).
   // A vertex endpoint is the only source/target; otherwise the corners of its face(s).
@@ -242,6 +293,7 @@ EdgePath shortest_edge_path(const Mesh& mesh, const EdgeGraph& graph, const Surf
       if (d < dist[w]) {
         dist[w] = d;
         parent[w] = v;
+        if (!parent_via.empty()) parent_via[w] = graph.via[i];
         queue.emplace(d + heuristic(w), w);
       }
     }
@@ -249,13 +301,19 @@ EdgePath shortest_edge_path(const Mesh& mesh, const EdgeGraph& graph, const Surf
   if (best_vertex < 0) return result;
   result.found = true;
   result.length = best;
-  for (int v = best_vertex; v >= 0; v = parent[v]) result.vertices.push_back(v);
+  for (int v = best_vertex; v >= 0; v = parent[v]) {
+    result.vertices.push_back(v);
+    result.via.push_back(parent_via.empty() ? -1 : parent_via[v]);
+  }
   std::reverse(result.vertices.begin(), result.vertices.end());
+  std::reverse(result.via.begin(), result.via.end());
+  result.via.front() = -1;
   return result;
 }
 
 SurfacePath strip_from_vertex_path(const Mesh& mesh, const SurfacePoint& a,
-                                   const std::vector<int>& vertices, const SurfacePoint& b) {
+                                   const std::vector<int>& vertices, const SurfacePoint& b,
+                                   const std::vector<int>* via) {
   SurfacePath path;
   path.closed = false;
   path.start = a;
@@ -274,7 +332,12 @@ SurfacePath strip_from_vertex_path(const Mesh& mesh, const SurfacePoint& a,
   std::size_t first = 0;
   int face = -1;
   const bool a_is_vertex = as_vertex(mesh, a) == vertices.front();
-  if (a_is_vertex && vertices.size() >= 2) {
+  auto via_at = [&](std::size_t i) { return via && i < via->size() ? (*via)[i] : -1; };
+  if (a_is_vertex && vertices.size() >= 2 && via_at(1) >= 0) {
+    // The first step is a diagonal: start in the face of the crossed edge that contains a.
+    face = mesh.face(via_at(1));
+    first = 0;
+  } else if (a_is_vertex && vertices.size() >= 2) {
     face = face_of_edge(mesh, vertices[0], vertices[1]);
     first = 1;
   } else {
@@ -289,7 +352,19 @@ SurfacePath strip_from_vertex_path(const Mesh& mesh, const SurfacePoint& a,
   for (std::size_t i = first; i < vertices.size(); ++i) {
     const int u = vertices[i];
     const Vec3 prev = i == 0 ? pa : mesh.position(vertices[i - 1]);
-    if (i + 1 < vertices.size()) {
+    if (i + 1 < vertices.size() && via_at(i + 1) >= 0) {
+      // Diagonal step: turn to the face of the crossed edge, then cross it into w's face.
+      const int hc = via_at(i + 1);
+      const int fc = mesh.face(hc);
+      const int w = vertices[i + 1];
+      if (!(i == 0 && a_is_vertex && face == fc)) {
+        turn_at(mesh, u, &face, prev, mesh.position(w), [&](int f) { return f == fc; }, &path);
+      }
+      path.halfedges.push_back(hc);
+      path.lambdas.push_back(0.5);
+      face = mesh.face(mesh.twin(hc));
+      (void)w;
+    } else if (i + 1 < vertices.size()) {
       const int w = vertices[i + 1];
       turn_at(mesh, u, &face, prev, mesh.position(w),
               [&](int f) { return face_has_vertex(mesh, f, w); }, &path);
@@ -360,7 +435,7 @@ SurfacePath initial_open_path(const Mesh& mesh, const EdgeGraph& graph, const Su
     throw InputError("no path from " + to_string(mesh, a) + " to " + to_string(mesh, b) +
                      ": the points lie on different components of the mesh");
   }
-  return strip_from_vertex_path(mesh, a, ep.vertices, b);
+  return strip_from_vertex_path(mesh, a, ep.vertices, b, &ep.via);
 }
 
 SurfacePath path_from_curve(const Mesh& mesh, const EdgeGraph& graph,
@@ -399,7 +474,18 @@ SurfacePath path_from_curve(const Mesh& mesh, const EdgeGraph& graph,
       throw InputError("curve points " + std::to_string(i) + " and " +
                        std::to_string((i + 1) % n) + " lie on different components of the mesh");
     }
-    for (std::size_t j = 1; j < ep.vertices.size(); ++j) chain.push_back(ep.vertices[j]);
+    for (std::size_t j = 1; j < ep.vertices.size(); ++j) {
+      if (ep.via[j] >= 0) {
+        // A diagonal across edge (p, q): go through the nearer of p and q (both are adjacent).
+        const int h = ep.via[j], p = mesh.from(h), q = mesh.to(h);
+        const Vec3& s = mesh.position(ep.vertices[j - 1]);
+        const Vec3& t = mesh.position(ep.vertices[j]);
+        const double dp = (mesh.position(p) - s).norm() + (t - mesh.position(p)).norm();
+        const double dq = (mesh.position(q) - s).norm() + (t - mesh.position(q)).norm();
+        chain.push_back(dp <= dq ? p : q);
+      }
+      chain.push_back(ep.vertices[j]);
+    }
   }
   // Remove immediate back-and-forth (u, w, u) spurs, which the strip cannot represent well.
   std::vector<int> clean;

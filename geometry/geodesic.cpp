@@ -1219,23 +1219,92 @@ PathObjective evaluate_path_objective(const Mesh& mesh, const SurfacePath& path,
   return refiner.objective(z, penalty_weight, multipliers);
 }
 
+std::vector<VertexPassage> vertex_passages(const Mesh& mesh, const SurfacePath& path) {
+  std::vector<VertexPassage> out;
+  const int k = path.num_crossings();
+  const std::vector<Vec3> pts = polyline(mesh, path);
+  const int off = path.closed ? 0 : 1;  // polyline index of crossing i is i + off
+  auto at_vertex = [&](int i) {
+    const int h = path.halfedges[i];
+    const double l = path.lambdas[i];
+    return l <= 0.0 ? mesh.from(h) : (l >= 1.0 ? mesh.to(h) : -1);
+  };
+  for (int i = 0; i < k;) {
+    const int v = at_vertex(i);
+    if (v < 0) {
+      ++i;
+      continue;
+    }
+    int j = i;
+    while (j + 1 < k && at_vertex(j + 1) == v) ++j;
+    const Vec3& pv = mesh.position(v);
+    const int before = i + off - 1, after = j + off + 1;
+    if (path.closed && (i == 0 || j == k - 1)) {
+      i = j + 1;
+      continue;  // a run across the loop's seam: skipped (diagnostics only)
+    }
+    if (before < 0 || after >= static_cast<int>(pts.size())) {
+      i = j + 1;
+      continue;
+    }
+    const Vec3 dP = pts[before] - pv, dQ = pts[after] - pv;
+    if (dP.norm() == 0.0 || dQ.norm() == 0.0) {
+      i = j + 1;
+      continue;
+    }
+    auto spoke = [&](int m) {
+      const int h = path.halfedges[m];
+      return mesh.position(mesh.from(h) == v ? mesh.to(h) : mesh.from(h)) - pv;
+    };
+    double theta = angle_between(dP, spoke(i));
+    for (int m = i + 1; m <= j; ++m)
+      theta += mesh.corner_angle(outgoing_in_face(mesh, mesh.face(path.halfedges[m]), v));
+    theta += angle_between(spoke(j), dQ);
+    VertexPassage vp;
+    vp.vertex = v;
+    vp.first_crossing = i;
+    vp.last_crossing = j;
+    vp.strip_angle = theta;
+    vp.other_angle = mesh.is_boundary_vertex(v) ? 0.0 : mesh.cone_angle(v) - theta;
+    out.push_back(vp);
+    i = j + 1;
+  }
+  return out;
+}
+
 GeodesicContext::GeodesicContext(const Mesh& mesh, PathMetric metric)
-    : mesh_(mesh), metric_(std::move(metric)), graph_(build_edge_graph(mesh, metric_)) {}
+    : mesh_(mesh),
+      metric_(std::move(metric)),
+      graph_(build_edge_graph(mesh, metric_, true)),
+      plain_graph_(build_edge_graph(mesh, metric_, false)) {}
 
 OpenGeodesicResult geodesic_between(const GeodesicContext& context, const SurfacePoint& a,
                                     const SurfacePoint& b, const GeodesicOptions& options,
                                     const EdgePathOptions& edge_options) {
   OpenGeodesicResult result;
-  const auto t0 = Clock::now();
-  const SurfacePath init =
-      initial_open_path(context.mesh(), context.graph(), a, b, edge_options, &result.edge_path);
-  result.init_ms = ms_since(t0);
-  const auto t1 = Clock::now();
-  GeodesicResult r = refine_path(context.mesh(), init, context.metric(), options);
-  result.refine_ms = ms_since(t1);
-  result.path = std::move(r.path);
-  result.summary = r.summary;
-  result.constraint_variables = std::move(r.constraint_variables);
+  const int starts = options.two_starts && !context.graph().via.empty() ? 2 : 1;
+  for (int s = 0; s < starts; ++s) {
+    const EdgeGraph& graph = s == 0 ? context.graph() : context.plain_graph();
+    const auto t0 = Clock::now();
+    EdgePath edge_path;
+    const SurfacePath init =
+        initial_open_path(context.mesh(), graph, a, b, edge_options, &edge_path);
+    result.init_ms += ms_since(t0);
+    const auto t1 = Clock::now();
+    GeodesicResult r = refine_path(context.mesh(), init, context.metric(), options);
+    result.refine_ms += ms_since(t1);
+    if (s == 0 || (r.summary.converged() && (!result.summary.converged() ||
+                                            r.summary.final_length < result.summary.final_length))) {
+      result.path = std::move(r.path);
+      const double time = result.summary.time_ms;
+      result.summary = r.summary;
+      result.summary.time_ms += time;
+      result.constraint_variables = std::move(r.constraint_variables);
+      result.edge_path = std::move(edge_path);
+    } else {
+      result.summary.time_ms += r.summary.time_ms;
+    }
+  }
   return result;
 }
 

@@ -47,6 +47,10 @@ struct GeodesicOptions {
   /// Open paths without constraints: start from the exact Euclidean shortest path in the strip
   /// (funnel algorithm on the unfolded strip, alternated with reroutes), then refine.
   bool funnel_start = true;
+  /// geodesic_between: refine from two initial paths (shortest paths in the plain edge graph and
+  /// in the graph with unfolded diagonals) and keep the shorter result. Local methods settle on
+  /// the geodesic of the corridor they start in; two corridors find the global one more often.
+  bool two_starts = true;
   /// Upper bound on strip changes (reroutes) before giving up (0: 20 + 4 * crossings).
   int max_reroutes = 0;
   /// L-BFGS memory (pairs).
@@ -122,18 +126,31 @@ PathObjective evaluate_path_objective(const Mesh& mesh, const SurfacePath& path,
                                       const std::vector<double>& z = {}, double penalty_weight = 0.0,
                                       const std::vector<double>& multipliers = {});
 
+/// A vertex the path passes through, with the angles on its two sides (radians, Euclidean):
+/// a locally shortest Euclidean path has both >= pi (Mitchell, Mount, Papadimitriou).
+struct VertexPassage {
+  int vertex = -1;
+  int first_crossing = 0, last_crossing = 0;
+  double strip_angle = 0.0;  ///< on the side of the path's face strip
+  double other_angle = 0.0;  ///< cone angle minus strip_angle (0 for a boundary vertex)
+};
+std::vector<VertexPassage> vertex_passages(const Mesh& mesh, const SurfacePath& path);
+
 /// Reusable state for many queries on one mesh and metric (precompute / query split).
 class GeodesicContext {
  public:
   GeodesicContext(const Mesh& mesh, PathMetric metric = {});
   const Mesh& mesh() const { return mesh_; }
   const PathMetric& metric() const { return metric_; }
+  /// The graph with unfolded diagonals (see build_edge_graph).
   const EdgeGraph& graph() const { return graph_; }
+  /// The plain edge graph.
+  const EdgeGraph& plain_graph() const { return plain_graph_; }
 
  private:
   const Mesh& mesh_;
   PathMetric metric_;
-  EdgeGraph graph_;
+  EdgeGraph graph_, plain_graph_;
 };
 
 struct OpenGeodesicResult : GeodesicResult {
