@@ -147,8 +147,17 @@ class Refiner {
     m_ = con_ ? con_->num_variables() : 0;
     z_.assign(m_, 0.0);
     if (con_ && m_ > 0) con_->initial_variables(z_.data());
-    const auto stats = mesh.edge_length_stats();
-    scale_ = stats[1] > 0.0 ? stats[1] : 1.0;
+    // Length scale for tolerances: the mean length of the crossed edges (O(k), not O(E): this
+    // runs once per query).
+    double sum = 0.0;
+    for (int h : path_.halfedges) sum += mesh.halfedge_length(h);
+    if (!path_.halfedges.empty()) sum /= static_cast<double>(path_.halfedges.size());
+    if (!(sum > 0.0) && !path_.closed) {
+      sum = (position(mesh, path_.start) - position(mesh, path_.end)).norm();
+      const int f = path_.start_face;
+      if (f >= 0) sum = std::max(sum, std::sqrt(mesh.face_area(f)));
+    }
+    scale_ = sum > 0.0 ? sum : 1.0;
     if (!path_.closed) {
       ps_ = position(mesh, path_.start);
       pt_ = position(mesh, path_.end);
