@@ -8,6 +8,7 @@
 
 #include "geometry/closest_point.h"
 #include "geometry/errors.h"
+#include "geometry/unfold.h"
 
 namespace windplan {
 
@@ -142,21 +143,6 @@ std::vector<int> faces_containing(const Mesh& mesh, const SurfacePoint& p) {
 
 }  // namespace
 
-namespace {
-
-// Places the third corner of a triangle in the plane (see geodesic.cpp).
-Vec2 place_corner(const Vec2& a, const Vec2& b, double la, double lb, bool left) {
-  const Vec2 ab = b - a;
-  const double L = ab.norm();
-  const double x = (la * la - lb * lb + L * L) / (2.0 * L);
-  const double y = std::sqrt(std::max(0.0, la * la - x * x));
-  const Vec2 u = ab / L;
-  const Vec2 n(-u.y(), u.x());
-  return a + x * u + (left ? y : -y) * n;
-}
-
-}  // namespace
-
 EdgeGraph build_edge_graph(const Mesh& mesh, const PathMetric& metric, bool diagonals) {
   EdgeGraph g;
   const int nv = mesh.num_vertices();
@@ -189,8 +175,8 @@ EdgeGraph build_edge_graph(const Mesh& mesh, const PathMetric& metric, bool diag
     const double L = (B - A).norm();
     if (!(L > 0.0)) continue;
     const Vec2 a2(0, 0), b2(L, 0);
-    const Vec2 c2 = place_corner(a2, b2, (C - A).norm(), (C - B).norm(), true);
-    const Vec2 d2 = place_corner(a2, b2, (D - A).norm(), (D - B).norm(), false);
+    const Vec2 c2 = place_third(a2, b2, (C - A).norm(), (C - B).norm(), true);
+    const Vec2 d2 = place_third(a2, b2, (D - A).norm(), (D - B).norm(), false);
     if (!(c2.y() > 0.0) || !(d2.y() < 0.0)) continue;
     const double s = c2.y() / (c2.y() - d2.y());
     const double x = c2.x() + s * (d2.x() - c2.x());

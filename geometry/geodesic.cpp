@@ -11,6 +11,7 @@
 #include <cstdlib>
 
 #include "geometry/errors.h"
+#include "geometry/unfold.h"
 
 namespace windplan {
 
@@ -816,20 +817,6 @@ bool Refiner::process_vertex_events(const Eval& ev) {
 
 
 namespace {
-
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// Places the third corner c of a triangle in the plane, given a and b and the lengths |c - a|,
-// |c - b|, on the left of a -> b when left is true.
-Vec2 place_third(const Vec2& a, const Vec2& b, double la, double lb, bool left) {
-  const Vec2 ab = b - a;
-  const double L = ab.norm();
-  const double x = (la * la - lb * lb + L * L) / (2.0 * L);
-  const double y = std::sqrt(std::max(0.0, la * la - x * x));
-  const Vec2 u = ab / L;
-  const Vec2 n(-u.y(), u.x());
-  return a + x * u + (left ? y : -y) * n;
-}
 
 }  // namespace
 
