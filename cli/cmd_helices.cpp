@@ -62,6 +62,7 @@ int run_helices(const std::vector<std::string>& argv) {
       j.field("radius_end", p.radius_end);
       j.field("max_slippage", p.max_slippage);
       j.field("iterations", p.iterations);
+      j.field("time_ms", p.time_ms);
       j.field("termination", p.termination);
       j.end_object();
     }
@@ -99,7 +100,8 @@ int run_helices(const std::vector<std::string>& argv) {
     s << "  circuit " << p.circuit << (p.hand > 0 ? " out   " : " return") << ": length "
       << p.length << " mm, angle " << p.angle_start << " deg at r = " << p.radius_start
       << " mm -> " << p.angle_end << " deg at r = " << p.radius_end << " mm, max slippage "
-      << p.max_slippage << ", " << p.iterations << " it, " << p.termination << "\n";
+      << p.max_slippage << ", " << p.iterations << " it, " << p.time_ms << " ms, " << p.termination
+      << "\n";
   }
   s << "  fibre length " << m.fibre_length << " mm\n";
   s << "  spacing: mean " << m.spacing_mean << " mm, CV (girth-normalised) " << m.spacing_cv

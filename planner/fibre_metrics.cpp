@@ -272,6 +272,7 @@ std::vector<PassReport> pass_reports(const HelixPlan& plan, const std::vector<Ci
     r.circuit = p.circuit;
     r.hand = p.hand;
     r.iterations = p.summary.iterations;
+    r.time_ms = p.summary.time_ms;
     r.termination = to_string(p.summary.termination);
     const Circuit& c = circuits[p.circuit];
     int seg_index = p.hand == 1 ? 0 : 2;

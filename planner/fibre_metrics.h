@@ -78,6 +78,7 @@ struct PassReport {
   double radius_start = 0.0, radius_end = 0.0;  ///< mm
   double max_slippage = 0.0;
   int iterations = 0;
+  double time_ms = 0.0;           ///< refinement wall time
   std::string termination;
 };
 std::vector<PassReport> pass_reports(const HelixPlan& plan, const std::vector<Circuit>& circuits,

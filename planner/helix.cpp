@@ -87,6 +87,21 @@ Vec3 edge_position(const Mesh& m, int h, double t) {
   return (1.0 - t) * m.position(m.from(h)) + t * m.position(m.to(h));
 }
 
+// The same open path traversed backwards (crossings through the twin halfedges).
+SurfacePath reversed(const Mesh& m, const SurfacePath& p) {
+  SurfacePath r;
+  r.closed = false;
+  r.start = p.end;
+  r.end = p.start;
+  const int k = p.num_crossings();
+  r.start_face = k > 0 ? m.face(m.twin(p.halfedges[k - 1])) : p.start_face;
+  for (int i = k - 1; i >= 0; --i) {
+    r.halfedges.push_back(m.twin(p.halfedges[i]));
+    r.lambdas.push_back(1.0 - p.lambdas[i]);
+  }
+  return r;
+}
+
 }  // namespace
 
 std::array<double, 2> edge_point_coordinates(const Mesh& m, const HarmonicCoordinates& hc, int h,
@@ -180,7 +195,8 @@ SurfacePath trace_helix(const Mesh& m, const HarmonicCoordinates& hc, const Surf
       return path;
     }
     path.halfedges.push_back(best);
-    path.lambdas.push_back(best_lambda);
+    // Off the vertices: a level set through a vertex would start the core on it.
+    path.lambdas.push_back(std::clamp(best_lambda, 1e-6, 1.0 - 1e-6));
     // Move into the next face; re-express the level in its lift (differs by k 2 pi).
     const int g = m.face(tw);
     const int v = m.from(best);
@@ -214,8 +230,9 @@ LoopArc loop_arc(const Mesh& m, const HarmonicCoordinates& hc, const SurfacePoin
     if (left >= remaining && b > a) {
       const double u_end = u + remaining / (b - a);
       const double t_end = o.forward[i] ? u_end : 1.0 - u_end;
-      arc.end = SurfacePoint::on_edge(hi, std::clamp(t_end, 0.0, 1.0));
-      const Vec3 q = edge_position(m, hi, std::clamp(t_end, 0.0, 1.0));
+      const double te = std::clamp(t_end, 1e-6, 1.0 - 1e-6);  // off the loop's vertices
+      arc.end = SurfacePoint::on_edge(hi, te);
+      const Vec3 q = edge_position(m, hi, te);
       arc.length += (q - arc.points.back()).norm();
       arc.points.push_back(q);
       arc.faces.push_back(m.face(hi));
@@ -264,20 +281,24 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
   const PathMetric metric = rho.empty() ? PathMetric() : PathMetric::density(m, rho);
   // Workaround (geodesic core, see the report): under a density metric the exact Euclidean
   // funnel start pins the path at vertices and the refinement can end longer than it started;
-  // the level set is already a good start, so refine it directly.
-  GeodesicOptions gopt = geodesic;
-  if (!rho.empty()) gopt.funnel_start = false;
+  // the level set is already a good start, so it is refined directly (below, for all metrics).
+  const GeodesicOptions& gopt = geodesic;
   const int N = options.turns;
 
   auto refine = [&](HelixPass* p) {
     const auto t0 = std::chrono::steady_clock::now();
+    // Workarounds (geodesic core, see the report): (1) return passes (loop 1 -> loop 0) took
+    // ~600x longer than the same curve refined from loop 0: every pass is refined from loop 0;
+    // (2) on long, thin CAD triangles the funnel start (and a polish with it) can spend 10-15 s
+    // on one pass of the vessel: the level set is refined without the funnel, with a larger
+    // reroute cap (the core's 20 + 4 k stops it early there).
+    const SurfacePath init = p->hand < 0 ? reversed(m, p->initial) : p->initial;
     GeodesicOptions go = gopt;
-    // Level sets on long, thin CAD triangles need many strip changes on the way to the
-    // geodesic; the core's default cap (20 + 4 k) stops them early (see the report).
-    if (go.max_reroutes == 0) go.max_reroutes = 1000 + 100 * p->initial.num_crossings();
-    GeodesicResult r = refine_path(m, p->initial, metric, go);
+    go.funnel_start = false;
+    if (go.max_reroutes == 0) go.max_reroutes = 1000 + 20 * init.num_crossings();
+    GeodesicResult r = refine_path(m, init, metric, go);
     plan.summary.refine_ms += ms_since(t0);
-    p->path = std::move(r.path);
+    p->path = p->hand < 0 ? reversed(m, r.path) : std::move(r.path);
     p->summary = r.summary;
     if (!p->summary.converged()) ++plan.summary.not_converged;
   };
