@@ -815,11 +815,6 @@ bool Refiner::process_vertex_events(const Eval& ev) {
   return changed;
 }
 
-
-namespace {
-
-}  // namespace
-
 void Refiner::funnel_straighten() {
   if (path_.closed || k_ == 0) return;
   // Unfold the strip: the 2D corners of the current face, face by face.
