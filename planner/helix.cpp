@@ -163,7 +163,8 @@ SurfacePath trace_helix(const Mesh& m, const HarmonicCoordinates& hc, const Surf
   path.start = SurfacePoint::on_edge(h0, t0);
   path.start_face = f;
   int entry = h0;
-  const int max_steps = 2 * m.num_faces() + 8;
+  // A face can be crossed once per turn (long CAD triangles span the whole length).
+  const int max_steps = 4 * (turns + 1) * m.num_faces() + 64;
   for (int step = 0; step < max_steps; ++step) {
     int best = -1;
     double best_lambda = 0.0;
@@ -325,15 +326,28 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
     const std::vector<int> sf = segment_faces(m, first_pass.path);
     std::size_t best = 0;
     double rmax = -1.0;
-    for (std::size_t i = 0; i + 1 < pl.size(); ++i) {
-      const double r = axis.radius(0.5 * (pl[i] + pl[i + 1]));
-      if (r > rmax && (pl[i + 1] - pl[i]).norm() > 0.0) {
+    for (std::size_t i = 0; i < pl.size(); ++i) {
+      const double r = axis.radius(pl[i]);
+      if (r > rmax) {
         rmax = r;
         best = i;
       }
     }
-    const Vec3 n = m.face_normal(sf[best]);
-    const Vec3 t = (pl[best + 1] - pl[best]).normalized();
+    // The direction there: a chord over about a band width (robust to tiny segments).
+    std::size_t a = best, b = best;
+    double before = 0.0, after = 0.0;
+    while (a > 0 && before < 0.5 * options.band_width) {
+      before += (pl[a] - pl[a - 1]).norm();
+      --a;
+    }
+    while (b + 1 < pl.size() && after < 0.5 * options.band_width) {
+      after += (pl[b + 1] - pl[b]).norm();
+      ++b;
+    }
+    const Vec3 n = m.face_normal(sf[std::min(best, sf.size() - 1)]);
+    Vec3 t = pl[b] - pl[a];
+    t -= t.dot(n) * n;
+    t.normalize();
     Vec3 mer = axis.direction - axis.direction.dot(n) * n;
     double ca = 1.0;
     if (mer.norm() > 1e-12) ca = std::fabs(t.dot(mer.normalized()));
