@@ -107,12 +107,12 @@ int as_vertex(const Mesh& mesh, const SurfacePoint& p) {
   switch (p.kind) {
     case SurfacePoint::Kind::Vertex: return p.element;
     case SurfacePoint::Kind::Edge:
-      if (p.t <= 0.0) return mesh.from(p.element);
-      if (p.t >= 1.0) return mesh.to(p.element);
+      if (p.t <= kOnVertex) return mesh.from(p.element);
+      if (p.t >= 1.0 - kOnVertex) return mesh.to(p.element);
       return -1;
     case SurfacePoint::Kind::Face:
       for (int k = 0; k < 3; ++k)
-        if (p.bary[k] >= 1.0) return mesh.triangle(p.element)[k];
+        if (p.bary[k] >= 1.0 - kOnVertex) return mesh.triangle(p.element)[k];
       return -1;
   }
   return -1;
@@ -126,14 +126,14 @@ std::vector<int> faces_containing(const Mesh& mesh, const SurfacePoint& p) {
       for (int h : mesh.outgoing_halfedges(p.element)) faces.push_back(mesh.face(h));
       break;
     case SurfacePoint::Kind::Edge:
-      if (p.t <= 0.0) return faces_containing(mesh, SurfacePoint::at_vertex(mesh.from(p.element)));
-      if (p.t >= 1.0) return faces_containing(mesh, SurfacePoint::at_vertex(mesh.to(p.element)));
+      if (p.t <= kOnVertex) return faces_containing(mesh, SurfacePoint::at_vertex(mesh.from(p.element)));
+      if (p.t >= 1.0 - kOnVertex) return faces_containing(mesh, SurfacePoint::at_vertex(mesh.to(p.element)));
       for (int h : {p.element, mesh.twin(p.element)})
         if (!mesh.is_boundary_halfedge(h)) faces.push_back(mesh.face(h));
       break;
     case SurfacePoint::Kind::Face:
       for (int k = 0; k < 3; ++k)
-        if (p.bary[k] >= 1.0)
+        if (p.bary[k] >= 1.0 - kOnVertex)
           return faces_containing(mesh, SurfacePoint::at_vertex(mesh.triangle(p.element)[k]));
       faces.push_back(p.element);
       break;

@@ -1071,8 +1071,22 @@ bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
     const std::vector<double> g_old = ev.g;
     double f_new = 0.0;
     if (!line_search(ev, dir, &f_new)) {
-      termination_ = GeodesicTermination::LineSearchFailed;
-      summary->message = "no decrease along the search direction";
+      double slope = 0.0;
+      for (int q = 0; q < k_ + m_; ++q) slope += ev.g[q] * dir[q];
+      // Crossings strictly inside their edges are stationary: what is left is the non-smooth
+      // part at vertices (zero-length segments), where no descent remains either.
+      double interior = 0.0;
+      for (int q = 0; q < k_; ++q)
+        if (lambda_[q] > 0.0 && lambda_[q] < 1.0)
+          interior = std::max(interior, std::fabs(ev.g[q]) / d_[q].norm());
+      if (std::fabs(slope) <= 1e-13 * std::max(1.0, std::fabs(ev.value)) ||
+          interior <= 10.0 * opt_.gradient_tolerance) {
+        termination_ = GeodesicTermination::Converged;
+        summary->message = "no decrease left (stationary inside the edges)";
+      } else {
+        termination_ = GeodesicTermination::LineSearchFailed;
+        summary->message = "no decrease along the search direction";
+      }
       break;
     }
     const double f_old = ev.value;

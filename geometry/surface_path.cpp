@@ -50,15 +50,15 @@ bool face_contains(const Mesh& mesh, int f, const SurfacePoint& p) {
       for (int k = 0; k < 3; ++k)
         if (mesh.edge(3 * f + k) == e) return true;
       // An edge point at an endpoint is a vertex point.
-      if (p.t <= 0.0) return face_contains(mesh, f, SurfacePoint::at_vertex(mesh.from(p.element)));
-      if (p.t >= 1.0) return face_contains(mesh, f, SurfacePoint::at_vertex(mesh.to(p.element)));
+      if (p.t <= kOnVertex) return face_contains(mesh, f, SurfacePoint::at_vertex(mesh.from(p.element)));
+      if (p.t >= 1.0 - kOnVertex) return face_contains(mesh, f, SurfacePoint::at_vertex(mesh.to(p.element)));
       return false;
     }
     case SurfacePoint::Kind::Face:
       if (p.element == f) return true;
       // A face point on the face's border may belong to a neighbour too.
       for (int k = 0; k < 3; ++k) {
-        if (p.bary[k] >= 1.0) {
+        if (p.bary[k] >= 1.0 - kOnVertex) {
           return face_contains(mesh, f, SurfacePoint::at_vertex(mesh.triangle(p.element)[k]));
         }
       }

@@ -32,6 +32,10 @@
 
 namespace windplan {
 
+/// A surface point whose edge parameter or barycentric coordinate is within this of a corner is
+/// taken to be at that vertex (closest-point queries return corners with round-off).
+constexpr double kOnVertex = 1e-12;
+
 struct SurfacePoint {
   enum class Kind { Vertex, Edge, Face };
   Kind kind = Kind::Vertex;
