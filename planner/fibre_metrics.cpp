@@ -243,7 +243,7 @@ SpacingStats turn_spacing(const Mesh& m, const HelixPlan& plan,
     std::sort(list.begin(), list.end(), [](const Hit& a, const Hit& b) { return a.h < b.h; });
     for (std::size_t i = 0; i + 1 < list.size(); ++i) {
       const double d = (list[i + 1].p - list[i].p).norm();
-      if (!(d > 0.0)) continue;
+      if (!std::isfinite(d)) continue;  // zero spacing (turns piled up) counts
       double g = 0.0;
       if (!face_girth.empty()) {
         g = 0.5 * (face_girth[list[i].face] + face_girth[list[i + 1].face]);

@@ -1,0 +1,123 @@
+// planner/fibre_metrics.cpp: curvatures, winding angle, turn spacing, coverage, stability.
+#include "planner/fibre_metrics.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "tests/mesh_fixtures.h"
+#include "tests/planner/revolution_fixtures.h"
+
+namespace windplan {
+namespace {
+
+// Exact helix on the cylinder of radius R about z: k_n = sin^2 a / R, k_g = 0.
+TEST(FibreMetrics, HelixCurvaturesAndAngleAreClosedForm) {
+  const double R = 50.0, a = 40.0 * M_PI / 180.0;
+  const double c = R / std::tan(a);  // z = c phi
+  std::vector<FibrePoint> pts;
+  for (int i = 0; i <= 2000; ++i) {
+    const double phi = 4.0 * M_PI * i / 2000;
+    FibrePoint p;
+    p.position = Vec3(R * std::cos(phi), R * std::sin(phi), c * phi);
+    p.normal = Vec3(std::cos(phi), std::sin(phi), 0.0);
+    pts.push_back(p);
+  }
+  annotate_fibre_points(&pts, SpindleAxis{}, 10.0);
+  const double kn = std::sin(a) * std::sin(a) / R;
+  const double len = std::sqrt(R * R + c * c) * 4.0 * M_PI;
+  EXPECT_NEAR(pts.back().s, len, 1e-3 * len);
+  for (std::size_t i = 200; i + 200 < pts.size(); ++i) {
+    // Chord smoothing biases by O((w / radius)^2): window 10 mm, radius 50 mm.
+    ASSERT_NEAR(pts[i].winding_angle, 40.0, 0.05) << i;
+    ASSERT_NEAR(pts[i].k_n, kn, 1e-2 * kn) << i;
+    ASSERT_NEAR(pts[i].k_g, 0.0, 1e-6) << i;
+    ASSERT_LT(pts[i].slippage, 1e-3) << i;
+  }
+}
+
+// A circle of latitude on a sphere is not a geodesic: k_g = cos(lat) ... checked in closed form
+// as k_n = 1/rho_s (sphere radius) and k_g = tan(lat) / rho_s for the parallel at latitude lat.
+TEST(FibreMetrics, ParallelOnASphereHasClosedFormGeodesicCurvature) {
+  const double Rs = 80.0, lat = 30.0 * M_PI / 180.0;
+  const double r = Rs * std::cos(lat), z = Rs * std::sin(lat);
+  std::vector<FibrePoint> pts;
+  for (int i = 0; i <= 1000; ++i) {
+    const double phi = 2.0 * M_PI * i / 1000;
+    FibrePoint p;
+    p.position = Vec3(r * std::cos(phi), r * std::sin(phi), z);
+    p.normal = p.position.normalized();
+    pts.push_back(p);
+  }
+  annotate_fibre_points(&pts, SpindleAxis{}, 8.0);
+  for (std::size_t i = 100; i + 100 < pts.size(); ++i) {
+    ASSERT_NEAR(pts[i].winding_angle, 90.0, 1e-6);
+    ASSERT_NEAR(pts[i].k_n, 1.0 / Rs, 1e-3 / Rs);
+    ASSERT_NEAR(std::fabs(pts[i].k_g), std::tan(lat) / Rs, 1e-3 / Rs);
+    ASSERT_NEAR(pts[i].slippage, std::tan(lat), 2e-3);
+  }
+}
+
+// On a cone (varying radius), beta = 1 (rho = 1 / 2 pi r) gives helices whose turn spacing is
+// proportional to the girth (CV of the normalised spacing ~ 0), beta = 0 does not.
+TEST(FibreMetrics, InverseGirthDensityEquallySpacesTheTurns) {
+  auto r = [](double z) { return 60.0 - 0.2 * z; };
+  const Mesh m(test::revolution_soup(r, 0.0, 150.0, 128, 60));
+  const auto loops = test::loops_by_z(m);
+  std::vector<double> g(m.num_faces());
+  for (int f = 0; f < m.num_faces(); ++f) g[f] = 2.0 * M_PI * r(m.face_centroid(f).z());
+  WindingOptions o;
+  o.turns = 2;
+  o.circuits = 6;
+  o.band_width = 10.0;
+  SpacingStats s[2];
+  for (int beta = 0; beta <= 1; ++beta) {
+    o.beta = beta;
+    const std::vector<double> rho = beta ? density_from_girth(m, g, 1.0) : std::vector<double>{};
+    const HelixPlan plan = plan_helices(m, loops, rho, SpindleAxis{}, o);
+    s[beta] = turn_spacing(m, plan, g, SpindleAxis{}, 36);
+    // 36 meridians, K N = 12 crossings each: 11 spacings per meridian.
+    ASSERT_EQ(s[beta].samples, 36 * 11);
+  }
+  EXPECT_LT(s[1].cv_normalised, 0.05) << "beta 1";
+  EXPECT_GT(s[0].cv_normalised, 2.0 * s[1].cv_normalised) << "beta 0 vs beta 1";
+  // The mm spacing varies with the radius for beta = 1 (r from 30 to 60 mm).
+  EXPECT_GT(s[1].cv, 0.1);
+}
+
+TEST(FibreMetrics, CylinderCoverageAndStability) {
+  const double R = 40.0, L = 150.0;
+  const Mesh m(test::open_cylinder(R, L, 96, 20));
+  WindingOptions o;
+  o.turns = 1;
+  o.circuits = 5;
+  o.band_width = 12.0;
+  o.mu = 0.1;
+  const HelixPlan plan = plan_helices(m, test::loops_by_z(m), {}, SpindleAxis{}, o);
+  const std::vector<Circuit> circuits = build_circuits(m, plan, {}, SpindleAxis{}, o);
+  ASSERT_EQ(circuits.size(), 5u);
+  for (const Circuit& c : circuits) {
+    ASSERT_EQ(c.segments.size(), 4u);
+    EXPECT_EQ(c.segments[0].kind, CircuitSegment::Kind::Pass);
+    EXPECT_EQ(c.segments[1].kind, CircuitSegment::Kind::Turnaround);
+    for (std::size_t i = 1; i < c.points.size(); ++i) ASSERT_GE(c.points[i].s, c.points[i - 1].s);
+  }
+  const PlanMetrics pm = compute_plan_metrics(m, plan, circuits, {}, SpindleAxis{}, true, o);
+  const double P = 96 * 2.0 * R * std::sin(M_PI / 96);
+  const double a = std::atan2(P, L);
+  const double across = 2.0 * M_PI * R * std::cos(a);
+  EXPECT_EQ(pm.circuits_for_coverage, static_cast<int>(std::ceil(across / 12.0)));
+  EXPECT_NEAR(pm.cover_factor, 5 * 12.0 / across, 0.02 * pm.cover_factor);
+  EXPECT_LT(pm.max_slippage, 0.1);  // geodesics on a cylinder: k_g ~ 0
+  EXPECT_EQ(pm.bridging_length, 0.0);
+  EXPECT_NE(pm.pattern.find("coprime"), std::string::npos) << pm.pattern;
+  bool coverage_warning = false;
+  for (const std::string& w : pm.warnings) coverage_warning |= w.find("coverage") == 0;
+  EXPECT_TRUE(coverage_warning);
+  // Spacing on a cylinder: equal in mm, the meridian length over K turns.
+  EXPECT_NEAR(pm.spacing_mean, L / 5.0, 0.02 * L / 5.0);
+  EXPECT_LT(pm.spacing_cv, 0.02);
+}
+
+}  // namespace
+}  // namespace windplan
