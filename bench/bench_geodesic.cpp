@@ -36,8 +36,8 @@ double ms_since(Clock::time_point t) {
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return std::nan("");
   std::sort(v.begin(), v.end());
-  const std::size_t i = std::min(v.size() - 1, static_cast<std::size_t>(std::ceil(q * v.size())) -
-                                                   (q > 0.0 ? 1 : 0));
+  const std::size_t i =
+      std::min(v.size() - 1, static_cast<std::size_t>(std::ceil(q * v.size())) - (q > 0.0 ? 1 : 0));
   return v[i];
 }
 
@@ -80,18 +80,27 @@ int main(int argc, char** argv) {
       }
       return std::atoi(argv[++i]);
     };
-    if (a == "--pairs") num_pairs = next();
-    else if (a == "--targets-per-source") per_source = next();
-    else if (a == "--exact-sources") exact_sources = next();
-    else if (a == "--exact-sources-small") exact_sources_small = next();
-    else if (a == "--seed") seed = static_cast<unsigned>(next());
-    else if (a == "--quick") { num_pairs = 10; exact_sources = 0; exact_sources_small = 1; }
-    else if (a == "-h" || a == "--help") {
-      std::printf("usage: bench_geodesic [--pairs N] [--targets-per-source K] [--exact-sources S]\n"
-                  "       [--exact-sources-small S] [--seed N] [--quick] [mesh files...]\n"
-                  "Pairs are drawn as sources with K targets each; the CGAL exact distance is\n"
-                  "computed for S sources (one sequence tree each) on meshes above 50K faces and\n"
-                  "for all sources below (or --exact-sources-small).\n");
+    if (a == "--pairs")
+      num_pairs = next();
+    else if (a == "--targets-per-source")
+      per_source = next();
+    else if (a == "--exact-sources")
+      exact_sources = next();
+    else if (a == "--exact-sources-small")
+      exact_sources_small = next();
+    else if (a == "--seed")
+      seed = static_cast<unsigned>(next());
+    else if (a == "--quick") {
+      num_pairs = 10;
+      exact_sources = 0;
+      exact_sources_small = 1;
+    } else if (a == "-h" || a == "--help") {
+      std::printf(
+          "usage: bench_geodesic [--pairs N] [--targets-per-source K] [--exact-sources S]\n"
+          "       [--exact-sources-small S] [--seed N] [--quick] [mesh files...]\n"
+          "Pairs are drawn as sources with K targets each; the CGAL exact distance is\n"
+          "computed for S sources (one sequence tree each) on meshes above 50K faces and\n"
+          "for all sources below (or --exact-sources-small).\n");
       return 0;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
@@ -153,8 +162,8 @@ int main(int argc, char** argv) {
     }
 
     // Exact distances: one CGAL tree per source, for the first sources.
-    const int sources_exact =
-        mesh.num_faces() <= 50000 ? (exact_sources_small < 0 ? num_sources : exact_sources_small)
+    const int sources_exact = mesh.num_faces() <= 50000
+                                  ? (exact_sources_small < 0 ? num_sources : exact_sources_small)
                                   : exact_sources;
     std::vector<double> exact(pairs.size(), std::nan(""));
     if (sources_exact > 0) {
@@ -200,51 +209,53 @@ int main(int argc, char** argv) {
           const double e = (r.summary.final_length - exact[i]) / exact[i];
           row.excess.push_back(e);
           if (e > 1e-4) {
-            notes.push_back(name + " " + row.solver + " " + std::to_string(pairs[i].source) +
-                            "->" + std::to_string(pairs[i].target) + ": excess " + fmt(e) +
-                            " (" + fmt(r.summary.final_length, "%.9g") + " vs exact " +
-                            fmt(exact[i], "%.9g") + ", " + to_string(r.summary.termination) +
-                            ", " + std::to_string(r.summary.reroutes) + " reroutes)");
+            notes.push_back(name + " " + row.solver + " " + std::to_string(pairs[i].source) + "->" +
+                            std::to_string(pairs[i].target) + ": excess " + fmt(e) + " (" +
+                            fmt(r.summary.final_length, "%.9g") + " vs exact " +
+                            fmt(exact[i], "%.9g") + ", " + to_string(r.summary.termination) + ", " +
+                            std::to_string(r.summary.reroutes) + " reroutes)");
           } else if (e < -1e-9) {
-            notes.push_back(name + " " + row.solver + " " + std::to_string(pairs[i].source) +
-                            "->" + std::to_string(pairs[i].target) +
-                            ": SHORTER than exact, excess " + fmt(e));
+            notes.push_back(name + " " + row.solver + " " + std::to_string(pairs[i].source) + "->" +
+                            std::to_string(pairs[i].target) + ": SHORTER than exact, excess " +
+                            fmt(e));
           }
         }
       }
       row.pairs = static_cast<int>(pairs.size());
-      for (const std::string& f : row.run.failures) notes.push_back(name + " " + row.solver +
-                                                                    " not converged " + f);
+      for (const std::string& f : row.run.failures)
+        notes.push_back(name + " " + row.solver + " not converged " + f);
       rows.push_back(std::move(row));
     }
   }
 
-  std::printf("\n| mesh | faces | solver | init ms (med / p90) | refine ms (med / p90) | "
-              "total ms (med / p90) | iterations (med / p90) | not conv. | exact pairs | "
-              "excess median | excess max | within 1e-4 | other geodesic |\n");
+  std::printf(
+      "\n| mesh | faces | solver | init ms (med / p90) | refine ms (med / p90) | "
+      "total ms (med / p90) | iterations (med / p90) | not conv. | exact pairs | "
+      "excess median | excess max | within 1e-4 | other geodesic |\n");
   std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows) {
     int within = 0, other = 0;
     for (double e : r.excess) {
-      if (e <= 1e-4) ++within;
-      else ++other;
+      if (e <= 1e-4)
+        ++within;
+      else
+        ++other;
     }
     const bool have = !r.excess.empty();
-    std::printf("| %s | %d | %s | %s / %s | %s / %s | %s / %s | %s / %s | %d | %d | %s | %s | "
-                "%s | %s |\n",
-                r.mesh.c_str(), r.faces, r.solver.c_str(), fmt(quantile(r.run.init, 0.5)).c_str(),
-                fmt(quantile(r.run.init, 0.9)).c_str(), fmt(quantile(r.run.refine, 0.5)).c_str(),
-                fmt(quantile(r.run.refine, 0.9)).c_str(), fmt(quantile(r.run.total, 0.5)).c_str(),
-                fmt(quantile(r.run.total, 0.9)).c_str(),
-                fmt(quantile(r.run.iterations, 0.5), "%.0f").c_str(),
-                fmt(quantile(r.run.iterations, 0.9), "%.0f").c_str(), r.run.not_converged,
-                static_cast<int>(r.excess.size()),
-                have ? fmt(quantile(r.excess, 0.5), "%.1e").c_str() : "-",
-                have ? fmt(quantile(r.excess, 1.0), "%.1e").c_str() : "-",
-                have ? (std::to_string(within) + "/" + std::to_string(r.excess.size())).c_str()
-                     : "-",
-                have ? (std::to_string(other) + "/" + std::to_string(r.excess.size())).c_str()
-                     : "-");
+    std::printf(
+        "| %s | %d | %s | %s / %s | %s / %s | %s / %s | %s / %s | %d | %d | %s | %s | "
+        "%s | %s |\n",
+        r.mesh.c_str(), r.faces, r.solver.c_str(), fmt(quantile(r.run.init, 0.5)).c_str(),
+        fmt(quantile(r.run.init, 0.9)).c_str(), fmt(quantile(r.run.refine, 0.5)).c_str(),
+        fmt(quantile(r.run.refine, 0.9)).c_str(), fmt(quantile(r.run.total, 0.5)).c_str(),
+        fmt(quantile(r.run.total, 0.9)).c_str(),
+        fmt(quantile(r.run.iterations, 0.5), "%.0f").c_str(),
+        fmt(quantile(r.run.iterations, 0.9), "%.0f").c_str(), r.run.not_converged,
+        static_cast<int>(r.excess.size()),
+        have ? fmt(quantile(r.excess, 0.5), "%.1e").c_str() : "-",
+        have ? fmt(quantile(r.excess, 1.0), "%.1e").c_str() : "-",
+        have ? (std::to_string(within) + "/" + std::to_string(r.excess.size())).c_str() : "-",
+        have ? (std::to_string(other) + "/" + std::to_string(r.excess.size())).c_str() : "-");
   }
   if (!notes.empty()) {
     std::printf("\nnotes:\n");

@@ -16,6 +16,7 @@
 #include "geometry/closest_point.h"
 #include "geometry/edge_path.h"
 #include "geometry/errors.h"
+#include "geometry/exact_geodesic.h"
 #include "geometry/geodesic.h"
 #include "geometry/json.h"
 #include "geometry/mesh_io.h"
@@ -25,27 +26,27 @@
 
 namespace windplan::cli {
 
-#define WINDPLAN_GEODESIC_COMMON_HELP                                                             \
-  "Mesh: a mesh file (OBJ, PLY, STL, OFF; loaded as is, not repaired, so vertex indices are\n"   \
-  "the file's) or a job file (.yaml/.yml: its mandrel, in mm).\n"                                \
-  "\n"                                                                                           \
-  "options:\n"                                                                                   \
-  "  --density FILE     density metric: one value rho > 0 per face (whitespace separated, in\n"  \
-  "                     face order); the length of a segment in face f is rho_f times |w|\n"     \
+#define WINDPLAN_GEODESIC_COMMON_HELP                                                              \
+  "Mesh: a mesh file (OBJ, PLY, STL, OFF; loaded as is, not repaired, so vertex indices are\n"     \
+  "the file's) or a job file (.yaml/.yml: its mandrel, in mm).\n"                                  \
+  "\n"                                                                                             \
+  "options:\n"                                                                                     \
+  "  --density FILE     density metric: one value rho > 0 per face (whitespace separated, in\n"    \
+  "                     face order); the length of a segment in face f is rho_f times |w|\n"       \
   "  --metric FILE      anisotropic metric: three values a b c per face, the symmetric positive\n" \
-  "                     definite [[a, b], [b, c]] in the face frame (e1 along the face's first\n" \
-  "                     edge, e2 = n x e1); cannot be combined with --density\n"                 \
-  "  --solver NAME      newton (default: projected Newton) or lbfgs (the paper's L-BFGS)\n"      \
-  "  --snap-tolerance MM  largest distance of a given point from the mesh (default: 1e-3 times\n" \
-  "                     the bounding-box diagonal)\n"                                            \
-  "  --json             print one JSON object: length, initial_length, euclidean_length,\n"     \
-  "                     iterations, reroutes, termination, time_ms (= init_ms + refine_ms),\n"   \
-  "                     init_ms, refine_ms, setup_ms and points (the polyline, [x, y, z])\n"     \
-  "  -o FILE            write the polyline as CSV: x [mm], y [mm], z [mm]\n"                     \
-  "  -h, --help         this text\n"                                                             \
-  "\n"                                                                                           \
-  "Exit codes: 0 ok (also when the solver did not converge: see termination), 1 bad input\n"   \
-  "(missing file, a point far from the mesh, a vertex out of range, endpoints on different\n"    \
+  "                     definite [[a, b], [b, c]] in the face frame (e1 along the face's first\n"  \
+  "                     edge, e2 = n x e1); cannot be combined with --density\n"                   \
+  "  --solver NAME      newton (default: projected Newton) or lbfgs (the paper's L-BFGS)\n"        \
+  "  --snap-tolerance MM  largest distance of a given point from the mesh (default: 1e-3 times\n"  \
+  "                     the bounding-box diagonal)\n"                                              \
+  "  --json             print one JSON object: length, initial_length, euclidean_length,\n"        \
+  "                     iterations, reroutes, termination, time_ms (= init_ms + refine_ms),\n"     \
+  "                     init_ms, refine_ms, setup_ms and points (the polyline, [x, y, z])\n"       \
+  "  -o FILE            write the polyline as CSV: x [mm], y [mm], z [mm]\n"                       \
+  "  -h, --help         this text\n"                                                               \
+  "\n"                                                                                             \
+  "Exit codes: 0 ok (also when the solver did not converge: see termination), 1 bad input\n"       \
+  "(missing file, a point far from the mesh, a vertex out of range, endpoints on different\n"      \
   "components, a density <= 0, a metric that is not positive definite), 2 usage error.\n"
 
 const char* const kGeodesicHelp =
@@ -57,6 +58,10 @@ const char* const kGeodesicHelp =
     "edges (A*), turned into a strip of faces, then refined over its edge crossings (Liu et al.,\n"
     "an optimization-driven approach for geodesic paths on triangle meshes). A point is a vertex\n"
     "index (0-based) or x,y,z (mm), projected to the closest surface point.\n"
+    "\n"
+    "  --exact            also compute the exact polyhedral geodesic distance (CGAL, Euclidean\n"
+    "                     metric only; seconds and GBs above 100K faces) and the relative\n"
+    "                     excess (length - exact) / exact; JSON keys exact_length, excess\n"
     "\n" WINDPLAN_GEODESIC_COMMON_HELP;
 
 const char* const kLoopHelp =
@@ -136,10 +141,9 @@ PathMetric load_density(const Mesh& mesh, const std::filesystem::path& file) {
   const int F = mesh.num_faces();
   if (static_cast<int>(v.size()) != F) {
     const std::string at =
-        v.size() > static_cast<std::size_t>(F) ? where(file, v[F]) + ": value " +
-                                                     std::to_string(F + 1) + " is one too many"
-                                               : file.string() + ": ends after " +
-                                                     std::to_string(v.size()) + " values";
+        v.size() > static_cast<std::size_t>(F)
+            ? where(file, v[F]) + ": value " + std::to_string(F + 1) + " is one too many"
+            : file.string() + ": ends after " + std::to_string(v.size()) + " values";
     throw InputError(at + ": a density file needs one value per face, the mesh has " +
                      std::to_string(F) + " faces (found " + std::to_string(v.size()) + ")");
   }
@@ -164,17 +168,17 @@ PathMetric load_anisotropic(const Mesh& mesh, const std::filesystem::path& file)
                   std::to_string(3 * F + 1) + " is one too many"
             : file.string() + ": ends after " + std::to_string(v.size()) + " values";
     throw InputError(at + ": a metric file needs three values (a b c) per face, the mesh has " +
-                     std::to_string(F) + " faces, so " + std::to_string(3 * F) +
-                     " values (found " + std::to_string(v.size()) + ")");
+                     std::to_string(F) + " faces, so " + std::to_string(3 * F) + " values (found " +
+                     std::to_string(v.size()) + ")");
   }
   std::vector<std::array<double, 3>> abc(F);
   for (int f = 0; f < F; ++f) {
     const double a = v[3 * f].value, b = v[3 * f + 1].value, c = v[3 * f + 2].value;
     if (!(std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && a > 0.0 &&
           a * c - b * b > 0.0)) {
-      throw InputError(where(file, v[3 * f]) + ": the metric of face " + std::to_string(f) +
-                       " [[" + v[3 * f].text + ", " + v[3 * f + 1].text + "], [" +
-                       v[3 * f + 1].text + ", " + v[3 * f + 2].text +
+      throw InputError(where(file, v[3 * f]) + ": the metric of face " + std::to_string(f) + " [[" +
+                       v[3 * f].text + ", " + v[3 * f + 1].text + "], [" + v[3 * f + 1].text +
+                       ", " + v[3 * f + 2].text +
                        "]] is not symmetric positive definite (needs a > 0 and a c - b^2 > 0)");
     }
     abc[f] = {a, b, c};
@@ -296,15 +300,18 @@ Setup setup(const Args& args, Clock::time_point t0) {
 
 const char* metric_name(const PathMetric& m) {
   switch (m.kind()) {
-    case PathMetric::Kind::Euclidean: return "euclidean";
-    case PathMetric::Kind::Density: return "density";
-    case PathMetric::Kind::Anisotropic: return "anisotropic";
+    case PathMetric::Kind::Euclidean:
+      return "euclidean";
+    case PathMetric::Kind::Density:
+      return "density";
+    case PathMetric::Kind::Anisotropic:
+      return "anisotropic";
   }
   return "?";
 }
 
 int report(const Args& args, const Setup& s, const GeodesicResult& r, double init_ms,
-           double refine_ms, bool closed) {
+           double refine_ms, bool closed, const double* exact = nullptr) {
   const std::vector<Vec3> points = polyline(s.mesh, r.path);
   if (args.has("-o")) {
     CsvTable table;
@@ -333,6 +340,10 @@ int report(const Args& args, const Setup& s, const GeodesicResult& r, double ini
     j.field("init_ms", init_ms);
     j.field("refine_ms", refine_ms);
     j.field("setup_ms", s.setup_ms);
+    if (exact) {
+      j.field("exact_length", *exact);
+      j.field("excess", (m.final_length - *exact) / *exact);
+    }
     j.key("points").begin_array();
     for (const Vec3& p : points) {
       j.begin_array();
@@ -349,26 +360,31 @@ int report(const Args& args, const Setup& s, const GeodesicResult& r, double ini
             << (s.options.solver == GeodesicSolver::Newton ? "newton" : "lbfgs") << " solver\n"
             << "  length " << m.final_length << " mm (initial " << m.initial_length
             << ", euclidean " << m.euclidean_length << ")\n"
-            << "  " << r.path.num_crossings() << " edge crossings, " << points.size()
-            << " points, " << m.iterations << " iterations, " << m.reroutes << " reroutes, "
-            << m.pinned_vertices << " pinned vertices\n"
+            << "  " << r.path.num_crossings() << " edge crossings, " << points.size() << " points, "
+            << m.iterations << " iterations, " << m.reroutes << " reroutes, " << m.pinned_vertices
+            << " pinned vertices\n"
             << "  termination: " << to_string(m.termination)
             << (m.message.empty() ? "" : " (" + m.message + ")") << "\n"
             << "  time: init " << init_ms << " ms, refine " << refine_ms << " ms (setup "
             << s.setup_ms << " ms)\n";
+  if (exact) {
+    std::cout << "  exact (CGAL) " << *exact << " mm, relative excess "
+              << (m.final_length - *exact) / *exact << "\n";
+  }
   if (args.has("-o")) std::cout << "written: " << args.value("-o") << "\n";
   return 0;
 }
 
 const std::set<std::string> kFlags = {"--json"};
+const std::set<std::string> kGeodesicFlags = {"--json", "--exact"};
 
 }  // namespace
 
 int run_geodesic(const std::vector<std::string>& argv) {
   const auto t0 = Clock::now();
-  const Args args(argv, kFlags,
-                  {"--from", "--to", "--density", "--metric", "--solver", "-o",
-                   "--snap-tolerance"});
+  const Args args(
+      argv, kGeodesicFlags,
+      {"--from", "--to", "--density", "--metric", "--solver", "-o", "--snap-tolerance"});
   args.expect_positional(1, "one mesh file or job file");
   if (!args.has("--from") || !args.has("--to")) throw UsageError("--from and --to are required");
   Setup s = setup(args, t0);
@@ -378,7 +394,14 @@ int run_geodesic(const std::vector<std::string>& argv) {
   const auto t1 = Clock::now();
   const GeodesicContext ctx(s.mesh, s.metric);
   s.setup_ms += ms_since(t1);
+  if (args.flag("--exact") && s.metric.kind() != PathMetric::Kind::Euclidean) {
+    throw UsageError("--exact compares with the Euclidean exact geodesic: drop --density/--metric");
+  }
   const OpenGeodesicResult r = geodesic_between(ctx, a, b, s.options);
+  if (args.flag("--exact")) {
+    const double exact = exact_geodesic_distance(s.mesh, a, b);
+    return report(args, s, r, r.init_ms, r.refine_ms, false, &exact);
+  }
   return report(args, s, r, r.init_ms, r.refine_ms, false);
 }
 

@@ -99,8 +99,8 @@ TEST_F(CliGeodesic, Help) {
 TEST_F(CliGeodesic, PlaneBetweenVerticesIsTheStraightSegment) {
   // Vertex j * 11 + i sits at (i, j, 0).
   for (const char* solver : {"newton", "lbfgs"}) {
-    const RunResult r = run({"geodesic", plane_, "--from", "2", "--to", "119", "--json",
-                             "--solver", solver});
+    const RunResult r =
+        run({"geodesic", plane_, "--from", "2", "--to", "119", "--json", "--solver", solver});
     ASSERT_EQ(r.code, 0) << r.err;
     const YAML::Node j = YAML::Load(r.out);
     EXPECT_NEAR(j["length"].as<double>(), std::hypot(7.0, 10.0), 1e-9) << solver;
@@ -110,8 +110,8 @@ TEST_F(CliGeodesic, PlaneBetweenVerticesIsTheStraightSegment) {
     EXPECT_EQ(j["termination"].as<std::string>().empty(), false);
     for (const char* key : {"iterations", "reroutes", "time_ms", "init_ms", "refine_ms"})
       EXPECT_TRUE(j[key].IsDefined()) << key;
-    EXPECT_NEAR(j["time_ms"].as<double>(),
-                j["init_ms"].as<double>() + j["refine_ms"].as<double>(), 1e-6);
+    EXPECT_NEAR(j["time_ms"].as<double>(), j["init_ms"].as<double>() + j["refine_ms"].as<double>(),
+                1e-6);
     const YAML::Node pts = j["points"];
     ASSERT_GE(pts.size(), 2u);
     EXPECT_NEAR(pts[0][0].as<double>(), 2.0, 1e-12);
@@ -174,8 +174,8 @@ TEST_F(CliGeodesic, CylinderUnrolls) {
   write_mesh(tube, test::open_cylinder(r, len, n, m));
   // Vertex (i, j) = j * n + i; from (0, 0) to (9, 12): the developed strip gives the length.
   const double chord = 2.0 * r * std::sin(M_PI / n);
-  const RunResult res = run({"geodesic", tube, "--from", "0", "--to", std::to_string(12 * n + 9),
-                             "--json"});
+  const RunResult res =
+      run({"geodesic", tube, "--from", "0", "--to", std::to_string(12 * n + 9), "--json"});
   ASSERT_EQ(res.code, 0) << res.err;
   EXPECT_NEAR(json_length(res), std::hypot(9 * chord, len), 1e-9);
 }
@@ -199,16 +199,34 @@ TEST_F(CliGeodesic, JobFileUsesTheMandrel) {
   EXPECT_EQ(run({"geodesic", job, "--from", "0", "--to", "100000"}).code, 1);
 }
 
+TEST_F(CliGeodesic, ExactReferenceOnTheCylinder) {
+  const int n = 32, m = 12;
+  const double r = 3.0, len = 6.0;
+  const std::string tube = (dir_ / "tube.obj").string();
+  write_mesh(tube, test::open_cylinder(r, len, n, m));
+  const double expected = std::hypot(9 * 2.0 * r * std::sin(M_PI / n), len);
+  const RunResult res = run(
+      {"geodesic", tube, "--from", "0", "--to", std::to_string(12 * n + 9), "--json", "--exact"});
+  ASSERT_EQ(res.code, 0) << res.err;
+  const YAML::Node j = YAML::Load(res.out);
+  EXPECT_NEAR(j["exact_length"].as<double>(), expected, 1e-9);
+  EXPECT_NEAR(j["excess"].as<double>(), 0.0, 1e-9);
+  EXPECT_EQ(run({"geodesic", tube, "--from", "0", "--to", "5", "--exact", "--density",
+                 per_face("rho.txt", 2 * n * m, "1")})
+                .code,
+            2);
+}
+
 TEST_F(CliGeodesic, DensityAndAnisotropicMetricsScaleTheLength) {
   const double straight = std::hypot(7.0, 10.0);
-  const RunResult d = run({"geodesic", plane_, "--from", "2", "--to", "119", "--json",
-                           "--density", per_face("rho.txt", 200, "2.5")});
+  const RunResult d = run({"geodesic", plane_, "--from", "2", "--to", "119", "--json", "--density",
+                           per_face("rho.txt", 200, "2.5")});
   ASSERT_EQ(d.code, 0) << d.err;
   EXPECT_NEAR(json_length(d), 2.5 * straight, 1e-9);
   EXPECT_EQ(YAML::Load(d.out)["metric"].as<std::string>(), "density");
   // T = 3 I in every face frame: every length triples.
-  const RunResult a = run({"geodesic", plane_, "--from", "2", "--to", "119", "--json",
-                           "--metric", per_face("abc.txt", 200, "3 0 3")});
+  const RunResult a = run({"geodesic", plane_, "--from", "2", "--to", "119", "--json", "--metric",
+                           per_face("abc.txt", 200, "3 0 3")});
   ASSERT_EQ(a.code, 0) << a.err;
   EXPECT_NEAR(json_length(a), 3.0 * straight, 1e-9);
   EXPECT_EQ(YAML::Load(a.out)["metric"].as<std::string>(), "anisotropic");
@@ -235,8 +253,8 @@ TEST_F(CliGeodesic, BadDensityFilesNameTheLine) {
     EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
   }
   // Missing file.
-  r = run({"geodesic", plane_, "--from", "0", "--to", "5", "--density",
-           (dir_ / "none.txt").string()});
+  r = run(
+      {"geodesic", plane_, "--from", "0", "--to", "5", "--density", (dir_ / "none.txt").string()});
   EXPECT_EQ(r.code, 1);
   EXPECT_EQ(has(r.err, "none.txt"), "");
 }
@@ -244,8 +262,8 @@ TEST_F(CliGeodesic, BadDensityFilesNameTheLine) {
 TEST_F(CliGeodesic, MetricMustBePositiveDefinite) {
   std::string text;
   for (int i = 0; i < 200; ++i) text += i == 12 ? "1 2 1\n" : "1 0 1\n";
-  RunResult r = run({"geodesic", plane_, "--from", "0", "--to", "5", "--metric",
-                     write("abc.txt", text)});
+  RunResult r =
+      run({"geodesic", plane_, "--from", "0", "--to", "5", "--metric", write("abc.txt", text)});
   EXPECT_EQ(r.code, 1);
   EXPECT_EQ(has(r.err, "abc.txt:13"), "");
   EXPECT_EQ(has(r.err, "face 12"), "");
@@ -289,9 +307,9 @@ TEST_F(CliGeodesic, UsageErrors) {
   EXPECT_EQ(run({"geodesic", plane_, "--from", "0", "--to", "1", "--solver", "gauss"}).code, 2);
   EXPECT_EQ(run({"geodesic", plane_, "--from", "0", "--to", "1,2"}).code, 2);
   EXPECT_EQ(run({"geodesic", plane_, "--from", "zero", "--to", "1"}).code, 2);
-  EXPECT_EQ(run({"geodesic", plane_, "--from", "0", "--to", "1", "--density", "a", "--metric",
-                 "b"}).code,
-            2);
+  EXPECT_EQ(
+      run({"geodesic", plane_, "--from", "0", "--to", "1", "--density", "a", "--metric", "b"}).code,
+      2);
   EXPECT_EQ(run({"geodesic", "--from", "0", "--to", "1"}).code, 2);
   EXPECT_EQ(run({"loop", plane_}).code, 2);
 }
@@ -316,11 +334,12 @@ TEST_F(CliGeodesic, LoopOnACylinderBecomesARing) {
   write_mesh(tube, test::open_cylinder(r, len, n, m));
   const double chord = 2.0 * r * std::sin(M_PI / n);
   // The curve: an oblique ring near the polyhedral surface (the chords sag by r (1 - cos(pi/n))).
-  const std::string curve = write("curve.csv", oblique_ring_csv(r * std::cos(M_PI / n), 4.0, 1.0, 40));
+  const std::string curve =
+      write("curve.csv", oblique_ring_csv(r * std::cos(M_PI / n), 4.0, 1.0, 40));
   for (const char* solver : {"newton", "lbfgs"}) {
     const std::string out = (dir_ / "loop.csv").string();
-    const RunResult res = run({"loop", tube, "--init", curve, "--solver", solver, "--json", "-o", out,
-                               "--snap-tolerance", "0.1"});
+    const RunResult res = run({"loop", tube, "--init", curve, "--solver", solver, "--json", "-o",
+                               out, "--snap-tolerance", "0.1"});
     ASSERT_EQ(res.code, 0) << res.err;
     const YAML::Node j = YAML::Load(res.out);
     EXPECT_TRUE(j["closed"].as<bool>());

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <iostream>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -25,9 +25,9 @@ namespace {
 TEST(ExactGeodesic, PlaneGivesTheStraightDistance) {
   const Mesh mesh(test::grid(8, 6, 0.5));
   // Corners (0,0) and (4,3): vertex indices j * 9 + i.
-  EXPECT_NEAR(exact_geodesic_distance(mesh, SurfacePoint::at_vertex(0),
-                                      SurfacePoint::at_vertex(6 * 9 + 8)),
-              std::hypot(4.0, 3.0), 1e-12);
+  EXPECT_NEAR(
+      exact_geodesic_distance(mesh, SurfacePoint::at_vertex(0), SurfacePoint::at_vertex(6 * 9 + 8)),
+      std::hypot(4.0, 3.0), 1e-12);
 }
 
 TEST(ExactGeodesic, FaceAndEdgePointsMapToTheRightCoordinates) {
@@ -65,8 +65,8 @@ TEST(ExactGeodesic, CylinderUnrollsIntoAStrip) {
            {0, 0, 5, 7}, {3, 2, 20, 9}, {1, 10, 1, 0}, {0, 4, 12, 6}, {7, 1, 8, 10}}) {
     const int di = std::min(std::abs(i2 - i1), n - std::abs(i2 - i1));
     const double expected = std::hypot(di * chord, (j2 - j1) * dz);
-    const std::vector<double> d =
-        exact.distances(SurfacePoint::at_vertex(j1 * n + i1), {SurfacePoint::at_vertex(j2 * n + i2)});
+    const std::vector<double> d = exact.distances(SurfacePoint::at_vertex(j1 * n + i1),
+                                                  {SurfacePoint::at_vertex(j2 * n + i2)});
     EXPECT_NEAR(d[0], expected, 1e-11) << i1 << "," << j1 << " -> " << i2 << "," << j2;
     // The path polyline has the same length and runs from the source to the target.
     double length = 0.0;
@@ -107,14 +107,15 @@ TEST(ExactGeodesic, OtherComponentIsInfinitelyFar) {
 
 TEST(ExactGeodesic, OutOfRangePointsAreInputErrors) {
   const Mesh mesh(test::octahedron());
-  EXPECT_THROW(exact_geodesic_distance(mesh, SurfacePoint::at_vertex(6), SurfacePoint::at_vertex(0)),
-               InputError);
+  EXPECT_THROW(
+      exact_geodesic_distance(mesh, SurfacePoint::at_vertex(6), SurfacePoint::at_vertex(0)),
+      InputError);
   EXPECT_THROW(exact_geodesic_distance(mesh, SurfacePoint::at_vertex(0),
                                        SurfacePoint::in_face(8, Vec3(1, 0, 0))),
                InputError);
-  EXPECT_THROW(exact_geodesic_distance(mesh, SurfacePoint::on_edge(-1, 0.5),
-                                       SurfacePoint::at_vertex(0)),
-               InputError);
+  EXPECT_THROW(
+      exact_geodesic_distance(mesh, SurfacePoint::on_edge(-1, 0.5), SurfacePoint::at_vertex(0)),
+      InputError);
 }
 
 // ---- the geodesic core against the reference ----
@@ -126,7 +127,8 @@ double one_sided_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t k = 1; k < b.size(); ++k) {
       const Vec3 d = b[k] - b[k - 1];
-      const double t = std::clamp((p - b[k - 1]).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+      const double t =
+          std::clamp((p - b[k - 1]).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
       best = std::min(best, (p - (b[k - 1] + t * d)).norm());
     }
     worst = std::max(worst, best);
@@ -136,13 +138,13 @@ double one_sided_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b
 
 struct Agreement {
   int pairs = 0;
-  int same_geodesic = 0;       ///< the refined path lies on the exact one
-  int within_1e4 = 0;          ///< relative excess <= 1e-4
-  int other_geodesic = 0;      ///< a different, locally shortest geodesic (excess > 1e-4)
-  double median = 0.0;         ///< median relative excess
+  int same_geodesic = 0;   ///< the refined path lies on the exact one
+  int within_1e4 = 0;      ///< relative excess <= 1e-4
+  int other_geodesic = 0;  ///< a different, locally shortest geodesic (excess > 1e-4)
+  double median = 0.0;     ///< median relative excess
   double min_excess = 0.0;
-  double max_same_excess = 0.0;///< worst |excess| among the same-geodesic pairs
-  int not_converged = 0;       ///< pairs whose summary is not converged()
+  double max_same_excess = 0.0;  ///< worst |excess| among the same-geodesic pairs
+  int not_converged = 0;         ///< pairs whose summary is not converged()
 };
 
 /// `sources` random vertex sources with `per_source` random vertex targets each (fixed seed).
@@ -184,9 +186,8 @@ Agreement compare_with_exact(const Mesh& mesh, int sources, int per_source, unsi
       if (same) {
         ++a.same_geodesic;
         a.max_same_excess = std::max(a.max_same_excess, std::abs(e));
-        EXPECT_LT(std::abs(e), 1e-9) << "same geodesic, different length: vertex " << v
-                                     << " -> " << w << ", ours " << length << ", exact "
-                                     << exact_length;
+        EXPECT_LT(std::abs(e), 1e-9) << "same geodesic, different length: vertex " << v << " -> "
+                                     << w << ", ours " << length << ", exact " << exact_length;
       }
       if (e <= 1e-4) ++a.within_1e4;
       if (e > 1e-4) ++a.other_geodesic;
@@ -204,8 +205,7 @@ void expect_agreement(const Agreement& a, const std::string& what) {
   std::cout << "[ " << what << " ] " << a.pairs << " pairs: " << a.same_geodesic
             << " on the exact geodesic (worst |excess| " << a.max_same_excess << "), "
             << a.other_geodesic << " on another geodesic, " << a.not_converged
-            << " not converged; median excess " << a.median
-            << ", min " << a.min_excess << "\n";
+            << " not converged; median excess " << a.median << ", min " << a.min_excess << "\n";
   EXPECT_GE(a.within_1e4, (9 * a.pairs + 9) / 10) << what;
   EXPECT_LE(a.median, 1e-6) << what;
   EXPECT_GE(a.min_excess, -1e-9) << what;
