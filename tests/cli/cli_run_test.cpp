@@ -1,0 +1,145 @@
+// windplan run and windplan helices as subprocesses: exit codes, files, byte-identical reruns,
+// every shipped config end to end.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include "tests/test_data.h"
+
+namespace windplan {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Proc {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string read_all(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string sh_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+class CliRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("windplan_run_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  Proc run(const std::vector<std::string>& args) const {
+    std::string cmd = sh_quote(WINDPLAN_BINARY);
+    for (const auto& a : args) cmd += " " + sh_quote(a);
+    cmd += " >" + sh_quote((dir_ / "stdout.txt").string()) + " 2>" +
+           sh_quote((dir_ / "stderr.txt").string());
+    const int status = std::system(cmd.c_str());
+    Proc r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = read_all(dir_ / "stdout.txt");
+    r.err = read_all(dir_ / "stderr.txt");
+    return r;
+  }
+  fs::path dir_;
+};
+
+fs::path config(const std::string& name) { return test::source_dir() / "configs" / name; }
+
+TEST_F(CliRun, VesselRunsAndTwoRunsAreByteIdentical) {
+  const fs::path a = dir_ / "a", b = dir_ / "b";
+  const Proc r1 = run({"run", config("vessel.yaml").string(), "--out", a.string()});
+  ASSERT_EQ(r1.code, 0) << r1.err;
+  const Proc r2 = run({"run", config("vessel.yaml").string(), "--out", b.string()});
+  ASSERT_EQ(r2.code, 0) << r2.err;
+  EXPECT_NE(r1.out.find("vessel"), std::string::npos) << r1.out;
+  // One progress line per stage on stderr.
+  for (const char* stage : {"mandrel", "girth", "helices", "metrics", "export"}) {
+    EXPECT_NE(r1.err.find(std::string("windplan run: ") + stage), std::string::npos) << r1.err;
+  }
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(a)) {
+    ++files;
+    const fs::path other = b / e.path().filename();
+    ASSERT_TRUE(fs::exists(other)) << other;
+    EXPECT_TRUE(read_all(e.path()) == read_all(other)) << e.path().filename() << " differs";
+  }
+  for (const char* f : {"fibre_path.csv", "payout.csv", "axes.csv", "toolpath.ngc", "report.json",
+                        "report.md", "mesh.ply", "paths.ply", "development.svg"}) {
+    EXPECT_TRUE(fs::exists(a / f)) << f;
+  }
+  EXPECT_GE(files, 9);
+  // report.json is JSON (YAML reads it) with the plan's circuits.
+  const YAML::Node rep = YAML::LoadFile((a / "report.json").string());
+  EXPECT_TRUE(rep.IsMap());
+}
+
+TEST_F(CliRun, EveryShippedConfigRunsEndToEnd) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(test::source_dir() / "configs")) {
+    if (e.path().extension() != ".yaml") continue;
+    ++n;
+    const fs::path out = dir_ / e.path().stem();
+    const Proc r = run({"run", e.path().string(), "--out", out.string()});
+    EXPECT_EQ(r.code, 0) << e.path() << "\n" << r.err;
+    EXPECT_TRUE(fs::exists(out / "fibre_path.csv")) << e.path();
+    EXPECT_FALSE(r.out.empty()) << e.path();
+  }
+  EXPECT_GE(n, 6);
+}
+
+TEST_F(CliRun, DefaultOutputDirectoryIsOutJobName) {
+  const fs::path job = dir_ / "j.yaml";
+  std::ofstream(job) << "name: tiny\nmandrel:\n  source: pipe\n  pipe: {radius: 30, length: 100}\n"
+                        "winding: {turns: 1, circuits: 2, band_width: 10}\n";
+  const std::string cmd = "cd " + sh_quote(dir_.string()) + " && " + sh_quote(WINDPLAN_BINARY) +
+                          " run j.yaml >/dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "tiny" / "fibre_path.csv"));
+}
+
+TEST_F(CliRun, BadWindingInputIsExitOneWithTheKey) {
+  const fs::path job = dir_ / "bad.yaml";
+  std::ofstream(job) << "mandrel:\n  source: pipe\n  pipe: {radius: 30, length: 100}\n"
+                        "winding:\n  turns: 0\n";
+  const Proc r = run({"run", job.string(), "--out", (dir_ / "o").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("turns"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bad.yaml"), std::string::npos) << r.err;
+  const Proc u = run({"run"});
+  EXPECT_EQ(u.code, 2) << u.err;
+  const Proc h = run({"helices"});
+  EXPECT_EQ(h.code, 2) << h.err;
+}
+
+TEST_F(CliRun, HelicesJsonReportsEveryPass) {
+  const Proc r = run({"helices", config("pipe.yaml").string(), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const YAML::Node j = YAML::Load(r.out);
+  const int K = j["circuits"].as<int>();
+  EXPECT_GE(K, 1);
+  EXPECT_EQ(static_cast<int>(j["passes"].size()), 2 * K);
+  EXPECT_TRUE(j["metrics"]["spacing_cv"].IsScalar());
+  EXPECT_LT(j["metrics"]["max_slippage"].as<double>(), 0.2);  // geodesics on a cylinder
+}
+
+}  // namespace
+}  // namespace windplan
