@@ -1,0 +1,82 @@
+// bench_helices: helix planning speed and the plan figures of every shipped job.
+//   bench_helices [configs_dir]
+// 1. 24 circuits of 5 turns (48 passes) on the vessel and the pipe: trace and refinement times.
+// 2. For every configs/*.yaml: plan_job, then spacing, coverage and stability figures.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "planner/pipeline.h"
+
+using namespace windplan;
+
+namespace {
+
+void bench_24x5(const std::filesystem::path& job_file, double beta) {
+  Job job = load_job(job_file);
+  const Mandrel md = build_mandrel(job);
+  const WindingSurface& ws = md.winding;
+  const std::array<std::vector<int>, 2> loops{ws.loops[0].vertices, ws.loops[1].vertices};
+  WindingOptions o = job.winding;
+  o.turns = 5;
+  o.circuits = 24;
+  o.beta = beta;
+  std::vector<double> rho;
+  if (beta > 0.0) {
+    std::vector<double> g(ws.mesh.num_faces());
+    for (int f = 0; f < ws.mesh.num_faces(); ++f) {
+      g[f] = 2.0 * M_PI * md.axis.radius(ws.mesh.face_centroid(f));
+    }
+    rho = density_from_girth(ws.mesh, g, beta);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const HelixPlan plan = plan_helices(ws.mesh, loops, rho, md.axis, o);
+  const double total =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double worst = 0.0;
+  for (const HelixPass& p : plan.passes) worst = std::max(worst, p.summary.time_ms);
+  std::printf("%-12s beta %.1f: %d faces, 24 circuits x 5 turns (%zu passes): total %.3f s "
+              "(harmonic %.3f s, trace %.3f s, refine %.3f s, worst pass %.1f ms), "
+              "%d not converged\n",
+              job.name.c_str(), beta, ws.mesh.num_faces(), plan.passes.size(), total,
+              plan.summary.harmonic_ms / 1e3, plan.summary.trace_ms / 1e3,
+              plan.summary.refine_ms / 1e3, worst, plan.summary.not_converged);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::filesystem::path dir = argc > 1 ? argv[1] : WINDPLAN_CONFIGS_DIR;
+  try {
+    std::printf("== 24 circuits of 5 turns ==\n");
+    bench_24x5(dir / "pipe.yaml", 0.0);
+    bench_24x5(dir / "vessel.yaml", 0.0);
+    bench_24x5(dir / "vessel.yaml", 1.0);
+    std::printf("\n== shipped jobs (their winding: sections) ==\n");
+    std::map<std::string, std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+      if (e.path().extension() == ".yaml") files[e.path().filename().string()] = e.path();
+    }
+    for (const auto& [name, path] : files) {
+      const Job job = load_job(path);
+      const PipelineResult r = plan_job(job);
+      const PlanMetrics& m = r.plan.metrics;
+      double total = 0.0;
+      for (const StageTiming& t : m.timings) total += t.seconds;
+      std::printf("%-16s N=%d K=%d beta=%.1f | spacing mean %.2f mm, CV(norm) %.3f | coverage "
+                  "needs %d, cover %.3f | max |kg/kn| %.3f (mu %.2f), above mu %.1f%%, "
+                  "bridging %.1f mm | passes not converged %d | %.2f s\n",
+                  name.c_str(), job.winding.turns, m.circuits, job.winding.beta, m.spacing_mean,
+                  m.spacing_cv, m.circuits_for_coverage, m.cover_factor, m.max_slippage,
+                  m.friction, 100.0 * m.slip_fraction, m.bridging_length,
+                  r.helices.summary.not_converged, total);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_helices: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
