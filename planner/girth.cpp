@@ -284,7 +284,8 @@ int GirthContext::winding_number(const SurfacePath& path) const {
   return w;
 }
 
-GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) const {
+SurfacePath GirthContext::initial_loop(int p, double* edge_length, std::vector<double>* distances,
+                                       std::vector<int>* cycle_out) const {
   const Mesh& mesh = mesh_;
   const Impl& m = *impl_;
   const EdgeGraph& g = m.graph;
@@ -327,8 +328,7 @@ GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) co
   }
   if (!done[goal]) throw InvariantError("girth: no loop through vertex " + std::to_string(p));
 
-  Loop loop;
-  loop.edge_length = dist[goal];
+  if (edge_length) *edge_length = dist[goal];
   // The cycle v_1, ..., v_{m-1}, p (p last, so that its turn and the closing crossing come last).
   std::vector<int> cycle;
   for (int node = parent[goal]; node != source && node >= 0; node = parent[node]) {
@@ -336,6 +336,10 @@ GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) co
   }
   std::reverse(cycle.begin(), cycle.end());
   cycle.push_back(p);
+  if (cycle_out) {
+    cycle_out->assign(1, p);
+    cycle_out->insert(cycle_out->end(), cycle.begin(), cycle.end() - 1);
+  }
   SurfacePath closed = strip_from_vertex_cycle(mesh, cycle);
   // Open it at p: drop the trailing crossings of edges at p (the turn at p and the closing
   // crossing); the face before such a crossing still contains p.
@@ -356,6 +360,99 @@ GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) co
   if (!is_valid_path(mesh, path, &why)) {
     throw InvariantError("girth: initial loop at vertex " + std::to_string(p) + ": " + why);
   }
+  return path;
+}
+
+SurfacePath GirthContext::refined_halves(int p, const std::vector<int>& cycle) const {
+  const Mesh& mesh = mesh_;
+  const int m = static_cast<int>(cycle.size());
+  SurfacePath joined;
+  if (m < 3) return joined;
+  // q: the interior vertex of the cycle nearest its middle (a geodesic ending at a boundary
+  // vertex the loop hugs can take the core seconds).
+  int j = m / 2;
+  for (int off = 0; off < m; ++off) {
+    const int c1 = m / 2 + off, c2 = m / 2 - off;
+    if (c1 < m && !mesh.is_boundary_vertex(cycle[c1])) {
+      j = c1;
+      break;
+    }
+    if (c2 > 0 && !mesh.is_boundary_vertex(cycle[c2])) {
+      j = c2;
+      break;
+    }
+  }
+  const int q = cycle[j];
+  std::vector<int> first_half(cycle.begin(), cycle.begin() + j + 1);
+  std::vector<int> second_half(cycle.begin() + j, cycle.end());
+  second_half.push_back(p);
+  GeodesicResult a, b;
+  try {
+    a = refine_path(mesh, strip_from_vertex_path(mesh, SurfacePoint::at_vertex(p), first_half,
+                                                 SurfacePoint::at_vertex(q)));
+    b = refine_path(mesh, strip_from_vertex_path(mesh, SurfacePoint::at_vertex(q), second_half,
+                                                 SurfacePoint::at_vertex(p)));
+  } catch (const Error&) {
+    return joined;  // the direct refinement is the fallback
+  }
+  // Rotate around q from the last face of the first half to the first face of the second, on
+  // the side of the smaller angle (a boundary vertex has one side only); the crossings sit on q.
+  const int f1 = strip_face(mesh, a.path, a.path.num_crossings());
+  const int f2 = strip_face(mesh, b.path, 0);
+  std::vector<int> best;
+  double best_angle = kInf;
+  if (f1 != f2) {
+    for (bool ccw : {true, false}) {
+      int hv = -1;
+      for (int k = 0; k < 3; ++k)
+        if (mesh.from(3 * f1 + k) == q) hv = 3 * f1 + k;
+      if (hv < 0) return joined;
+      std::vector<int> crossings;
+      double angle = 0.0;
+      bool ok = false;
+      for (int step = 0; step < 4 * mesh.valence(q) + 4; ++step) {
+        angle += mesh.corner_angle(hv);
+        const int c = ccw ? mesh.prev(hv) : hv;
+        const int t = mesh.twin(c);
+        if (mesh.is_boundary_halfedge(t)) break;
+        crossings.push_back(c);
+        hv = ccw ? t : mesh.next(t);
+        if (mesh.face(t) == f2) {
+          ok = true;
+          break;
+        }
+      }
+      if (ok && angle < best_angle) {
+        best_angle = angle;
+        best = crossings;
+      }
+    }
+    if (best.empty()) return joined;
+  }
+  joined.closed = false;
+  joined.start = joined.end = SurfacePoint::at_vertex(p);
+  joined.halfedges = a.path.halfedges;
+  joined.lambdas = a.path.lambdas;
+  for (int c : best) {
+    joined.halfedges.push_back(c);
+    joined.lambdas.push_back(mesh.from(c) == q ? 0.0 : 1.0);
+  }
+  joined.halfedges.insert(joined.halfedges.end(), b.path.halfedges.begin(), b.path.halfedges.end());
+  joined.lambdas.insert(joined.lambdas.end(), b.path.lambdas.begin(), b.path.lambdas.end());
+  joined.start_face =
+      joined.halfedges.empty() ? a.path.start_face : mesh.face(joined.halfedges.front());
+  std::string why;
+  if (!is_valid_path(mesh, joined, &why) || std::abs(winding_number(joined)) != 1) {
+    return SurfacePath{};
+  }
+  return joined;
+}
+
+GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) const {
+  const Mesh& mesh = mesh_;
+  Loop loop;
+  std::vector<int> cycle;
+  SurfacePath path = initial_loop(p, &loop.edge_length, distances, &cycle);
   const int initial_winding = winding_number(path);
 
   // A loop lying exactly on mesh edges through flat vertices (a cylinder's ring) ends with no
@@ -375,7 +472,17 @@ GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) co
   // tight for the funnel start, so the cap is raised.
   GeodesicOptions first;
   first.max_reroutes = 1000 + 32 * path.num_crossings();
-  GeodesicResult r = refine_path(mesh, path, PathMetric{}, first);
+  // Two halves first (p -> q -> p, q the edge loop's middle vertex): ordinary open geodesics
+  // with distinct ends, which the core refines quickly; joined at q they give a start close to
+  // the loop, which is then refined from p to p. (Refining the edge loop from p to p directly
+  // can take the core seconds on some strips of sliver-rich meshes.)
+  GeodesicResult r;
+  bool have = false;
+  if (const SurfacePath joined = refined_halves(p, cycle); joined.num_crossings() > 0) {
+    r = refine_path(mesh, joined, PathMetric{}, first);
+    have = true;
+  }
+  if (!have) r = refine_path(mesh, path, PathMetric{}, first);
   int winding = winding_number(r.path);
   if (!acceptable(r, winding)) {
     GeodesicOptions retry = first;

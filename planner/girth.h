@@ -18,13 +18,13 @@
 // The field (compute_girth_field): g is evaluated exactly at `samples` vertices, placed on rings
 // of an intrinsic axial coordinate t = d0 / (d0 + d1) (d0, d1: edge-graph distances to the two
 // boundary loops; stations include both loops) or by farthest-point sampling under the
-// edge-graph distance. Every other vertex gets a modified-Shepard (Franke-Little) blend of the
-// k nearest samples by edge-graph distance, w_i = ((R - d_i) / (R d_i))^2 with R the distance of
-// the (k+1)-th nearest sample: local, continuous, exact at the samples and independent of any
-// axis (bent tubes have none). The blend is then clamped into the intersection of the Lipschitz
-// intervals [g_i - 2 d_i, g_i + 2 d_i] of those samples, so it never contradicts an exact value.
-// The distances come for free: the lifted Dijkstra of each sample is run to completion and gives
-// the sample's distance field too.
+// edge-graph distance. The exact loops are independent and run on the hardware threads. Every
+// other vertex gets a weighted linear least-squares fit g ~ a + b (t_i - t) over its k = 8
+// nearest samples by edge-graph distance (one Dijkstra carrying k + 1 labels per vertex), with
+// modified-Shepard (Franke-Little) weights w_i = ((R - d_i) / (R d_i))^2, R the distance of the
+// (k+1)-th nearest sample: local, continuous, exact at the samples, exact for g linear in t (a
+// cone) and needing no spindle axis (bent tubes). The value is clamped into the intersection of
+// the samples' Lipschitz intervals [g_i - 2 d_i, g_i + 2 d_i], so it never contradicts them.
 //
 // Distances are edge-graph (Dijkstra) distances, which are >= the geodesic distances, so
 // lipschitz_bound is a conservative (valid) bound on |g - g_nearest sample|.
@@ -104,6 +104,13 @@ class GirthContext {
   /// from p to every vertex (the lifted search then runs to completion).
   Loop girth(int vertex, std::vector<double>* distances = nullptr) const;
 
+  /// The initial loop through vertex p (before refinement): the shortest edge loop through p
+  /// crossing the seam an odd number of times, as an open strip from p to p. `edge_length`
+  /// receives its edge-graph length (mm); `distances` as in girth(); `cycle` the edge loop's
+  /// vertices p, v_1, ..., v_{m-1} (p not repeated).
+  SurfacePath initial_loop(int vertex, double* edge_length = nullptr,
+                           std::vector<double>* distances = nullptr,
+                           std::vector<int>* cycle = nullptr) const;
   /// The seam: vertex path from loop 0 to loop 1.
   const std::vector<int>& seam() const;
   /// Net signed seam crossings of a closed face chain: the path's strip, closed at its start
@@ -112,6 +119,8 @@ class GirthContext {
   const Mesh& mesh() const { return mesh_; }
 
  private:
+  // The loop refined as two open halves p -> q -> p joined at q (empty on failure).
+  SurfacePath refined_halves(int p, const std::vector<int>& cycle) const;
   struct Impl;
   const Mesh& mesh_;
   std::unique_ptr<Impl> impl_;
