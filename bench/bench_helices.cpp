@@ -34,16 +34,16 @@ void bench_24x5(const std::filesystem::path& job_file, double beta) {
   }
   const auto t0 = std::chrono::steady_clock::now();
   const HelixPlan plan = plan_helices(ws.mesh, loops, rho, md.axis, o);
-  const double total =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   double worst = 0.0;
   for (const HelixPass& p : plan.passes) worst = std::max(worst, p.summary.time_ms);
-  std::printf("%-12s beta %.1f: %d faces, 24 circuits x 5 turns (%zu passes): total %.3f s "
-              "(harmonic %.3f s, trace %.3f s, refine %.3f s, worst pass %.1f ms), "
-              "%d not converged\n",
-              job.name.c_str(), beta, ws.mesh.num_faces(), plan.passes.size(), total,
-              plan.summary.harmonic_ms / 1e3, plan.summary.trace_ms / 1e3,
-              plan.summary.refine_ms / 1e3, worst, plan.summary.not_converged);
+  std::printf(
+      "%-12s beta %.1f: %d faces, 24 circuits x 5 turns (%zu passes): total %.3f s "
+      "(harmonic %.3f s, trace %.3f s, refine %.3f s, worst pass %.1f ms), "
+      "%d not converged\n",
+      job.name.c_str(), beta, ws.mesh.num_faces(), plan.passes.size(), total,
+      plan.summary.harmonic_ms / 1e3, plan.summary.trace_ms / 1e3, plan.summary.refine_ms / 1e3,
+      worst, plan.summary.not_converged);
 }
 
 }  // namespace
@@ -66,13 +66,13 @@ int main(int argc, char** argv) {
       const PlanMetrics& m = r.plan.metrics;
       double total = 0.0;
       for (const StageTiming& t : m.timings) total += t.seconds;
-      std::printf("%-16s N=%d K=%d beta=%.1f | spacing mean %.2f mm, CV(norm) %.3f | coverage "
-                  "needs %d, cover %.3f | max |kg/kn| %.3f (mu %.2f), above mu %.1f%%, "
-                  "bridging %.1f mm | passes not converged %d | %.2f s\n",
-                  name.c_str(), job.winding.turns, m.circuits, job.winding.beta, m.spacing_mean,
-                  m.spacing_cv, m.circuits_for_coverage, m.cover_factor, m.max_slippage,
-                  m.friction, 100.0 * m.slip_fraction, m.bridging_length,
-                  r.helices.summary.not_converged, total);
+      std::printf(
+          "%-16s N=%d K=%d beta=%.1f | spacing mean %.2f mm, CV(norm) %.3f | coverage "
+          "needs %d, cover %.3f | max |kg/kn| %.3f (mu %.2f), above mu %.1f%%, "
+          "bridging %.1f mm | passes not converged %d | %.2f s\n",
+          name.c_str(), job.winding.turns, m.circuits, job.winding.beta, m.spacing_mean,
+          m.spacing_cv, m.circuits_for_coverage, m.cover_factor, m.max_slippage, m.friction,
+          100.0 * m.slip_fraction, m.bridging_length, r.helices.summary.not_converged, total);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_helices: %s\n", e.what());

@@ -98,10 +98,9 @@ int run_helices(const std::vector<std::string>& argv) {
   s << "  conformal error " << r.helices.coords.conformal_error << " deg\n";
   for (const PassReport& p : r.passes) {
     s << "  circuit " << p.circuit << (p.hand > 0 ? " out   " : " return") << ": length "
-      << p.length << " mm, angle " << p.angle_start << " deg at r = " << p.radius_start
-      << " mm -> " << p.angle_end << " deg at r = " << p.radius_end << " mm, max slippage "
-      << p.max_slippage << ", " << p.iterations << " it, " << p.time_ms << " ms, " << p.termination
-      << "\n";
+      << p.length << " mm, angle " << p.angle_start << " deg at r = " << p.radius_start << " mm -> "
+      << p.angle_end << " deg at r = " << p.radius_end << " mm, max slippage " << p.max_slippage
+      << ", " << p.iterations << " it, " << p.time_ms << " ms, " << p.termination << "\n";
   }
   s << "  fibre length " << m.fibre_length << " mm\n";
   s << "  spacing: mean " << m.spacing_mean << " mm, CV (girth-normalised) " << m.spacing_cv

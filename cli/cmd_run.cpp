@@ -52,8 +52,7 @@ int run_run(const std::vector<std::string>& argv) {
 
   const auto t0 = std::chrono::steady_clock::now();
   const ExportResult ex = export_plan(r.plan, r.mandrel.mesh, job.machine, job.output, dir);
-  const double secs =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.plan.metrics.timings.push_back({"export", secs});
   {
     char buf[160];

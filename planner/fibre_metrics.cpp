@@ -37,7 +37,9 @@ Vec3 chord_direction(const std::vector<FibrePoint>& p, const std::vector<double>
 Vec3 point_normal(const Mesh& m, const std::vector<Vec3>& vn, const SurfacePoint& p) {
   Vec3 n = Vec3::Zero();
   switch (p.kind) {
-    case SurfacePoint::Kind::Vertex: n = vn[p.element]; break;
+    case SurfacePoint::Kind::Vertex:
+      n = vn[p.element];
+      break;
     case SurfacePoint::Kind::Edge:
       n = (1.0 - p.t) * vn[m.from(p.element)] + p.t * vn[m.to(p.element)];
       break;
@@ -90,13 +92,14 @@ double winding_angle_deg(const SpindleAxis& axis, const Vec3& n, const Vec3& t) 
   return std::acos(c) * 180.0 / M_PI;
 }
 
-void annotate_fibre_points(std::vector<FibrePoint>* points, const SpindleAxis& axis,
-                           double window, double s0) {
+void annotate_fibre_points(std::vector<FibrePoint>* points, const SpindleAxis& axis, double window,
+                           double s0) {
   std::vector<FibrePoint>& p = *points;
   const std::size_t n = p.size();
   if (n == 0) return;
   std::vector<double> cum(n, 0.0);
-  for (std::size_t i = 1; i < n; ++i) cum[i] = cum[i - 1] + (p[i].position - p[i - 1].position).norm();
+  for (std::size_t i = 1; i < n; ++i)
+    cum[i] = cum[i - 1] + (p[i].position - p[i - 1].position).norm();
   // A window no longer than the polyline itself.
   const double w = std::max(1e-9, std::min(window, cum.back()));
   const double half = 0.5 * w;
@@ -121,7 +124,8 @@ void annotate_fibre_points(std::vector<FibrePoint>* points, const SpindleAxis& a
     const Vec3 dt = (tb - ta) / (hi - lo);
     q.k_n = -dt.dot(q.normal);  // > 0 where the fibre bends towards the mandrel (convex)
     q.k_g = dt.dot(q.normal.cross(q.tangent));
-    q.slippage = std::fabs(q.k_n) > 1e-12 ? std::fabs(q.k_g / q.k_n) : (std::fabs(q.k_g) > 1e-12 ? 1e12 : 0.0);
+    q.slippage = std::fabs(q.k_n) > 1e-12 ? std::fabs(q.k_g / q.k_n)
+                                          : (std::fabs(q.k_g) > 1e-12 ? 1e12 : 0.0);
   }
 }
 
@@ -149,8 +153,8 @@ std::vector<Circuit> build_circuits(const Mesh& m, const HelixPlan& plan,
                                     const std::vector<int>& face_map, const SpindleAxis& axis,
                                     const WindingOptions& options) {
   const std::vector<Vec3> vn = vertex_normals(m);
-  const double window = options.curvature_window > 0.0 ? options.curvature_window
-                                                       : options.band_width;
+  const double window =
+      options.curvature_window > 0.0 ? options.curvature_window : options.band_width;
   const int K = plan.summary.circuits;
   std::vector<Circuit> circuits;
   for (int k = 0; k < K; ++k) {
@@ -232,7 +236,8 @@ SpacingStats turn_spacing(const Mesh& m, const HelixPlan& plan,
         const double tm = kTwoPi * j / meridians;
         for (double q = std::ceil((lo - tm) / kTwoPi); tm + kTwoPi * q < hi; q += 1.0) {
           const double u = (tm + kTwoPi * q - a) / (b - a);
-          hits[j].push_back({(1 - u) * th[i][1] + u * th[i + 1][1], (1 - u) * pos[i] + u * pos[i + 1],
+          hits[j].push_back({(1 - u) * th[i][1] + u * th[i + 1][1],
+                             (1 - u) * pos[i] + u * pos[i + 1],
                              faces[std::min(i, faces.size() - 1)]});
         }
       }

@@ -55,11 +55,11 @@ std::vector<Circuit> build_circuits(const Mesh& annulus, const HelixPlan& plan,
                                     const WindingOptions& options);
 
 struct SpacingStats {
-  int samples = 0;              ///< spacings measured
-  double mean = 0.0;            ///< mm
-  double cv = 0.0;              ///< coefficient of variation of the mm spacing
-  double mean_normalised = 0.0; ///< spacing / girth (dimensionless)
-  double cv_normalised = 0.0;   ///< coefficient of variation of spacing / girth
+  int samples = 0;               ///< spacings measured
+  double mean = 0.0;             ///< mm
+  double cv = 0.0;               ///< coefficient of variation of the mm spacing
+  double mean_normalised = 0.0;  ///< spacing / girth (dimensionless)
+  double cv_normalised = 0.0;    ///< coefficient of variation of spacing / girth
 };
 
 /// Turn spacing of the out passes along `meridians` lines of constant theta.
@@ -72,13 +72,13 @@ SpacingStats turn_spacing(const Mesh& annulus, const HelixPlan& plan,
 struct PassReport {
   int circuit = 0;
   int hand = 1;
-  double length = 0.0;            ///< mm
-  double angle_start = 0.0;       ///< winding angle where the pass leaves its opening (deg)
-  double angle_end = 0.0;         ///< where it meets the other opening (deg)
+  double length = 0.0;       ///< mm
+  double angle_start = 0.0;  ///< winding angle where the pass leaves its opening (deg)
+  double angle_end = 0.0;    ///< where it meets the other opening (deg)
   double radius_start = 0.0, radius_end = 0.0;  ///< mm
   double max_slippage = 0.0;
   int iterations = 0;
-  double time_ms = 0.0;           ///< refinement wall time
+  double time_ms = 0.0;  ///< refinement wall time
   std::string termination;
 };
 std::vector<PassReport> pass_reports(const HelixPlan& plan, const std::vector<Circuit>& circuits,

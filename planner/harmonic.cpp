@@ -37,8 +37,8 @@ void check_annulus(const Mesh& annulus, const std::array<std::vector<int>, 2>& l
   const int nloops = static_cast<int>(annulus.boundary_loops().size());
   const int genus = annulus.genus();
   if (annulus.num_faces() == 0 || comps != 1 || nloops != 2 || genus != 0) {
-    throw TopologyError("the winding surface is not an annulus: it has " +
-                        std::to_string(comps) + " component(s), " + std::to_string(nloops) +
+    throw TopologyError("the winding surface is not an annulus: it has " + std::to_string(comps) +
+                        " component(s), " + std::to_string(nloops) +
                         " boundary loop(s) and genus " + std::to_string(genus) +
                         " (need 1 component, 2 loops, genus 0)");
   }
@@ -112,8 +112,9 @@ HarmonicCoordinates compute_harmonic_coordinates(const Mesh& m,
     L.setFromTriplets(trip.begin(), trip.end());
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
     if (solver.info() != Eigen::Success) {
-      throw InputError("harmonic height: the cotangent Laplacian cannot be factorised "
-                       "(degenerate triangles in the winding surface?)");
+      throw InputError(
+          "harmonic height: the cotangent Laplacian cannot be factorised "
+          "(degenerate triangles in the winding surface?)");
     }
     const Eigen::VectorXd x = solver.solve(rhs);
     for (int v = 0; v < nv; ++v) {
@@ -211,8 +212,9 @@ HarmonicCoordinates compute_harmonic_coordinates(const Mesh& m,
     L.setFromTriplets(trip.begin(), trip.end());
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
     if (solver.info() != Eigen::Success) {
-      throw InputError("harmonic angle: the cotangent Laplacian cannot be factorised "
-                       "(degenerate triangles in the winding surface?)");
+      throw InputError(
+          "harmonic angle: the cotangent Laplacian cannot be factorised "
+          "(degenerate triangles in the winding surface?)");
     }
     const Eigen::VectorXd x = solver.solve(rhs);
     for (int v = 0; v < nv; ++v) {

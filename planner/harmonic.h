@@ -23,10 +23,10 @@
 namespace windplan {
 
 struct HarmonicCoordinates {
-  std::vector<double> height;                   ///< per vertex, in [0, 1] (dimensionless)
-  std::vector<double> theta;                    ///< per vertex (radians), one lift
+  std::vector<double> height;                      ///< per vertex, in [0, 1] (dimensionless)
+  std::vector<double> theta;                       ///< per vertex (radians), one lift
   std::vector<std::array<double, 3>> face_offset;  ///< per face corner: lift offset (radians)
-  std::vector<int> cut_faces;                   ///< the dual path of the cut, loop 0 to loop 1
+  std::vector<int> cut_faces;                      ///< the dual path of the cut, loop 0 to loop 1
   double conformal_error = 0.0;  ///< area-weighted mean |angle(grad theta, grad h) - 90 deg| (deg)
   double time_ms = 0.0;
 

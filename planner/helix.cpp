@@ -126,8 +126,9 @@ SurfacePoint loop_point_at_theta(const Mesh& m, const HarmonicCoordinates& hc,
     if (m.is_boundary_halfedge(m.twin(m.prev(h)))) start = m.prev(h);
     if (start >= 0) break;
   }
-  if (start < 0) throw InputError("loop_point_at_theta: vertex " + std::to_string(loop[0]) +
-                                  " is not on the boundary");
+  if (start < 0)
+    throw InputError("loop_point_at_theta: vertex " + std::to_string(loop[0]) +
+                     " is not on the boundary");
   const OrientedLoop o = oriented_loop_of(m, hc, start);
   for (std::size_t i = 0; i < o.h.size(); ++i) {
     const auto l = lift_on(m, hc, o.h[i]);

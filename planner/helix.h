@@ -59,26 +59,26 @@ std::array<double, 2> edge_point_coordinates(const Mesh& annulus, const Harmonic
 
 struct HelixPass {
   int circuit = 0;
-  int hand = 1;              ///< +1 out pass (loop 0 -> 1), -1 return pass (loop 1 -> 0)
-  SurfacePath initial;       ///< the traced level set
-  SurfacePath path;          ///< refined
+  int hand = 1;         ///< +1 out pass (loop 0 -> 1), -1 return pass (loop 1 -> 0)
+  SurfacePath initial;  ///< the traced level set
+  SurfacePath path;     ///< refined
   GeodesicSummary summary;
 };
 
 struct Turnaround {
   int circuit = 0;
-  int loop = 0;              ///< 0: start loop, 1: end loop
-  double dwell = 0.0;        ///< radians of theta
+  int loop = 0;        ///< 0: start loop, 1: end loop
+  double dwell = 0.0;  ///< radians of theta
   LoopArc arc;
 };
 
 struct HelixPlanSummary {
-  int circuits = 0;          ///< K used
-  int pattern_step = 1;      ///< p: circuit k starts at theta_0 + 2 pi p k / K
+  int circuits = 0;      ///< K used
+  int pattern_step = 1;  ///< p: circuit k starts at theta_0 + 2 pi p k / K
   bool circuits_auto = false;
-  double auto_angle_deg = 0; ///< winding angle at the largest radius (for K auto)
-  double auto_radius = 0;    ///< mm
-  int not_converged = 0;     ///< passes whose refinement did not converge
+  double auto_angle_deg = 0;  ///< winding angle at the largest radius (for K auto)
+  double auto_radius = 0;     ///< mm
+  int not_converged = 0;      ///< passes whose refinement did not converge
   double trace_ms = 0, refine_ms = 0, harmonic_ms = 0;
   std::vector<std::string> warnings;
 };
@@ -86,8 +86,8 @@ struct HelixPlanSummary {
 /// K circuits with two passes and two turnarounds each, in winding order.
 struct HelixPlan {
   HarmonicCoordinates coords;
-  std::vector<HelixPass> passes;           ///< 2 per circuit: out, return
-  std::vector<Turnaround> turnarounds;     ///< 2 per circuit: at loop 1 (after out), at loop 0
+  std::vector<HelixPass> passes;        ///< 2 per circuit: out, return
+  std::vector<Turnaround> turnarounds;  ///< 2 per circuit: at loop 1 (after out), at loop 0
   HelixPlanSummary summary;
 };
 
@@ -98,8 +98,7 @@ struct HelixPlan {
 /// \throw ConfigError for invalid options; as compute_harmonic_coordinates / trace_helix.
 HelixPlan plan_helices(const Mesh& annulus, const std::array<std::vector<int>, 2>& loops,
                        const std::vector<double>& rho, const SpindleAxis& axis,
-                       const WindingOptions& options = {},
-                       const GeodesicOptions& geodesic = {});
+                       const WindingOptions& options = {}, const GeodesicOptions& geodesic = {});
 
 /// The density of a girth field: rho_f = (g_f / mean g)^(-beta) (area-weighted mean).
 /// \throw InputError for a non-positive girth or a size mismatch.

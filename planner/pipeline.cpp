@@ -16,8 +16,8 @@ class Stage {
     if (options_.on_stage_start) options_.on_stage_start(name_);
   }
   void done() {
-    StageTiming t{name_, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_)
-                             .count()};
+    StageTiming t{name_,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count()};
     metrics_->timings.push_back(t);
     if (options_.on_stage) options_.on_stage(t);
   }

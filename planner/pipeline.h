@@ -29,9 +29,9 @@ struct PipelineOptions {
 
 struct PipelineResult {
   Mandrel mandrel;
-  bool has_girth = false;            ///< the girth field was computed (beta > 0 or no revolution)
+  bool has_girth = false;  ///< the girth field was computed (beta > 0 or no revolution)
   GirthField girth;
-  std::vector<double> face_girth;    ///< per winding-surface face (mm): girth field or 2 pi r
+  std::vector<double> face_girth;  ///< per winding-surface face (mm): girth field or 2 pi r
   HelixPlan helices;
   std::vector<PassReport> passes;
   WindingPlan plan;
