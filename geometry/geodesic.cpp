@@ -1127,7 +1127,11 @@ GeodesicResult Refiner::run() {
     summary.initial_length = ev.length;
   }
   if (!con_) {
-    if (opt_.funnel_start && handle_vertices_) funnel_rounds();
+    // The funnel gives the exact Euclidean path; under a density or anisotropic metric it starts
+    // the optimisation on a path through many vertices and ends longer (measured on cones and
+    // the vessel), so it is used for the Euclidean length only.
+    if (opt_.funnel_start && handle_vertices_ && metric_.kind() == PathMetric::Kind::Euclidean)
+      funnel_rounds();
     inner_solve(&summary, t0);
   } else {
     // Penalty weight: the initial penalty at a residual of one mean edge length per point is
