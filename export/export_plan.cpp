@@ -1,5 +1,7 @@
 #include "export/export_plan.h"
 
+#include "export/cutlines_csv.h"
+
 #include "export/gcode.h"
 #include "export/ply_polylines.h"
 #include "export/report.h"
@@ -92,9 +94,11 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   const bool robot = machine.kind == "robot";
 
   // The list first, so that the reports can name every file (themselves included).
+  const bool cutlines = output.csv && !plan.cutlines.empty();
   if (output.csv) {
     r.files.insert(r.files.end(), {"fibre_path.csv", "payout.csv", "axes.csv"});
     if (robot) r.files.push_back("eye_pose.csv");
+    if (cutlines) r.files.push_back("cutlines.csv");
   }
   const std::string gcode_name = "toolpath" + gcode_extension(machine.gcode.dialect);
   if (output.gcode && !robot) r.files.push_back(gcode_name);
@@ -107,6 +111,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     write_csv_file(dir / "payout.csv", payout_table(r.motion));
     write_csv_file(dir / "axes.csv", axes_table(r.motion));
     if (robot) write_csv_file(dir / "eye_pose.csv", eye_pose_table(r.motion));
+    if (cutlines) write_cutlines_csv(dir / "cutlines.csv", plan.cutlines);
   }
   if (output.gcode && !robot) {
     write_text_atomically(dir / gcode_name, gcode_program(r.motion, plan.job_name, machine));

@@ -104,11 +104,13 @@ TEST(ExportPlan, WritesEveryFileConsistently) {
   MachineOptions m;
   m.kind = "lathe4";
   const ExportResult r = export_plan(plan, sample_mesh(), m, OutputOptions{}, d);
-  const std::vector<std::string> expect = {"fibre_path.csv",  "payout.csv",  "axes.csv",
-                                           "toolpath.ngc",    "mesh.ply",    "paths.ply",
-                                           "development.svg", "report.json", "report.md"};
+  const std::vector<std::string> expect = {
+      "fibre_path.csv", "payout.csv",      "axes.csv",    "cutlines.csv", "toolpath.ngc",
+      "mesh.ply",       "paths.ply",       "development.svg", "report.json", "report.md"};
   EXPECT_EQ(r.files, expect);
   for (const std::string& f : expect) EXPECT_TRUE(fs::exists(d / f)) << f;
+  // cutlines.csv: a header and one row per cut-line point.
+  EXPECT_EQ(lines_of(read_text_file(d / "cutlines.csv")).size(), 1u + 72);
   // CSV row counts: dense points, resampled points.
   EXPECT_EQ(lines_of(read_text_file(d / "fibre_path.csv")).size(), 1u + 3 * 500);
   const auto axes = lines_of(read_text_file(d / "axes.csv"));
@@ -214,7 +216,8 @@ TEST(ExportPlan, JobSectionsDriveTheExport) {
   const fs::path d = temp_dir("job");
   const ExportResult r = export_plan(sample_plan(), sample_mesh(), job.machine, job.output, d);
   EXPECT_EQ(r.files, (std::vector<std::string>{"fibre_path.csv", "payout.csv", "axes.csv",
-                                               "toolpath.gcode", "report.json", "report.md"}));
+                                               "cutlines.csv", "toolpath.gcode", "report.json",
+                                               "report.md"}));
   const std::string g = read_text_file(d / "toolpath.gcode");
   EXPECT_NE(g.find("G92 C0"), std::string::npos);
   EXPECT_FALSE(fs::exists(d / "development.svg"));
