@@ -1,6 +1,7 @@
 #pragma once
 // Meshes made in code, with known counts and closed-form geometry, for the core tests.
 #include <cmath>
+#include <functional>
 
 #include "geometry/mesh.h"
 
@@ -9,8 +10,8 @@ namespace windplan::test {
 /// A regular octahedron inscribed in the unit sphere: V=6, E=12, F=8, closed, genus 0.
 inline TriangleSoup octahedron() {
   TriangleSoup s;
-  s.points = {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0),
-              Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)};
+  s.points = {Vec3(1, 0, 0),  Vec3(-1, 0, 0), Vec3(0, 1, 0),
+              Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
   s.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
                  {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   return s;
@@ -55,8 +56,8 @@ inline TriangleSoup torus(double R, double r, int n, int m) {
   for (int j = 0; j < m; ++j)
     for (int i = 0; i < n; ++i) {
       const double u = 2.0 * M_PI * i / n, v = 2.0 * M_PI * j / m;
-      s.points.emplace_back((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
-                            r * std::sin(v));
+      s.points.emplace_back((R + r * std::cos(v)) * std::cos(u),
+                            (R + r * std::cos(v)) * std::sin(u), r * std::sin(v));
     }
   auto id = [n, m](int i, int j) { return (j % m) * n + (i % n); };
   for (int j = 0; j < m; ++j)
@@ -87,6 +88,28 @@ inline TriangleSoup uv_sphere(double r, int n, int m) {
       s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
   for (int i = 0; i < n; ++i) s.triangles.push_back({id(i, m - 1), id(i + 1, m - 1), top});
+  return s;
+}
+
+/// A surface of revolution about z: rings j = 0..m at z_j = z0 + (z1 - z0) j / m of radius
+/// r(z_j), n vertices per ring at angles 2 pi i / n (the same on every ring), quads split like
+/// open_cylinder; vertex (i, j) has index j n + i. An annulus with outward normals.
+inline TriangleSoup revolution(const std::function<double(double)>& r, double z0, double z1, int n,
+                               int m) {
+  TriangleSoup s;
+  for (int j = 0; j <= m; ++j) {
+    const double z = z0 + (z1 - z0) * j / m;
+    for (int i = 0; i < n; ++i) {
+      const double t = 2.0 * M_PI * i / n;
+      s.points.emplace_back(r(z) * std::cos(t), r(z) * std::sin(t), z);
+    }
+  }
+  auto id = [n](int i, int j) { return j * n + (i % n); };
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
   return s;
 }
 

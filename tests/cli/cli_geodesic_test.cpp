@@ -14,6 +14,7 @@
 
 #include "geometry/mesh_io.h"
 #include "tests/mesh_fixtures.h"
+#include "tests/cli/cli_runner.h"
 #include "tests/test_data.h"
 
 namespace windplan {
@@ -21,52 +22,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
+using test::RunResult;
+using test::slurp;
 
 std::string has(const std::string& text, const std::string& what) {
   return text.find(what) != std::string::npos ? "" : "'" + what + "' not in: " + text;
 }
 
-class CliGeodesic : public ::testing::Test {
+class CliGeodesic : public test::CliTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("windplan_cli_geodesic_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
+    test::CliTest::SetUp();
     plane_ = (dir_ / "plane.obj").string();
     write_mesh(plane_, test::grid(10, 10));  // 121 vertices, 200 faces, [0, 10]^2
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
-  RunResult run(const std::vector<std::string>& args) const {
-    std::string cmd = quote(WINDPLAN_BINARY);
-    for (const auto& a : args) cmd += " " + quote(a);
-    cmd += " >" + quote((dir_ / "out.txt").string()) + " 2>" + quote((dir_ / "err.txt").string());
-    const int status = std::system(cmd.c_str());
-    RunResult r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir_ / "out.txt");
-    r.err = slurp(dir_ / "err.txt");
-    return r;
-  }
   std::string write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;
     return (dir_ / name).string();
@@ -77,7 +47,6 @@ class CliGeodesic : public ::testing::Test {
     for (int i = 0; i < count; ++i) text += value + "\n";
     return write(name, text);
   }
-  fs::path dir_;
   std::string plane_;
 };
 

@@ -18,25 +18,6 @@ SurfacePoint at(const Mesh& mesh, const Vec3& p) {
   return q.closest(p).point;
 }
 
-/// A surface of revolution r(z) around the z axis with n vertices per ring and m rings of quads.
-TriangleSoup revolution(const std::function<double(double)>& r, double z0, double z1, int n, int m) {
-  TriangleSoup s;
-  for (int j = 0; j <= m; ++j) {
-    const double z = z0 + (z1 - z0) * j / m;
-    for (int i = 0; i < n; ++i) {
-      const double t = 2.0 * M_PI * i / n;
-      s.points.emplace_back(r(z) * std::cos(t), r(z) * std::sin(t), z);
-    }
-  }
-  auto id = [n](int i, int j) { return j * n + (i % n); };
-  for (int j = 0; j < m; ++j)
-    for (int i = 0; i < n; ++i) {
-      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return s;
-}
-
 std::vector<Vec3> oblique_ring(double r, double z, double tilt, int n) {
   std::vector<Vec3> pts;
   for (int i = 0; i < n; ++i) {
@@ -172,7 +153,7 @@ TEST_P(GeodesicSolvers, LoopAroundACylinderConvergesToTheCircumference) {
 TEST(GeodesicNewton, LoopAroundANeckConvergesToTheNeckCircle) {
   GeodesicOptions opts;
   const int n = 48;
-  const Mesh mesh(revolution([](double z) { return 1.0 + 0.5 * z * z; }, -1.0, 1.0, n, 40));
+  const Mesh mesh(test::revolution([](double z) { return 1.0 + 0.5 * z * z; }, -1.0, 1.0, n, 40));
   const EdgeGraph graph = build_edge_graph(mesh);
   const SurfacePath init =
       path_from_curve(mesh, graph, oblique_ring(1.1, 0.2, 0.3, 96), true, 0.5);

@@ -62,7 +62,7 @@ TEST(FibreMetrics, ParallelOnASphereHasClosedFormGeodesicCurvature) {
 // proportional to the girth (CV of the normalised spacing ~ 0), beta = 0 does not.
 TEST(FibreMetrics, InverseGirthDensityEquallySpacesTheTurns) {
   auto r = [](double z) { return 60.0 - 0.2 * z; };
-  const Mesh m(test::revolution_soup(r, 0.0, 150.0, 128, 60));
+  const Mesh m(test::revolution(r, 0.0, 150.0, 128, 60));
   const auto loops = test::loops_by_z(m);
   std::vector<double> g(m.num_faces());
   for (int f = 0; f < m.num_faces(); ++f) g[f] = 2.0 * M_PI * r(m.face_centroid(f).z());

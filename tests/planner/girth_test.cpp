@@ -19,28 +19,8 @@
 namespace windplan {
 namespace {
 
-// A surface of revolution about z: rings j = 0..m at z_j = z0 + (z1 - z0) j / m of radius r(z_j),
-// n vertices per ring at angles 2 pi i / n (the same on every ring), quads split like
-// test::open_cylinder. Vertex (i, j) has index j n + i.
-TriangleSoup revolve(const std::function<double(double)>& r, double z0, double z1, int n, int m) {
-  TriangleSoup s;
-  for (int j = 0; j <= m; ++j) {
-    const double z = z0 + (z1 - z0) * j / m;
-    for (int i = 0; i < n; ++i) {
-      const double t = 2.0 * M_PI * i / n;
-      s.points.emplace_back(r(z) * std::cos(t), r(z) * std::sin(t), z);
-    }
-  }
-  auto id = [n](int i, int j) { return j * n + (i % n); };
-  for (int j = 0; j < m; ++j)
-    for (int i = 0; i < n; ++i) {
-      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return s;
-}
-
-// The two boundary rings of a revolve()/open_cylinder() mesh with n per ring and m + 1 rings.
+// The two boundary rings of a test::revolution()/open_cylinder() mesh with n per ring and m + 1
+// rings.
 std::array<std::vector<int>, 2> ring_loops(int n, int m) {
   std::array<std::vector<int>, 2> loops;
   for (int i = 0; i < n; ++i) {
@@ -89,7 +69,8 @@ TEST(GirthAt, CylinderRingIsThePolygonPerimeter) {
 TEST(GirthAt, ConeMatchesTheUnrolledChord) {
   const int n = 256, m = 100;
   const double r0 = 60.0, r1 = 40.0, len = 400.0;
-  const Mesh mesh(revolve([&](double z) { return r0 + (r1 - r0) * z / len; }, 0.0, len, n, m));
+  const Mesh mesh(
+      test::revolution([&](double z) { return r0 + (r1 - r0) * z / len; }, 0.0, len, n, m));
   const auto loops = ring_loops(n, m);
   const double sin_b = (r0 - r1) / std::hypot(r0 - r1, len);
   const double sector = n * 2.0 * std::asin(sin_b * std::sin(M_PI / n));
@@ -117,8 +98,8 @@ TEST(GirthAt, ConeMatchesTheUnrolledChord) {
 TEST(GirthAt, NeckOfASurfaceOfRevolution) {
   const int n = 128, m = 64;
   const double z0 = 10.0 * M_PI / 2, z1 = 10.0 * 5 * M_PI / 2;  // neck at the middle ring
-  const Mesh mesh(
-      revolve([](double z) { return 10.0 * (1.0 + 0.3 * std::sin(z / 10.0)); }, z0, z1, n, m));
+  const Mesh mesh(test::revolution([](double z) { return 10.0 * (1.0 + 0.3 * std::sin(z / 10.0)); },
+                                   z0, z1, n, m));
   const auto loops = ring_loops(n, m);
   const double expected = polygon_perimeter(7.0, n);
   const GirthContext context(mesh, loops);
@@ -190,7 +171,8 @@ TEST(GirthField, CylinderIsConstant) {
 TEST(GirthField, ConeRingsAgainstDirectEvaluation) {
   const int n = 96, m = 40;
   const double r0 = 60.0, r1 = 40.0, len = 400.0;
-  const Mesh mesh(revolve([&](double z) { return r0 + (r1 - r0) * z / len; }, 0.0, len, n, m));
+  const Mesh mesh(
+      test::revolution([&](double z) { return r0 + (r1 - r0) * z / len; }, 0.0, len, n, m));
   const auto loops = ring_loops(n, m);
   const GirthField field = compute_girth_field(mesh, loops, GirthOptions{});
   EXPECT_EQ(field.samples.size(), 64u);
@@ -200,8 +182,8 @@ TEST(GirthField, ConeRingsAgainstDirectEvaluation) {
 
 TEST(GirthField, NeckFarthestAgainstDirectEvaluation) {
   const int n = 64, m = 40;
-  const Mesh mesh(revolve([](double z) { return 10.0 * (1.0 + 0.3 * std::sin(z / 10.0)); },
-                          10.0 * M_PI / 2, 10.0 * 5 * M_PI / 2, n, m));
+  const Mesh mesh(test::revolution([](double z) { return 10.0 * (1.0 + 0.3 * std::sin(z / 10.0)); },
+                                   10.0 * M_PI / 2, 10.0 * 5 * M_PI / 2, n, m));
   const auto loops = ring_loops(n, m);
   GirthOptions options;
   options.placement = "farthest";

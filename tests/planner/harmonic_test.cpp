@@ -52,7 +52,7 @@ TEST(Harmonic, CylinderAngleIsThePolarAngleWithA2PiPeriod) {
 }
 
 TEST(Harmonic, ConeIsConformalAndHeightMonotone) {
-  const Mesh m(test::revolution_soup([](double z) { return 60.0 - 0.2 * z; }, 0.0, 150.0, 64, 40));
+  const Mesh m(test::revolution([](double z) { return 60.0 - 0.2 * z; }, 0.0, 150.0, 64, 40));
   const HarmonicCoordinates hc = compute_harmonic_coordinates(m, loops_by_z(m));
   // Conformal coordinates of a cone: h ~ log(r) scaled (h' = c / (r sin)); monotone in z.
   for (int v = 0; v < m.num_vertices(); ++v) {

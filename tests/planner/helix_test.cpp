@@ -58,7 +58,7 @@ TEST(Helix, CylinderHelixHasTheClosedFormLength) {
 TEST(Helix, ConeUnderInverseGirthDensityIsALoxodrome) {
   const double r0 = 60.0, slope = -0.2, len = 150.0;
   auto r = [&](double z) { return r0 + slope * z; };
-  const Mesh m(test::revolution_soup(r, 0.0, len, 128, 60));
+  const Mesh m(test::revolution(r, 0.0, len, 128, 60));
   const auto loops = loops_by_z(m);
   const HarmonicCoordinates hc = compute_harmonic_coordinates(m, loops);
   std::vector<double> rho(m.num_faces());
@@ -96,7 +96,7 @@ TEST(Helix, ConeUnderInverseGirthDensityIsALoxodrome) {
 TEST(Helix, PlainGeodesicObeysClairaut) {
   auto r = [](double z) { return 40.0 + 25.0 * std::sin(M_PI * z / 200.0); };
   auto drdz = [](double z) { return 25.0 * M_PI / 200.0 * std::cos(M_PI * z / 200.0); };
-  const Mesh m(test::revolution_soup(r, 0.0, 200.0, 160, 100));
+  const Mesh m(test::revolution(r, 0.0, 200.0, 160, 100));
   const auto loops = loops_by_z(m);
   const HarmonicCoordinates hc = compute_harmonic_coordinates(m, loops);
   const SurfacePath init = trace_helix(m, hc, start_point(m, hc, loops, 0.0), 1, +1);

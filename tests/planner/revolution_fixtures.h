@@ -8,31 +8,9 @@
 
 #include "geometry/axis.h"
 #include "geometry/mesh.h"
+#include "tests/mesh_fixtures.h"
 
 namespace windplan::test {
-
-/// r(z) for z in [z0, z1], n vertices around, m rings of quads (each split in two), outward
-/// normals; the rings are rotated by half a step every other ring when `stagger` (no long
-/// diagonal bias).
-inline TriangleSoup revolution_soup(const std::function<double(double)>& r, double z0, double z1,
-                                    int n, int m) {
-  TriangleSoup s;
-  for (int j = 0; j <= m; ++j) {
-    const double z = z0 + (z1 - z0) * j / m;
-    for (int i = 0; i < n; ++i) {
-      const double t = 2.0 * M_PI * i / n;
-      s.points.emplace_back(r(z) * std::cos(t), r(z) * std::sin(t), z);
-    }
-  }
-  auto id = [n](int i, int j) { return j * n + (i % n); };
-  for (int j = 0; j < m; ++j) {
-    for (int i = 0; i < n; ++i) {
-      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  }
-  return s;
-}
 
 /// The two boundary loops of an annulus about z, the one at lower z first.
 inline std::array<std::vector<int>, 2> loops_by_z(const Mesh& m) {
