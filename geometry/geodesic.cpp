@@ -7,8 +7,6 @@
 #include <limits>
 #include <sstream>
 #include <unordered_map>
-#include <cstdio>
-#include <cstdlib>
 
 #include "geometry/errors.h"
 #include "geometry/unfold.h"
@@ -248,10 +246,9 @@ class Refiner {
   bool fan_lift(const std::vector<int>& run, int v, const Vec3& P, const Vec3& Q, bool apply,
                 double* theta);
   void rotate_closed(int shift);
- public:
-  bool handle_vertices_ = true;
-  bool funnel_allowed_ = true;
- private:
+  // The crossings of the fan on the other side of v, from face(h_i) around v the other way to
+  // face(twin(h_j)) (crossings i..j are the current side's spokes of v). False past a boundary.
+  bool other_side_fan(int i, int j, int v, std::vector<int>* hs) const;
   void replace_run(int i, int j, const std::vector<int>& hs, const std::vector<double>& ls);
 
   bool inner_solve(GeodesicSummary* summary, Clock::time_point t0);
@@ -585,6 +582,26 @@ bool Refiner::fan_lift(const std::vector<int>& run, int v, const Vec3& P, const 
   return true;
 }
 
+bool Refiner::other_side_fan(int i, int j, int v, std::vector<int>* hs) const {
+  hs->clear();
+  const int f_in = mesh_.face(path_.halfedges[i]);
+  const int f_out = mesh_.face(mesh_.twin(path_.halfedges[j]));
+  int hv = outgoing_in_face(mesh_, f_in, v);
+  // The current side crosses prev(hv) (counter-clockwise) or hv (clockwise) first.
+  const bool ccw = path_.halfedges[i] == hv;
+  int face = f_in;
+  const int limit = 2 * mesh_.valence(v) + 2;
+  for (int step = 0; step < limit && face != f_out; ++step) {
+    const int c = ccw ? mesh_.prev(hv) : hv;
+    const int t = mesh_.twin(c);
+    if (mesh_.is_boundary_halfedge(t)) return false;
+    hs->push_back(c);
+    face = mesh_.face(t);
+    hv = ccw ? t : mesh_.next(t);
+  }
+  return face == f_out && !hs->empty();
+}
+
 void Refiner::rotate_closed(int shift) {
   if (shift == 0) return;
   std::rotate(path_.halfedges.begin(), path_.halfedges.begin() + shift, path_.halfedges.end());
@@ -720,26 +737,11 @@ Refiner::Action Refiner::handle_vertex(int idx, int v, bool pushed_out, int* run
   if (mesh_.is_boundary_vertex(v) || tries >= kMaxTries) return pin();
   const double other = mesh_.cone_angle(v) - theta;
   if (!by_multiplier && !(other < M_PI - kAngleTol)) return pin();
-  // Reroute: the fan on the other side of v, from f_i to f_{j+1}.
-  const int f_in = mesh_.face(path_.halfedges[i]);
-  const int f_out = mesh_.face(mesh_.twin(path_.halfedges[j]));
-  int hv = outgoing_in_face(mesh_, f_in, v);
-  const bool current_ccw = path_.halfedges[i] != hv;  // crossing prev(hv) rotates CCW
-  const bool ccw = !current_ccw;
+  // Reroute: the fan on the other side of v, its crossings placed at v.
   std::vector<int> hs;
-  std::vector<double> ls;
-  int face = f_in;
-  const int limit = 2 * mesh_.valence(v) + 2;
-  for (int step = 0; step < limit && face != f_out; ++step) {
-    const int c = ccw ? mesh_.prev(hv) : hv;
-    const int t = mesh_.twin(c);
-    if (mesh_.is_boundary_halfedge(t)) return Action::Pinned;
-    hs.push_back(c);
-    ls.push_back(ccw ? 1.0 : 0.0);
-    face = mesh_.face(t);
-    hv = ccw ? t : mesh_.next(t);
-  }
-  if (face != f_out || hs.empty()) return Action::Pinned;
+  if (!other_side_fan(i, j, v, &hs)) return Action::Pinned;
+  std::vector<double> ls(hs.size());
+  for (std::size_t q = 0; q < hs.size(); ++q) ls[q] = mesh_.from(hs[q]) == v ? 0.0 : 1.0;
   if (path_.closed && i + count > k_) {
     // The run wraps around the end of the arrays: rotate so that it starts at index 0 and let
     // the caller re-evaluate (every index changed); the event is handled on the next sweep.
@@ -977,25 +979,7 @@ void Refiner::funnel_rounds() {
       const double other = mesh_.cone_angle(v) - theta;
       if (theta >= M_PI && !mesh_.is_boundary_vertex(v) && other < M_PI - 1e-12) {
         std::vector<int> hs;
-        const int f_in = mesh_.face(path_.halfedges[i]);
-        const int f_out = mesh_.face(mesh_.twin(path_.halfedges[j]));
-        int hv = outgoing_in_face(mesh_, f_in, v);
-        const bool ccw = path_.halfedges[i] == hv;
-        int face = f_in;
-        bool ok = true;
-        const int limit = 2 * mesh_.valence(v) + 2;
-        for (int step = 0; step < limit && face != f_out; ++step) {
-          const int c = ccw ? mesh_.prev(hv) : hv;
-          const int t = mesh_.twin(c);
-          if (mesh_.is_boundary_halfedge(t)) {
-            ok = false;
-            break;
-          }
-          hs.push_back(c);
-          face = mesh_.face(t);
-          hv = ccw ? t : mesh_.next(t);
-        }
-        if (ok && face == f_out && !hs.empty()) splices.push_back({i, j, std::move(hs)});
+        if (other_side_fan(i, j, v, &hs)) splices.push_back({i, j, std::move(hs)});
       }
       i = j + 1;
     }
@@ -1051,7 +1035,7 @@ bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
       termination_ = GeodesicTermination::MaxReroutes;
       break;
     }
-    if (handle_vertices_ && process_vertex_events(ev)) {
+    if (process_vertex_events(ev)) {
       s_mem_.clear();
       y_mem_.clear();
       evaluate(lambda_, z_, opt_.solver == GeodesicSolver::Newton, &ev);
@@ -1103,7 +1087,7 @@ bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
       if (++stalls >= 2) {
         termination_ = GeodesicTermination::ObjectiveStalled;
         // Still process pending vertex events before stopping.
-        if (handle_vertices_ && process_vertex_events(ev)) {
+        if (process_vertex_events(ev)) {
           evaluate(lambda_, z_, opt_.solver == GeodesicSolver::Newton, &ev);
           stalls = 0;
           continue;
@@ -1130,7 +1114,7 @@ GeodesicResult Refiner::run() {
     // The funnel gives the exact Euclidean path; under a density or anisotropic metric it starts
     // the optimisation on a path through many vertices and ends longer (measured on cones and
     // the vessel), so it is used for the Euclidean length only.
-    if (opt_.funnel_start && handle_vertices_ && metric_.kind() == PathMetric::Kind::Euclidean)
+    if (opt_.funnel_start && metric_.kind() == PathMetric::Kind::Euclidean)
       funnel_rounds();
     inner_solve(&summary, t0);
   } else {
