@@ -4,6 +4,7 @@
 // 2. For every configs/*.yaml: plan_job, then spacing, coverage and stability figures.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -37,6 +38,14 @@ void bench_24x5(const std::filesystem::path& job_file, double beta) {
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   double worst = 0.0;
   for (const HelixPass& p : plan.passes) worst = std::max(worst, p.summary.time_ms);
+  if (std::getenv("WINDPLAN_BENCH_VERBOSE")) {
+    for (const HelixPass& p : plan.passes) {
+      const GeodesicSummary& s = p.summary;
+      std::printf("  pass c%d%+d: %d crossings, %d it, %d evals, %d reroutes, %d lifts, %s, %.1f ms\n",
+                  p.circuit, p.hand, p.path.num_crossings(), s.iterations, s.evaluations,
+                  s.reroutes, s.lifts, to_string(s.termination), s.time_ms);
+    }
+  }
   std::printf(
       "%-12s beta %.1f: %d faces, 24 circuits x 5 turns (%zu passes): total %.3f s "
       "(harmonic %.3f s, trace %.3f s, refine %.3f s, worst pass %.1f ms), "
