@@ -966,11 +966,15 @@ void Refiner::funnel_rounds() {
       const Vec3 P = i > 0 ? point(i - 1, lambda_) : ps_;
       const Vec3 Q = j + 1 < k_ ? point(j + 1, lambda_) : pt_;
       if ((P - pv).norm() <= eps_d || (Q - pv).norm() <= eps_d) {
-        // The path starts or ends at v: let the general handler drop the crossings there.
+        // The path starts or ends at v (or a neighbouring crossing sits on it): the general
+        // handler drops the crossings around an endpoint at v; anything else stays pinned.
         int rs = i, rl = 1;
-        handle_vertex(i, v, false, &rs, &rl);
-        collapsed = true;
-        break;
+        if (handle_vertex(i, v, false, &rs, &rl) == Action::Collapsed) {
+          collapsed = true;
+          break;
+        }
+        i = j + 1;
+        continue;
       }
       std::vector<int> run(j - i + 1);
       for (int q = i; q <= j; ++q) run[q - i] = q;
