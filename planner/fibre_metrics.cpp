@@ -216,15 +216,16 @@ SpacingStats turn_spacing(const Mesh& m, const HelixPlan& plan,
     // (theta, h, position) at every polyline point, theta unwrapped along the path.
     std::vector<std::array<double, 2>> th;
     std::vector<Vec3> pos;
-    auto add_edge_point = [&](const SurfacePoint& sp) {
-      th.push_back(edge_point_coordinates(m, plan.coords, sp.element, sp.t));
+    // Ends: edge points on the loops, or face points on the station circles.
+    auto add_point = [&](const SurfacePoint& sp) {
+      th.push_back(surface_point_coordinates(m, plan.coords, sp));
       pos.push_back(position(m, sp));
     };
-    add_edge_point(path.start);
+    add_point(path.start);
     for (int i = 0; i < path.num_crossings(); ++i) {
-      add_edge_point(SurfacePoint::on_edge(path.halfedges[i], path.lambdas[i]));
+      add_point(SurfacePoint::on_edge(path.halfedges[i], path.lambdas[i]));
     }
-    add_edge_point(path.end);
+    add_point(path.end);
     for (std::size_t i = 1; i < th.size(); ++i) {
       th[i][0] -= kTwoPi * std::round((th[i][0] - th[i - 1][0]) / kTwoPi);
     }

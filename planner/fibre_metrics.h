@@ -19,7 +19,8 @@
 //
 // Coverage (shapes of revolution): at the largest radius R with winding angle a there, full
 // coverage needs ceil(2 pi R cos a / B) circuits; cover factor K B / (2 pi R cos a).
-// Stability is evaluated on the passes (the turnarounds are dwell arcs on the opening).
+// Stability is evaluated on the passes (the turnarounds are dwell arcs on the opening or the
+// station circle).
 #include <string>
 #include <vector>
 
@@ -73,8 +74,8 @@ struct PassReport {
   int circuit = 0;
   int hand = 1;
   double length = 0.0;       ///< mm
-  double angle_start = 0.0;  ///< winding angle where the pass leaves its opening (deg)
-  double angle_end = 0.0;    ///< where it meets the other opening (deg)
+  double angle_start = 0.0;  ///< winding angle where the pass starts (opening or station, deg)
+  double angle_end = 0.0;    ///< where it ends (deg)
   double radius_start = 0.0, radius_end = 0.0;  ///< mm
   double max_slippage = 0.0;
   int iterations = 0;

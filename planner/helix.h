@@ -3,21 +3,27 @@
 // they form.
 //
 // 1. Initial helices (trace_helix): in the conformal coordinates (h, theta) of planner/harmonic.h
-//    the helix with N turns is the level set theta - hand 2 pi N h = const (hand +1: the out pass
-//    from loop 0 to loop 1, theta increasing; hand -1: the return pass from loop 1 to loop 0,
-//    theta still increasing, so the mandrel keeps turning one way). It is traced face by face into
-//    a SurfacePath: each crossed edge with lambda from linear interpolation of the level function
-//    on that edge; start and end are edge points on the boundary loops.
+//    the helix with N turns is the level set theta - hand 2 pi N h / (h1 - h0) = const (hand +1:
+//    the out pass from loop 0 to loop 1, theta increasing; hand -1: the return pass from loop 1
+//    to loop 0, theta still increasing, so the mandrel keeps turning one way), with [h0, h1] the
+//    heights of its two ends ([0, 1] from loop to loop). It is traced face by face into a
+//    SurfacePath: each crossed edge with lambda from linear interpolation of the level function
+//    on that edge; it ends on the other boundary loop (an edge point) or, with an axial station,
+//    where the axial coordinate reaches the station (a face point).
 // 2. Refinement: each pass is refined by the geodesic core (geometry/geodesic.h) under the density
 //    rho (rho = (g / mean g)^(-beta), g the girth; empty = Euclidean), ends held fixed.
-// 3. Circuits: a circuit is out pass, turnaround at loop 1, return pass, turnaround at loop 0. A
-//    turnaround is a dwell arc along the boundary loop (polar opening or tube end) while the
-//    mandrel advances by `dwell` radians of theta; both dwells are pi + pi p / K so that each
-//    circuit advances the start by the pattern's 2 pi p / K (p coprime to K; p = 1) and the K
-//    circuits close into one continuous fibre.
+// 3. Circuits: a circuit is out pass, turnaround at the end, return pass, turnaround at the start.
+//    A turnaround is a dwell arc along the boundary loop (polar opening or tube end), or along
+//    the station circle when the job gives `start_station` / `end_station` (the section of the
+//    wound region by the plane normal to the spindle axis there: a parallel on a shape of
+//    revolution), while the mandrel advances by `dwell` radians of theta; both dwells are
+//    pi + pi p / K so that each circuit advances the start by the pattern's 2 pi p / K (p coprime
+//    to K; p = 1) and the K circuits close into one continuous fibre. With stations, the N turns
+//    of a pass are made between the two stations (h0, h1 the mean heights of their circles).
 // Paper: the density idea (equally spaced helices as geodesics of rho = 1/g) follows the windplan
 // design card; the geodesic refinement is Liu et al. (see geometry/geodesic.h).
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -34,32 +40,95 @@ namespace windplan {
 SurfacePoint loop_point_at_theta(const Mesh& annulus, const HarmonicCoordinates& hc,
                                  const std::vector<int>& loop, double theta);
 
-/// Traces the level set of theta - hand 2 pi turns h through `start` (an edge point on a boundary
-/// edge) until it reaches the other boundary loop.
-/// \throw InputError if start is not on a boundary edge, turns < 1 or hand not +-1;
-///        TopologyError if the level set returns to its start loop or does not end (h not
-///        monotone along it), naming the face.
-SurfacePath trace_helix(const Mesh& annulus, const HarmonicCoordinates& hc,
-                        const SurfacePoint& start, int turns, int hand);
+/// Where a traced helix stops and over which height span it makes its turns.
+struct HelixTraceOptions {
+  /// h1 - h0 (dimensionless, > 0): the turns are made over this span of the harmonic height,
+  /// i.e. the level function is theta - hand 2 pi turns h / height_span. 1: loop to loop.
+  double height_span = 1.0;
+  /// Axial station (mm along `axis`) where the trace stops instead of at the boundary loop: the
+  /// first point where the axial coordinate reaches it (from below on the way to loop 1, from
+  /// above on the way to loop 0). NaN: the trace runs to the boundary loop.
+  double stop_station = std::nan("");
+  /// The spindle axis of stop_station (origin mm, unit direction).
+  SpindleAxis axis;
+};
 
-/// A dwell arc along a boundary loop, from `start` (edge point on the loop) on by `dwell`
-/// radians of theta (increasing).
+/// Traces the level set of theta - hand 2 pi turns h / height_span through `start` until it
+/// reaches the other boundary loop or options.stop_station.
+/// \param start an edge point on a boundary edge (the trace runs away from that loop), or a point
+///        inside the annulus (a face point or an edge point on an interior edge; hand +1 runs
+///        towards loop 1, hand -1 towards loop 0)
+/// \return a SurfacePath from `start`; its end is an edge point on the boundary loop, or a face
+///         point (barycentric in the last strip face) on the stop station
+/// \throw InputError if start is a vertex or not a point of the mesh, turns < 1, hand not +-1 or
+///        height_span not > 0; TopologyError if the level set returns to the loop it left, reaches
+///        a boundary loop before the stop station, or does not end (h not monotone along it),
+///        naming the face.
+SurfacePath trace_helix(const Mesh& annulus, const HarmonicCoordinates& hc,
+                        const SurfacePoint& start, int turns, int hand,
+                        const HelixTraceOptions& options = {});
+
+/// A dwell arc along a boundary loop or a station circle, from `start` on by `dwell` radians of
+/// theta (increasing).
 struct LoopArc {
-  std::vector<Vec3> points;  ///< start, loop vertices passed, end
-  std::vector<int> faces;    ///< per segment: the annulus face of the boundary edge
-  SurfacePoint end;          ///< edge point at theta(start) + dwell
+  std::vector<Vec3> points;  ///< start, loop vertices (or station crossings) passed, end
+  std::vector<int> faces;    ///< per segment: the annulus face it lies in
+  SurfacePoint end;          ///< at theta(start) + dwell: an edge point on the loop, or a face
+                             ///< point on the station circle
   double length = 0.0;       ///< mm
 };
+/// The dwell arc along the boundary loop of `start` (an edge point on the loop).
 LoopArc loop_arc(const Mesh& annulus, const HarmonicCoordinates& hc, const SurfacePoint& start,
                  double dwell);
+
+/// A station circle: the closed section of the annulus by the plane normal to the spindle axis
+/// at an axial station (a parallel on a shape of revolution), as the chain of its edge crossings
+/// ordered so that theta increases. Segment i runs from crossings[i] to crossings[(i + 1) % n]
+/// inside faces[i].
+struct StationCircle {
+  double station = 0.0;                 ///< mm along the spindle axis
+  std::vector<SurfacePoint> crossings;  ///< edge points (halfedge, t) on the plane
+  std::vector<Vec3> points;             ///< their positions (mm)
+  std::vector<int> faces;               ///< per segment: the annulus face
+  /// Lifted theta at crossings[i] (radians, non-decreasing; one lift continued along the chain);
+  /// n + 1 values: theta.back() is crossings[0] again, theta.front() + 2 pi up to rounding.
+  std::vector<double> theta;
+  double height = 0.0;  ///< length-weighted mean of h along the circle (dimensionless)
+  double length = 0.0;  ///< mm
+};
+
+/// The station circle at axial position `station` (mm): the section loop that goes around the
+/// mandrel (the longest if several do), via plane_sections() of planner/cutlines.h.
+/// \param key the job key for messages (e.g. "winding.start_station")
+/// \throw ConfigError naming `key` when the plane's section has no loop around the mandrel.
+StationCircle station_circle(const Mesh& annulus, const HarmonicCoordinates& hc,
+                             const SpindleAxis& axis, double station, const std::string& key);
+
+/// The dwell arc along `circle` from `start` (a point on the circle, to rounding: the nearest
+/// segment is taken) on by `dwell` radians of theta. The end is a face point strictly inside its
+/// segment (off the crossings and so off the mesh edges).
+/// \throw TopologyError if start is farther than 1e-6 of the circle's length from it.
+LoopArc station_arc(const Mesh& annulus, const StationCircle& circle, const SurfacePoint& start,
+                    double dwell);
+
+/// The open interval of axial stations (mm) strictly between the two boundary loops: (largest
+/// axial coordinate on loops[0], smallest on loops[1]). Empty (lo >= hi) when they overlap.
+std::array<double, 2> station_range(const Mesh& annulus,
+                                    const std::array<std::vector<int>, 2>& loops,
+                                    const SpindleAxis& axis);
 
 /// Lifted theta and height at an edge point of the annulus (h in [0, 1], theta in radians).
 std::array<double, 2> edge_point_coordinates(const Mesh& annulus, const HarmonicCoordinates& hc,
                                              int halfedge, double t);
+/// The same for any surface point: edge points as edge_point_coordinates, face points in their
+/// face's lift, vertices in the lift of one of their faces.
+std::array<double, 2> surface_point_coordinates(const Mesh& annulus, const HarmonicCoordinates& hc,
+                                                const SurfacePoint& p);
 
 struct HelixPass {
   int circuit = 0;
-  int hand = 1;         ///< +1 out pass (loop 0 -> 1), -1 return pass (loop 1 -> 0)
+  int hand = 1;  ///< +1 out pass (start -> end: loop 0 or start station -> loop 1 or end station),
+                 ///< -1 return pass
   SurfacePath initial;  ///< the traced level set
   SurfacePath path;     ///< refined
   GeodesicSummary summary;
@@ -67,9 +136,13 @@ struct HelixPass {
 
 struct Turnaround {
   int circuit = 0;
-  int loop = 0;        ///< 0: start loop, 1: end loop
+  int loop = 0;        ///< 0: at the start (loop 0 or start station), 1: at the end
   double dwell = 0.0;  ///< radians of theta
+  /// mm: the station circle the arc runs along; NaN: the boundary loop.
+  double station = std::nan("");
   LoopArc arc;
+
+  bool at_station() const { return std::isfinite(station); }
 };
 
 struct HelixPlanSummary {
@@ -79,6 +152,9 @@ struct HelixPlanSummary {
   double auto_angle_deg = 0;  ///< winding angle at the largest radius (for K auto)
   double auto_radius = 0;     ///< mm
   int not_converged = 0;      ///< passes whose refinement did not converge
+  /// h at the two ends of the passes: 0 / 1 at the loops, the station circle's mean height at a
+  /// station (dimensionless); the N turns of a pass are made over heights[1] - heights[0].
+  std::array<double, 2> heights = {0.0, 1.0};
   double trace_ms = 0, refine_ms = 0, harmonic_ms = 0;
   std::vector<std::string> warnings;
 };
@@ -87,15 +163,19 @@ struct HelixPlanSummary {
 struct HelixPlan {
   HarmonicCoordinates coords;
   std::vector<HelixPass> passes;        ///< 2 per circuit: out, return
-  std::vector<Turnaround> turnarounds;  ///< 2 per circuit: at loop 1 (after out), at loop 0
+  std::vector<Turnaround> turnarounds;  ///< 2 per circuit: at the end (after out), at the start
   HelixPlanSummary summary;
 };
 
 /// Plans the helices of a winding surface.
 /// \param annulus the winding surface; loops its two boundary loops (start loop first)
 /// \param rho per annulus face density (> 0), or empty for the Euclidean metric
-/// \param axis spindle axis (for K auto: the winding angle at the largest radius)
-/// \throw ConfigError for invalid options; as compute_harmonic_coordinates / trace_helix.
+/// \param axis spindle axis (for K auto: the winding angle at the largest radius; the stations)
+/// \param options with start_station / end_station the passes run between those axial stations
+///        (mm) and turn around on their circles; a missing one is the boundary loop
+/// \throw ConfigError for invalid options, naming winding.start_station / winding.end_station
+///        and the valid range (mm) for a station outside station_range() or whose plane does not
+///        cut the wound region around the mandrel; as compute_harmonic_coordinates / trace_helix.
 HelixPlan plan_helices(const Mesh& annulus, const std::array<std::vector<int>, 2>& loops,
                        const std::vector<double>& rho, const SpindleAxis& axis,
                        const WindingOptions& options = {}, const GeodesicOptions& geodesic = {});

@@ -207,6 +207,140 @@ TEST(Helix, BadOptionsAreRejected) {
   EXPECT_THROW(trace_helix(m, hc, SurfacePoint::at_vertex(0), 1, 1), InputError);
 }
 
+// Axial stations on a cylinder: every pass runs from one station plane to the other with N turns
+// between them, so after refinement it is the straight line of the unrolled prism between the
+// stations, sqrt(L'^2 + (N P)^2) (L' the station distance), and tends to the smooth
+// sqrt(L'^2 + (2 pi R N)^2); the turnarounds are dwell arcs on the station circles.
+TEST(HelixStations, PassesRunBetweenTheStationPlanes) {
+  const double R = 50.0, L = 200.0;
+  const int n = 96;
+  const Mesh m(test::open_cylinder(R, L, n, 30));
+  const auto loops = loops_by_z(m);
+  const double z0 = 0.25 * L, z1 = 0.75 * L, Lp = z1 - z0;
+  const double P = n * 2.0 * R * std::sin(M_PI / n);
+  for (int N : {1, 2}) {
+    WindingOptions o;
+    o.turns = N;
+    o.circuits = 3;
+    o.start_station = z0;
+    o.end_station = z1;
+    const HelixPlan plan = plan_helices(m, loops, {}, SpindleAxis{}, o);
+    ASSERT_EQ(plan.passes.size(), 6u);
+    ASSERT_EQ(plan.turnarounds.size(), 6u);
+    EXPECT_NEAR(plan.summary.heights[0], 0.25, 1e-9);
+    EXPECT_NEAR(plan.summary.heights[1], 0.75, 1e-9);
+    const double prism = std::sqrt(Lp * Lp + (N * P) * (N * P));
+    const double smooth = std::sqrt(Lp * Lp + std::pow(2.0 * M_PI * R * N, 2));
+    for (const HelixPass& p : plan.passes) {
+      std::string why;
+      ASSERT_TRUE(is_valid_path(m, p.initial, &why)) << why;
+      ASSERT_TRUE(is_valid_path(m, p.path, &why)) << why;
+      ASSERT_TRUE(p.summary.converged()) << p.summary.brief_report();
+      const double za = p.hand > 0 ? z0 : z1, zb = p.hand > 0 ? z1 : z0;
+      EXPECT_NEAR(position(m, p.path.start).z(), za, 1e-6);
+      EXPECT_NEAR(position(m, p.path.end).z(), zb, 1e-6);
+      const double len = euclidean_length(m, p.path);
+      EXPECT_NEAR(len, prism, 1e-6 * prism) << "N = " << N << " circuit " << p.circuit;
+      EXPECT_NEAR(len, smooth, 1e-3 * smooth) << "N = " << N << " circuit " << p.circuit;
+      // The level set between the stations is already that line.
+      EXPECT_NEAR(euclidean_length(m, p.initial), prism, 1e-6 * prism);
+    }
+    for (int k = 0; k < 3; ++k) {
+      const HelixPass& out = plan.passes[2 * k];
+      const HelixPass& back = plan.passes[2 * k + 1];
+      const Turnaround& top = plan.turnarounds[2 * k];
+      const Turnaround& bottom = plan.turnarounds[2 * k + 1];
+      ASSERT_TRUE(top.at_station());
+      ASSERT_TRUE(bottom.at_station());
+      EXPECT_EQ(top.station, z1);
+      EXPECT_EQ(bottom.station, z0);
+      for (const Vec3& q : top.arc.points) EXPECT_NEAR(q.z(), z1, 1e-6);
+      for (const Vec3& q : bottom.arc.points) EXPECT_NEAR(q.z(), z0, 1e-6);
+      ASSERT_EQ(top.arc.faces.size() + 1, top.arc.points.size());
+      // The arcs run on the station circle (radius R up to the facets).
+      for (const Vec3& q : top.arc.points) {
+        EXPECT_NEAR(std::hypot(q.x(), q.y()), R, R * (1.0 - std::cos(M_PI / n)) + 1e-9);
+      }
+      // Continuous: each piece starts where the previous one ends.
+      EXPECT_LT((top.arc.points.front() - position(m, out.path.end)).norm(), 1e-9);
+      EXPECT_LT((position(m, back.path.start) - top.arc.points.back()).norm(), 1e-9);
+      EXPECT_LT((bottom.arc.points.front() - position(m, back.path.end)).norm(), 1e-9);
+      const HelixPass& next = plan.passes[(2 * k + 2) % 6];
+      EXPECT_NEAR((position(m, next.path.start) - bottom.arc.points.back()).norm(), 0.0,
+                  k == 2 ? 1e-3 : 1e-9);
+      // Dwell pi + pi / K of theta, which is linear along the prism's perimeter P.
+      const double dwell = (M_PI + M_PI / 3) / (2.0 * M_PI) * P;
+      EXPECT_NEAR(top.arc.length, dwell, 1e-6 * P);
+      EXPECT_NEAR(bottom.arc.length, dwell, 1e-6 * P);
+    }
+  }
+}
+
+// One station: the other end of the passes stays the boundary loop.
+TEST(HelixStations, OneStationKeepsTheOtherLoop) {
+  const double R = 40.0, L = 150.0;
+  const int n = 64;
+  const Mesh m(test::open_cylinder(R, L, n, 20));
+  const auto loops = loops_by_z(m);
+  const double P = n * 2.0 * R * std::sin(M_PI / n);
+  for (int which : {0, 1}) {
+    WindingOptions o;
+    o.turns = 2;
+    o.circuits = 2;
+    const double z = which == 0 ? 40.0 : 100.0;
+    (which == 0 ? o.start_station : o.end_station) = z;
+    const double za = which == 0 ? z : 0.0, zb = which == 0 ? L : z;
+    const HelixPlan plan = plan_helices(m, loops, {}, SpindleAxis{}, o);
+    const double prism = std::sqrt((zb - za) * (zb - za) + std::pow(2 * P, 2));
+    for (const HelixPass& p : plan.passes) {
+      EXPECT_NEAR(position(m, p.path.start).z(), p.hand > 0 ? za : zb, 1e-6);
+      EXPECT_NEAR(position(m, p.path.end).z(), p.hand > 0 ? zb : za, 1e-6);
+      EXPECT_NEAR(euclidean_length(m, p.path), prism, 1e-6 * prism) << "station " << which;
+    }
+    for (const Turnaround& t : plan.turnarounds) {
+      const bool station_end = t.loop == which;
+      EXPECT_EQ(t.at_station(), station_end);
+      const double zt = t.loop == 0 ? za : zb;
+      for (const Vec3& q : t.arc.points) EXPECT_NEAR(q.z(), zt, 1e-6);
+    }
+  }
+}
+
+TEST(HelixStations, StationOutsideTheWoundRegionNamesTheKeyAndRange) {
+  const Mesh m(test::open_cylinder(40.0, 150.0, 32, 10));
+  const auto loops = loops_by_z(m);
+  auto expect_config = [&](double start, double end, const std::string& key) {
+    WindingOptions o;
+    o.start_station = start;
+    o.end_station = end;
+    try {
+      plan_helices(m, loops, {}, SpindleAxis{}, o);
+      FAIL() << "accepted: " << key;
+    } catch (const ConfigError& e) {
+      const std::string w = e.what();
+      EXPECT_NE(w.find(key), std::string::npos) << w;
+      EXPECT_NE(w.find("(0, 150) mm"), std::string::npos) << w;
+    }
+  };
+  const double none = std::nan("");
+  expect_config(-10.0, none, "winding.start_station");
+  expect_config(0.0, none, "winding.start_station");  // on the loop itself
+  expect_config(none, 150.0, "winding.end_station");
+  expect_config(none, 400.0, "winding.end_station");
+  expect_config(20.0, 160.0, "winding.end_station");
+  // Stations are measured from the axis origin: shifted origin, shifted range.
+  WindingOptions o;
+  o.start_station = -60.0;
+  SpindleAxis shifted;
+  shifted.origin = Vec3(0, 0, 50);
+  try {
+    plan_helices(m, loops, {}, shifted, o);
+    FAIL() << "accepted a station below the loop of a shifted axis";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("(-50, 100) mm"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Helix, DensityFromGirthIsNormalised) {
   const Mesh m(test::open_cylinder(40.0, 150.0, 32, 10));
   std::vector<double> g(m.num_faces(), 251.0);
