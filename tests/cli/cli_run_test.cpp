@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -128,6 +129,48 @@ TEST_F(CliRun, BadWindingInputIsExitOneWithTheKey) {
   EXPECT_EQ(u.code, 2) << u.err;
   const Proc h = run({"helices"});
   EXPECT_EQ(h.code, 2) << h.err;
+}
+
+// A job with axial stations: the fibre stays between them (passes from station to station,
+// turnarounds on the station circles); a station off the mandrel is exit 1 naming the key.
+TEST_F(CliRun, StationsBoundTheFibrePath) {
+  const fs::path job = dir_ / "stations.yaml";
+  std::ofstream(job) << "name: stations\nmandrel:\n  source: pipe\n"
+                        "  pipe: {radius: 30, length: 200}\n"
+                        "winding: {turns: 1, circuits: 3, band_width: 10, start_station: 40, "
+                        "end_station: 160}\n";
+  const fs::path out = dir_ / "o";
+  const Proc r = run({"run", job.string(), "--out", out.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream csv(out / "fibre_path.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(csv, line));
+  EXPECT_EQ(line.rfind("circuit,index,x [mm],y [mm],z [mm]", 0), 0u) << line;
+  double zmin = 1e9, zmax = -1e9;
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::istringstream s(line);
+    std::string cell;
+    for (int i = 0; i < 5; ++i) std::getline(s, cell, ',');
+    const double z = std::stod(cell);
+    zmin = std::min(zmin, z);
+    zmax = std::max(zmax, z);
+    ++rows;
+  }
+  EXPECT_GT(rows, 10);
+  EXPECT_NEAR(zmin, 40.0, 1e-4);
+  EXPECT_NEAR(zmax, 160.0, 1e-4);
+  for (const char* f : {"toolpath.ngc", "axes.csv", "report.json", "development.svg"}) {
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  }
+
+  const fs::path bad = dir_ / "bad_station.yaml";
+  std::ofstream(bad) << "mandrel:\n  source: pipe\n  pipe: {radius: 30, length: 200}\n"
+                        "winding: {turns: 1, circuits: 2, end_station: 300}\n";
+  const Proc b = run({"run", bad.string(), "--out", (dir_ / "b").string()});
+  EXPECT_EQ(b.code, 1) << b.err;
+  EXPECT_NE(b.err.find("winding.end_station"), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("(0, 200) mm"), std::string::npos) << b.err;
 }
 
 TEST_F(CliRun, HelicesJsonReportsEveryPass) {

@@ -48,6 +48,51 @@ TEST(Pipeline, PipeJobGivesClosedFormHelices) {
   EXPECT_NEAR(plan.metrics.max_slippage, 0.0, 0.1);
 }
 
+// winding.start_station / end_station: the passes run between the station planes, the
+// turnarounds dwell on them, and the circuits (what export/ writes) stay continuous.
+TEST(Pipeline, StationsBoundThePassesAndTheTurnarounds) {
+  const double z0 = 50.0, z1 = 150.0;
+  const Job job = load_job_from_string(
+      std::string(kPipe) + "  start_station: 50\n  end_station: 150\n", "/tmp/p.yaml");
+  EXPECT_EQ(job.winding.start_station, z0);
+  EXPECT_EQ(job.winding.end_station, z1);
+  const PipelineResult r = plan_job(job);
+  ASSERT_EQ(r.plan.circuits.size(), 3u);
+  const double smooth = std::sqrt((z1 - z0) * (z1 - z0) + std::pow(2.0 * M_PI * 40.0 * 2, 2));
+  ASSERT_EQ(r.passes.size(), 6u);
+  for (const PassReport& p : r.passes) EXPECT_NEAR(p.length, smooth, 0.01 * smooth);
+  for (const Circuit& c : r.plan.circuits) {
+    ASSERT_EQ(c.segments.size(), 4u);
+    for (const FibrePoint& q : c.points) {
+      EXPECT_GE(q.position.z(), z0 - 1e-6);
+      EXPECT_LE(q.position.z(), z1 + 1e-6);
+    }
+    for (int i : {1, 3}) {
+      const CircuitSegment& s = c.segments[i];
+      EXPECT_EQ(s.kind, CircuitSegment::Kind::Turnaround);
+      for (int j = s.first; j <= s.last; ++j) {
+        EXPECT_NEAR(c.points[j].position.z(), i == 1 ? z1 : z0, 1e-6);
+      }
+    }
+  }
+  EXPECT_GT(r.plan.metrics.spacing_mean, 0.0);
+  EXPECT_NEAR(r.plan.metrics.max_slippage, 0.0, 0.1);
+}
+
+TEST(Pipeline, StationOutsideTheMandrelNamesTheKeyAndRange) {
+  for (const std::string key : {"start_station: -5", "end_station: 250"}) {
+    const Job job = load_job_from_string(std::string(kPipe) + "  " + key + "\n", "/tmp/p.yaml");
+    try {
+      plan_job(job);
+      FAIL() << "accepted " << key;
+    } catch (const ConfigError& e) {
+      const std::string w = e.what();
+      EXPECT_NE(w.find("winding." + key.substr(0, key.find(':'))), std::string::npos) << w;
+      EXPECT_NE(w.find("(0, 200) mm"), std::string::npos) << w;
+    }
+  }
+}
+
 TEST(Pipeline, WindingSectionErrorsNameTheKey) {
   auto expect_error = [](const std::string& section, const std::string& words) {
     const std::string yaml =
