@@ -651,6 +651,7 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
   plan.summary.pattern_step = 1;
   const double advance = kTwoPi * plan.summary.pattern_step / K;
   const double dwell = M_PI + 0.5 * advance;
+  const double theta_first = surface_point_coordinates(m, hc, first)[0];
 
   SurfacePoint start = first;
   for (int k = 0; k < K; ++k) {
@@ -688,11 +689,19 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
     bottom.circuit = k;
     bottom.loop = 0;
     bottom.dwell = dwell;
+    if (stations[0] || stations[1]) {
+      // h is constant on a loop but on a station circle only up to the tessellation, so the two
+      // passes advance theta by 4 pi N only nearly: the bottom dwell takes up the difference, so
+      // that circuit k + 1 starts exactly (k + 1) advance after circuit 0 and the pattern closes.
+      const double now = surface_point_coordinates(m, hc, back.path.end)[0] + dwell;
+      const double want = theta_first + (k + 1) * advance;
+      bottom.dwell = dwell + std::remainder(want - now, kTwoPi);
+    }
     if (stations[0]) {
       bottom.station = options.start_station;
-      bottom.arc = station_arc(m, *stations[0], back.path.end, dwell);
+      bottom.arc = station_arc(m, *stations[0], back.path.end, bottom.dwell);
     } else {
-      bottom.arc = loop_arc(m, hc, back.path.end, dwell);
+      bottom.arc = loop_arc(m, hc, back.path.end, bottom.dwell);
     }
     start = bottom.arc.end;
     plan.passes.push_back(std::move(out));

@@ -19,7 +19,9 @@
 //    revolution), while the mandrel advances by `dwell` radians of theta; both dwells are
 //    pi + pi p / K so that each circuit advances the start by the pattern's 2 pi p / K (p coprime
 //    to K; p = 1) and the K circuits close into one continuous fibre. With stations, the N turns
-//    of a pass are made between the two stations (h0, h1 the mean heights of their circles).
+//    of a pass are made between the two stations (h0, h1 the mean heights of their circles);
+//    h varies slightly along a station circle, so the dwell at the start end is corrected to
+//    start circuit k exactly 2 pi p k / K after circuit 0.
 // Paper: the density idea (equally spaced helices as geodesics of rho = 1/g) follows the windplan
 // design card; the geodesic refinement is Liu et al. (see geometry/geodesic.h).
 #include <array>
@@ -137,7 +139,7 @@ struct HelixPass {
 struct Turnaround {
   int circuit = 0;
   int loop = 0;        ///< 0: at the start (loop 0 or start station), 1: at the end
-  double dwell = 0.0;  ///< radians of theta
+  double dwell = 0.0;  ///< radians of theta (pi + pi p / K; corrected at the start with stations)
   /// mm: the station circle the arc runs along; NaN: the boundary loop.
   double station = std::nan("");
   LoopArc arc;

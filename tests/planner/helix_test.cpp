@@ -306,6 +306,58 @@ TEST(HelixStations, OneStationKeepsTheOtherLoop) {
   }
 }
 
+// On an irregular tessellation of a curved surface h is not constant on a station circle, so the
+// passes advance theta by 2 pi N only nearly; the start dwell takes up the difference and the K
+// circuits still close: the last turnaround ends where circuit 0 starts, each circuit starting
+// 1/K turn after the previous one.
+TEST(HelixStations, PatternClosesOnAnIrregularTessellation) {
+  auto r = [](double z) { return 40.0 + 15.0 * std::sin(M_PI * z / 160.0); };
+  const double L = 160.0;
+  const int n = 48, rings = 16;
+  TriangleSoup soup = test::revolution(r, 0.0, L, n, rings);
+  for (int j = 1; j < rings; ++j) {
+    for (int i = 0; i < n; ++i) {  // move the inner rings' vertices along the surface
+      Vec3& p = soup.points[j * n + i];
+      const double z = p.z() + 0.35 * (L / rings) * std::sin(12.9898 * i + 78.233 * j);
+      const double t = std::atan2(p.y(), p.x());
+      p = Vec3(r(z) * std::cos(t), r(z) * std::sin(t), z);
+    }
+  }
+  const Mesh m(soup);
+  const auto loops = loops_by_z(m);
+  WindingOptions o;
+  o.turns = 2;
+  o.circuits = 5;
+  o.start_station = 45.0;
+  o.end_station = 115.0;
+  const HelixPlan plan = plan_helices(m, loops, {}, SpindleAxis{}, o);
+  ASSERT_EQ(plan.passes.size(), 10u);
+  const double nominal = M_PI + M_PI / 5;
+  double spread = 0.0;
+  for (int k = 0; k < 5; ++k) {
+    const Turnaround& top = plan.turnarounds[2 * k];
+    const Turnaround& bottom = plan.turnarounds[2 * k + 1];
+    EXPECT_EQ(top.dwell, nominal);
+    EXPECT_NEAR(bottom.dwell, nominal, 0.1);
+    spread = std::max(spread, std::fabs(bottom.dwell - nominal));
+    for (const Vec3& q : bottom.arc.points) EXPECT_NEAR(q.z(), 45.0, 1e-6);
+    for (const Vec3& q : top.arc.points) EXPECT_NEAR(q.z(), 115.0, 1e-6);
+    const HelixPass& next = plan.passes[(2 * k + 2) % 10];
+    EXPECT_LT((position(m, next.path.start) - bottom.arc.points.back()).norm(), 1e-4);
+    // Theta is close to the polar angle here (up to the jitter).
+    const Vec3 a = position(m, plan.passes[2 * k].path.start);
+    const Vec3 b = bottom.arc.points.back();
+    double d = std::atan2(b.y(), b.x()) - std::atan2(a.y(), a.x());
+    d -= 2.0 * M_PI * std::floor(d / (2.0 * M_PI));
+    EXPECT_NEAR(std::min(d, 2.0 * M_PI - d), 2.0 * M_PI / 5, 0.05) << "circuit " << k;
+  }
+  EXPECT_GT(spread, 1e-4) << "the tessellation should make h vary along the station circles";
+  for (const HelixPass& p : plan.passes) {
+    EXPECT_NEAR(position(m, p.path.start).z(), p.hand > 0 ? 45.0 : 115.0, 1e-6);
+    EXPECT_NEAR(position(m, p.path.end).z(), p.hand > 0 ? 115.0 : 45.0, 1e-6);
+  }
+}
+
 TEST(HelixStations, StationOutsideTheWoundRegionNamesTheKeyAndRange) {
   const Mesh m(test::open_cylinder(40.0, 150.0, 32, 10));
   const auto loops = loops_by_z(m);
