@@ -16,10 +16,11 @@ namespace windplan::cli {
 const char* const kHelicesHelp =
     "usage: windplan helices <job.yaml> [--json] [-o DIR]\n\n"
     "Plans the equally spaced geodesic helices of a job (winding: turns, circuits, band_width,\n"
-    "beta, mu): conformal coordinates of the wound region, level-set helices, refinement under\n"
-    "the density rho = (g / mean g)^-beta, continuous circuits with turnarounds. Prints one line\n"
-    "per pass (length, winding angle where it leaves and meets the openings, max slippage,\n"
-    "refinement) and the plan metrics (spacing, coverage, pattern, stability, warnings).\n\n"
+    "beta, mu, start_station, end_station): conformal coordinates of the wound region, level-set\n"
+    "helices, refinement under the density rho = (g / mean g)^-beta, continuous circuits with\n"
+    "turnarounds on the openings or the stations. Prints one line per pass (length, winding\n"
+    "angle at its two ends, max slippage, refinement) and the plan metrics (spacing, coverage,\n"
+    "pattern, stability, warnings).\n\n"
     "  --json          print the report as JSON on stdout\n"
     "  -o, --out DIR   also write fibre_path.csv, paths.ply, mesh.ply and report.json/md there\n";
 
