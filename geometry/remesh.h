@@ -33,9 +33,13 @@ struct RemeshResult {
 };
 
 /// Remeshes `mesh` isotropically.
-/// \param face_patch one id per face of `mesh` (empty: all in patch 0)
-/// \throw ConfigError for invalid options; InputError when face_patch has the wrong size;
-///        TopologyError if the result is not a valid mesh.
+/// \param face_patch one id (>= 0) per face of `mesh` (empty: all in patch 0)
+/// \post every output face has the patch of the input face it lies in, and every edge between
+///       two patches is a protected border edge: a union of patches has the same boundary loops
+///       before and after (up to the splitting of their edges).
+/// \throw ConfigError for invalid options; InputError when face_patch has the wrong size or a
+///        negative id; TopologyError if the result is not a valid mesh; InvariantError if the
+///        patches come out of CGAL broken (a face without a patch, an unprotected patch border).
 RemeshResult remesh_isotropic(const Mesh& mesh, const std::vector<int>& face_patch,
                               const RemeshOptions& options = {});
 

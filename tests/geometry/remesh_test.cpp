@@ -1,11 +1,13 @@
 // Isotropic remeshing: edge lengths near the target, boundary and patch borders kept in place,
-// patch ids carried over, closed meshes stay closed, bad options refused.
+// patch ids carried over (also onto the faces cut off when long borders are split), closed
+// meshes stay closed, bad options refused.
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "geometry/errors.h"
 #include "geometry/remesh.h"
+#include "geometry/winding_surface.h"
 #include "tests/mesh_fixtures.h"
 
 namespace windplan {
@@ -63,6 +65,49 @@ TEST(Remesh, LongThinCylinderTrianglesBecomeIsotropic) {
   }
 }
 
+TEST(Remesh, PatchBordersLongerThanTheTargetAreSplitAndKeepTheirPatches) {
+  // Issue #4: border edges longer than the target are split before remeshing, and the faces that
+  // this split cuts off must keep their patch (CGAL's split_long_edges gives them none).
+  const double r = 20, len = 60;
+  const int n = 48;  // rings of 2 r sin(pi / 48) = 2.6 mm chords, split at a 2 mm target
+  const Mesh in(test::open_cylinder(r, len, n, 2));
+  std::vector<int> patch(in.num_faces());
+  for (int f = 0; f < in.num_faces(); ++f) patch[f] = in.face_centroid(f).z() < len / 2 ? 0 : 1;
+  RemeshOptions o;
+  o.target_edge_length = 2.0;
+  const RemeshResult res = remesh_isotropic(in, patch, o);
+  const Mesh& m = res.mesh;
+  ASSERT_EQ(res.face_patch.size(), static_cast<std::size_t>(m.num_faces()));
+  int wrong = 0;
+  for (int f = 0; f < m.num_faces(); ++f) {
+    wrong += res.face_patch[f] != (m.face_centroid(f).z() < len / 2 ? 0 : 1);
+  }
+  EXPECT_EQ(wrong, 0) << "faces whose patch is not the half they lie in";
+  // The border ring and both boundary loops were split: twice their vertices, still on the rings.
+  const auto loops = m.boundary_loops();
+  ASSERT_EQ(loops.size(), 2u);
+  for (const auto& loop : loops) EXPECT_EQ(loop.size(), 2u * n);
+  int ring = 0;
+  for (const Vec3& p : m.points()) ring += std::abs(p.z() - len / 2) < 1e-9;
+  EXPECT_EQ(ring, 2 * n);
+  // Every edge between the two patches lies on the ring z = len / 2: the patches meet only
+  // there, and each one cut out on its own is an annulus (no vertex where two fans meet).
+  for (int e = 0; e < m.num_edges(); ++e) {
+    const int h = m.edge_halfedge(e);
+    const int f = m.face(h), g = m.face(m.twin(h));
+    if (f < 0 || g < 0 || res.face_patch[f] == res.face_patch[g]) continue;
+    EXPECT_NEAR(m.position(m.from(h)).z(), len / 2, 1e-9);
+    EXPECT_NEAR(m.position(m.to(h)).z(), len / 2, 1e-9);
+  }
+  for (int p = 0; p < 2; ++p) {
+    std::vector<char> keep(m.num_faces());
+    for (int f = 0; f < m.num_faces(); ++f) keep[f] = res.face_patch[f] == p;
+    const WindingSurface ws = extract_winding_surface(m, keep, SpindleAxis{});
+    EXPECT_NEAR(ws.loops[0].axial, p == 0 ? 0.0 : len / 2, 1e-9);
+    EXPECT_NEAR(ws.loops[1].axial, p == 0 ? len / 2 : len, 1e-9);
+  }
+}
+
 TEST(Remesh, ClosedMeshStaysClosed) {
   const Mesh in(test::uv_sphere(50, 24, 12));
   RemeshOptions o;
@@ -84,6 +129,7 @@ TEST(Remesh, BadOptionsAndSizesAreRefused) {
   EXPECT_THROW(remesh_isotropic(in, {}, o), ConfigError);
   o.iterations = 3;
   EXPECT_THROW(remesh_isotropic(in, std::vector<int>(3, 0), o), InputError);
+  EXPECT_THROW(remesh_isotropic(in, std::vector<int>(in.num_faces(), -1), o), InputError);
 }
 
 }  // namespace
