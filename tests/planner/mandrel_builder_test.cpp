@@ -132,6 +132,55 @@ TEST(MandrelBuilder, RemeshEvensOutEdgesAndKeepsTheAnnulus) {
   EXPECT_NEAR(m.winding.area, side, 2 * 0.25 / 50 * side);
 }
 
+TEST(MandrelBuilder, RemeshFinerThanTheOpeningChordsKeepsTheAnnulus) {
+  // Issue #4: the shipped vessel remeshed to 2.5 mm (below its 2.63 mm opening chords) failed
+  // with "vertex ... is non-manifold (two boundary fans meet there)": the faces cut off when the
+  // opening borders were split came out in the wrong patch, and the wound region touched itself
+  // at the openings. The same vessel at half size (same polar-opening ratio 0.3), tessellated
+  // so that its openings have the same 2.63 mm chords (36 of them), builds in under a second.
+  const Job job = load_job_from_string(
+      "mandrel:\n"
+      "  source: vessel\n"
+      "  linear_deflection: 0.5\n"
+      "  angular_deflection: 20\n"
+      "  remesh: 2.5\n"
+      "  vessel:\n"
+      "    radius: 50\n"
+      "    length: 150\n"
+      "    dome: {type: isotensoid, polar_opening: 15}\n",
+      "vessel_remesh.yaml");
+  const Mandrel m = build_mandrel(job);
+  expect_closed_full_mesh(m);  // closed, manifold, oriented; the wound region has 2 loops
+  EXPECT_EQ(m.winding.mesh.genus(), 0);
+  EXPECT_GT(m.remesh_ms, 0.0);
+  const double r_open = dome_opening_radius(job.mandrel.vessel.dome_end, 50.0);
+  EXPECT_NEAR(r_open, 15.0, 0.3);
+  const int chords = 36;
+  ASSERT_GT(2 * r_open * std::sin(M_PI / chords), 2.5) << "the opening borders must be split";
+  double zmin = m.mesh.position(0).z(), zmax = zmin;
+  for (const Vec3& p : m.mesh.points()) {
+    zmin = std::min(zmin, p.z());
+    zmax = std::max(zmax, p.z());
+  }
+  for (int i = 0; i < 2; ++i) {
+    const WindingLoop& L = m.winding.loops[i];
+    // Each chord split once at its midpoint: the loop is the opening polygon, in the plane of
+    // its disk (the end of the mandrel), its vertices on the circle or on the chords.
+    EXPECT_EQ(L.vertices.size(), 2u * chords);
+    EXPECT_NEAR(L.axial, i == 0 ? zmin : zmax, 1e-9);
+    for (int v : L.vertices) {
+      const Vec3& p = m.winding.mesh.position(v);
+      EXPECT_NEAR(p.z(), L.axial, 1e-9);
+      EXPECT_LE(m.axis.radius(p), r_open + 1e-6);
+      EXPECT_GE(m.axis.radius(p), r_open * std::cos(M_PI / chords) - 1e-6);
+    }
+    EXPECT_NEAR(L.length, 2 * chords * r_open * std::sin(M_PI / chords), 1e-6);
+  }
+  // The wound region is the whole mandrel but the two opening polygons.
+  const double disk = 0.5 * chords * r_open * r_open * std::sin(2 * M_PI / chords);
+  EXPECT_NEAR(m.winding.area, m.mesh.total_area() - 2 * disk, 1e-6 * m.winding.area);
+}
+
 TEST(MandrelBuilder, ClosedMeshFileDropsItsFlatCapsAndFindsTheAxis) {
   // The pipe's closed tessellation, tilted and moved, saved as a mesh file.
   const Mandrel pipe = build_mandrel(load_job(config("pipe.yaml")));
