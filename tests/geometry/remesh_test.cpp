@@ -108,6 +108,35 @@ TEST(Remesh, PatchBordersLongerThanTheTargetAreSplitAndKeepTheirPatches) {
   }
 }
 
+TEST(Remesh, CoarseFirstPassGivesTheSameMeshQuality) {
+  // 100 mm slivers remeshed to 2.5 mm, with and without the coarse first pass: the same density
+  // and edge lengths, every vertex on the input facets (projected onto the input, not onto the
+  // coarse intermediate mesh).
+  const double r = 20, len = 100;
+  const int n = 48;
+  const Mesh in(test::open_cylinder(r, len, n, 1));
+  RemeshOptions o;
+  o.target_edge_length = 2.5;
+  o.coarse_factor = 0.0;
+  const RemeshResult direct = remesh_isotropic(in, {}, o);
+  o.coarse_factor = 4.0;
+  const RemeshResult coarse = remesh_isotropic(in, {}, o);
+  EXPECT_NEAR(coarse.faces_after, direct.faces_after, 0.1 * direct.faces_after);
+  const auto ed = direct.mesh.edge_length_stats(), ec = coarse.mesh.edge_length_stats();
+  EXPECT_NEAR(ec[1], ed[1], 0.1 * ed[1]);
+  EXPECT_LT(ec[2], 2.0 * o.target_edge_length);
+  for (const Vec3& p : coarse.mesh.points()) {
+    const double rad = std::hypot(p.x(), p.y());
+    EXPECT_LE(rad, r + 1e-6);
+    EXPECT_GE(rad, r * std::cos(M_PI / n) - 1e-6);
+    // On the facet of its angle: the facet's plane is at r cos(pi / n) from the axis.
+    const double a = std::atan2(p.y(), p.x());
+    const double mid = (std::floor(a / (2 * M_PI / n)) + 0.5) * (2 * M_PI / n);
+    EXPECT_NEAR(p.x() * std::cos(mid) + p.y() * std::sin(mid), r * std::cos(M_PI / n), 1e-6);
+  }
+  EXPECT_EQ(coarse.mesh.boundary_loops().size(), 2u);
+}
+
 TEST(Remesh, ClosedMeshStaysClosed) {
   const Mesh in(test::uv_sphere(50, 24, 12));
   RemeshOptions o;
@@ -130,6 +159,8 @@ TEST(Remesh, BadOptionsAndSizesAreRefused) {
   o.iterations = 3;
   EXPECT_THROW(remesh_isotropic(in, std::vector<int>(3, 0), o), InputError);
   EXPECT_THROW(remesh_isotropic(in, std::vector<int>(in.num_faces(), -1), o), InputError);
+  o.coarse_factor = 1.0;
+  EXPECT_THROW(remesh_isotropic(in, {}, o), ConfigError);
 }
 
 }  // namespace
