@@ -251,6 +251,16 @@ class Refiner {
   bool other_side_fan(int i, int j, int v, std::vector<int>* hs) const;
   void replace_run(int i, int j, const std::vector<int>& hs, const std::vector<double>& ls);
 
+  // Metric-exact vertex test (density, anisotropic; no penalty): the cheapest passage from the
+  // crossing before the run to the one after it, on the current side of v and on the other side,
+  // each the global optimum of its fan (a convex problem), against the current passage.
+  Action metric_vertex_test(int i, int j, int v, int before, int after);
+  // A fan sub-problem: from crossing `before` (or the start) over the crossings hs (around v) to
+  // crossing `after` (or the end). Returns the cost at *ls, or with `solve` the optimum's cost
+  // and *ls the optimum.
+  double solve_fan(int before, int after, const std::vector<int>& hs, int v, bool solve,
+                   std::vector<double>* ls);
+
   bool inner_solve(GeodesicSummary* summary, Clock::time_point t0);
   // Exact Euclidean shortest path inside the current strip (funnel algorithm on the unfolded
   // strip), then reroutes around every vertex the path wraps with an angle < pi on the other
@@ -280,6 +290,7 @@ class Refiner {
   std::deque<std::vector<double>> s_mem_, y_mem_;
   TridiagonalSolver tri_;
   GeodesicTermination termination_ = GeodesicTermination::Converged;
+  bool events_enabled_ = true;  // false for the fan sub-problems of metric_vertex_test
 };
 
 void Refiner::evaluate(const std::vector<double>& l, const std::vector<double>& z, bool hessian,
@@ -685,6 +696,13 @@ Refiner::Action Refiner::handle_vertex(int idx, int v, bool pushed_out, int* run
   const Vec3 P = before >= 0 ? point(before, lambda_) : ps_;
   const Vec3 Q = after < k_ ? point(after, lambda_) : pt_;
   if ((P - pv).norm() <= eps_d || (Q - pv).norm() <= eps_d) return Action::Pinned;
+  if (metric_.kind() != PathMetric::Kind::Euclidean && !penalty_on_) {
+    if (path_.closed && i + count > k_) {
+      rotate_closed(i);  // the run wraps around the arrays' end: handled on the next sweep
+      return Action::Rotated;
+    }
+    return metric_vertex_test(i, j, v, before, after);
+  }
 
   constexpr double kAngleTol = 1e-12;
   // Guard against lift/reroute ping-pong at one vertex: after this many tries it is pinned.
@@ -757,6 +775,80 @@ Refiner::Action Refiner::handle_vertex(int idx, int v, bool pushed_out, int* run
   return Action::Rerouted;
 }
 
+double Refiner::solve_fan(int before, int after, const std::vector<int>& hs, int v, bool solve,
+                          std::vector<double>* ls) {
+  SurfacePath sub;
+  sub.closed = false;
+  sub.start = before >= 0 ? SurfacePoint::on_edge(path_.halfedges[before], lambda_[before])
+                          : path_.start;
+  sub.end = after < k_ ? SurfacePoint::on_edge(path_.halfedges[after], lambda_[after]) : path_.end;
+  sub.start_face = mesh_.face(hs.front());
+  sub.halfedges = hs;
+  sub.lambdas = *ls;
+  GeodesicOptions o = opt_;
+  o.solver = GeodesicSolver::Newton;
+  o.funnel_start = false;
+  o.max_iterations = 100;
+  Refiner r(mesh_, sub, metric_, o, nullptr);
+  r.events_enabled_ = false;
+  if (!solve) return r.value_only(r.lambda_, r.z_);
+  // The passage through v is the non-smooth corner of the fan problem (zero-length segments);
+  // the crossings are kept kFanGap of their spoke away from v, which makes the problem smooth.
+  constexpr double kFanGap = 1e-7;
+  for (int q = 0; q < r.k_; ++q) {
+    if (mesh_.from(hs[q]) == v) r.a_[q] += kFanGap * r.d_[q];
+    r.d_[q] *= 1.0 - kFanGap;
+    if (mesh_.from(hs[q]) != v && mesh_.to(hs[q]) != v) r.d_[q] /= 1.0 - kFanGap;
+  }
+  GeodesicSummary summary;
+  r.inner_solve(&summary, Clock::now());
+  const double cost = r.value_only(r.lambda_, r.z_);
+  for (int q = 0; q < r.k_; ++q) {
+    const double l = r.lambda_[q];
+    if (mesh_.from(hs[q]) == v) (*ls)[q] = kFanGap + (1.0 - kFanGap) * l;
+    else if (mesh_.to(hs[q]) == v) (*ls)[q] = (1.0 - kFanGap) * l;
+    else (*ls)[q] = l;
+  }
+  return cost;
+}
+
+Refiner::Action Refiner::metric_vertex_test(int i, int j, int v, int before, int after) {
+  // Each side's fan problem is convex (a sum of metric norms of affine maps of the lambdas, in a
+  // box) and its closure contains the passage through v. Each side is solved kept a tiny gap off
+  // v (smooth), and taken when it is lower than the passage through v by more than round-off:
+  // every change lowers the objective, so there are no lift/reroute cycles, and a pinned vertex
+  // is a local optimum of both fans.
+  // Guard against snap/lift cycles at one vertex (a crossing snapped onto v, lifted a hair off
+  // it, and drawn back by the optimiser): after this many changes the vertex is pinned.
+  constexpr int kMaxChanges = 40;
+  int& changes = lifts_at_[v];
+  if (changes >= kMaxChanges) return Action::Pinned;
+  const int n = j - i + 1;
+  std::vector<int> run_h(n);
+  for (int q = 0; q < n; ++q) run_h[q] = path_.halfedges[i + q];
+  std::vector<double> run_l(path_.lambdas.begin() + i, path_.lambdas.begin() + j + 1);
+  const double current = solve_fan(before, after, run_h, v, false, &run_l);
+  run_l.assign(n, 0.5);
+  const double same = solve_fan(before, after, run_h, v, true, &run_l);
+  std::vector<int> hs;
+  std::vector<double> other_l;
+  double other = std::numeric_limits<double>::infinity();
+  if (!mesh_.is_boundary_vertex(v) && other_side_fan(i, j, v, &hs)) {
+    other_l.assign(hs.size(), 0.5);
+    other = solve_fan(before, after, hs, v, true, &other_l);
+  }
+  const double tol = 1e-12 * std::max(current, 1e-300);
+  if (!(std::min(same, other) < current - tol)) return Action::Pinned;
+  ++changes;
+  if (same <= other) {
+    for (int q = 0; q < n; ++q) lambda_[i + q] = run_l[q];
+    ++lifts_;
+    return Action::Lifted;
+  }
+  replace_run(i, j, hs, other_l);
+  ++reroutes_;
+  return Action::Rerouted;
+}
 
 bool Refiner::process_vertex_events(const Eval& ev) {
   // One sweep from the last crossing to the first: a strip change at a run only shifts the
@@ -774,8 +866,9 @@ bool Refiner::process_vertex_events(const Eval& ev) {
     const bool at_bound = l <= 0.0 || l >= 1.0;
     const int h = path_.halfedges[i];
     if (!at_bound) {
-      // Snapping is for the plain Euclidean length, where the vertex test is exact.
-      if (metric_.kind() != PathMetric::Kind::Euclidean || penalty_on_) continue;
+      // Snapping needs an exact vertex test (the angle test, or the fan test for other
+      // metrics): not under a penalty.
+      if (penalty_on_) continue;
       const double gn = ev.g[i] / d_[i].norm();
       if (l < kNearVertex && gn > 1e-9) {
         lambda_[i] = 0.0;
@@ -806,7 +899,11 @@ bool Refiner::process_vertex_events(const Eval& ev) {
       changed = true;
       ++events_;
     }
-    if (a != Action::None && static_cast<int>(touched_.size()) == k_) {
+    // A pinned run changed nothing: the sweep goes on with the next crossing, since a run (the
+    // spokes of v) can hold crossings at the far ends of its spokes, at other vertices, which
+    // need their own test.
+    if (a == Action::Pinned || a == Action::None) continue;
+    if (static_cast<int>(touched_.size()) == k_) {
       const int len = a == Action::Rerouted || a == Action::Collapsed
                           ? 0  // indices from run_start on changed; nothing below is touched
                           : run_length;
@@ -1039,7 +1136,7 @@ bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
       termination_ = GeodesicTermination::MaxReroutes;
       break;
     }
-    if (process_vertex_events(ev)) {
+    if (events_enabled_ && process_vertex_events(ev)) {
       s_mem_.clear();
       y_mem_.clear();
       evaluate(lambda_, z_, opt_.solver == GeodesicSolver::Newton, &ev);
@@ -1058,7 +1155,16 @@ bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
     if (!have_dir) lbfgs_direction(ev, &dir);
     const std::vector<double> g_old = ev.g;
     double f_new = 0.0;
-    if (!line_search(ev, dir, &f_new)) {
+    bool stepped = line_search(ev, dir, &f_new);
+    if (!stepped && have_dir) {
+      // The Newton model can be poor next to the path's kinks at vertices: fall back to the
+      // scaled projected gradient once before giving up.
+      s_mem_.clear();
+      y_mem_.clear();
+      lbfgs_direction(ev, &dir);
+      stepped = line_search(ev, dir, &f_new);
+    }
+    if (!stepped) {
       double slope = 0.0;
       for (int q = 0; q < k_ + m_; ++q) slope += ev.g[q] * dir[q];
       // Crossings strictly inside their edges are stationary: what is left is the non-smooth
@@ -1091,7 +1197,7 @@ bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
       if (++stalls >= 2) {
         termination_ = GeodesicTermination::ObjectiveStalled;
         // Still process pending vertex events before stopping.
-        if (process_vertex_events(ev)) {
+        if (events_enabled_ && process_vertex_events(ev)) {
           evaluate(lambda_, z_, opt_.solver == GeodesicSolver::Newton, &ev);
           stalls = 0;
           continue;

@@ -213,6 +213,39 @@ TEST(Geodesic, NewtonAndLbfgsAgree) {
   }
 }
 
+// A constant density rho is the Euclidean length times rho, so the density refinement (vertex
+// decisions by the fan test) must end on the Euclidean geodesic (decisions by the exact angle
+// test) from the same start: same length times rho, same vertex passages. The torus has
+// saddle vertices (cone angle > 2 pi) where paths pin, and convex ones they wrap.
+TEST(GeodesicNewton, ConstantDensityGivesTheEuclideanGeodesicTimesRho) {
+  const Mesh mesh(test::torus(3.0, 1.0, 48, 24));
+  const double rho = 2.5;
+  const PathMetric dense = PathMetric::density(mesh, std::vector<double>(mesh.num_faces(), rho));
+  const EdgeGraph graph = build_edge_graph(mesh);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
+  int pinned = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const SurfacePoint a = SurfacePoint::at_vertex(pick(rng));
+    const SurfacePoint b = SurfacePoint::at_vertex(pick(rng));
+    if (a.element == b.element) continue;
+    const SurfacePath init = initial_open_path(mesh, graph, a, b);
+    GeodesicOptions o;
+    o.funnel_start = false;  // both refine the same edge path with Newton and vertex events
+    const GeodesicResult e = refine_path(mesh, init, PathMetric(), o);
+    const GeodesicResult d = refine_path(mesh, init, dense, o);
+    ASSERT_TRUE(e.summary.converged()) << e.summary.brief_report();
+    ASSERT_TRUE(d.summary.converged()) << d.summary.brief_report();
+    EXPECT_NEAR(d.summary.final_length, rho * e.summary.final_length,
+                1e-9 * d.summary.final_length)
+        << "pair " << a.element << " -> " << b.element;
+    EXPECT_NEAR(d.summary.euclidean_length, e.summary.euclidean_length,
+                1e-9 * e.summary.euclidean_length);
+    pinned += e.summary.pinned_vertices;
+  }
+  EXPECT_GT(pinned, 0) << "no pair passes a vertex: the test does not reach the fan test";
+}
+
 // ---- analytic derivatives against finite differences ----
 
 SurfacePath random_strip(const Mesh& mesh, unsigned seed) {
