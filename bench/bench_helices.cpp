@@ -41,9 +41,9 @@ void bench_24x5(const std::filesystem::path& job_file, double beta) {
   if (std::getenv("WINDPLAN_BENCH_VERBOSE")) {
     for (const HelixPass& p : plan.passes) {
       const GeodesicSummary& s = p.summary;
-      std::printf("  pass c%d%+d: %d crossings, %d it, %d evals, %d reroutes, %d lifts, %s, %.1f ms\n",
+      std::printf("  pass c%d%+d: %d crossings, %d it, %d evals, %d reroutes, %d lifts, %s (pg %.1e), %.1f ms\n",
                   p.circuit, p.hand, p.path.num_crossings(), s.iterations, s.evaluations,
-                  s.reroutes, s.lifts, to_string(s.termination), s.time_ms);
+                  s.reroutes, s.lifts, to_string(s.termination), s.projected_gradient, s.time_ms);
     }
   }
   std::printf(
@@ -61,9 +61,10 @@ int main(int argc, char** argv) {
   const std::filesystem::path dir = argc > 1 ? argv[1] : WINDPLAN_CONFIGS_DIR;
   try {
     std::printf("== 24 circuits of 5 turns ==\n");
-    bench_24x5(dir / "pipe.yaml", 0.0);
-    bench_24x5(dir / "vessel.yaml", 0.0);
-    bench_24x5(dir / "vessel.yaml", 1.0);
+    for (const char* job : {"pipe.yaml", "cone.yaml", "bent_tube.yaml", "vessel.yaml"}) {
+      bench_24x5(dir / job, 0.0);
+      bench_24x5(dir / job, 1.0);
+    }
     std::printf("\n== shipped jobs (their winding: sections) ==\n");
     std::map<std::string, std::filesystem::path> files;
     for (const auto& e : std::filesystem::directory_iterator(dir)) {

@@ -569,22 +569,19 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
   if (stations[1]) to_end.stop_station = options.end_station;
   if (stations[0]) to_start.stop_station = options.start_station;
   const PathMetric metric = rho.empty() ? PathMetric() : PathMetric::density(m, rho);
-  // Workaround (geodesic core, see the report): under a density metric the exact Euclidean
-  // funnel start pins the path at vertices and the refinement can end longer than it started;
-  // the level set is already a good start, so it is refined directly (below, for all metrics).
   const GeodesicOptions& gopt = geodesic;
   const int N = options.turns;
 
   auto refine = [&](HelixPass* p) {
     const auto t0 = std::chrono::steady_clock::now();
-    // Workarounds (geodesic core, see the report): (1) return passes (loop 1 -> loop 0) took
-    // ~600x longer than the same curve refined from loop 0: every pass is refined from loop 0;
-    // (2) on long, thin CAD triangles the funnel start (and a polish with it) can spend 10-15 s
-    // on one pass of the vessel: the level set is refined without the funnel, with a larger
-    // reroute cap (the core's 20 + 4 k stops it early there).
+    // Every pass is refined from loop 0 (return passes are reversed and back): measured in
+    // session 1, return passes refined as traced took far longer. With beta = 0 (Euclidean) the
+    // core starts from the exact funnel path of the strip (GeodesicOptions::funnel_start); under
+    // a density it refines the level set directly. A pass that must sweep over many vertices
+    // (turns beyond what a geodesic can make, hugging an opening) needs more reroutes than the
+    // core's default cap (50 + 10 k).
     const SurfacePath init = p->hand < 0 ? reversed(m, p->initial) : p->initial;
     GeodesicOptions go = gopt;
-    go.funnel_start = false;
     if (go.max_reroutes == 0) go.max_reroutes = 1000 + 20 * init.num_crossings();
     GeodesicResult r = refine_path(m, init, metric, go);
     plan.summary.refine_ms += ms_since(t0);
