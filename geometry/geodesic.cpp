@@ -256,9 +256,8 @@ class Refiner {
   // each the global optimum of its fan (a convex problem), against the current passage.
   Action metric_vertex_test(int i, int j, int v, int before, int after);
   // A fan sub-problem: from crossing `before` (or the start) over the crossings hs (around v) to
-  // crossing `after` (or the end). Returns the cost at *ls, or with `solve` the optimum's cost
-  // and *ls the optimum.
-  double solve_fan(int before, int after, const std::vector<int>& hs, int v, bool solve,
+  // crossing `after` (or the end), solved from *ls; returns the optimum's cost, *ls the optimum.
+  double solve_fan(int before, int after, const std::vector<int>& hs, int v,
                    std::vector<double>* ls);
 
   bool inner_solve(GeodesicSummary* summary, Clock::time_point t0);
@@ -291,6 +290,23 @@ class Refiner {
   TridiagonalSolver tri_;
   GeodesicTermination termination_ = GeodesicTermination::Converged;
   bool events_enabled_ = true;  // false for the fan sub-problems of metric_vertex_test
+  struct PinnedRun {
+    Vec3 P, Q;
+    int first, last, count;
+    double signature;  // of the run's lambdas
+    bool operator==(const PinnedRun& o) const {
+      return P == o.P && Q == o.Q && first == o.first && last == o.last && count == o.count &&
+             signature == o.signature;
+    }
+  };
+  std::unordered_map<int, PinnedRun> pinned_runs_;  // metric_vertex_test's pinned decisions
+  // Cone angles of the vertices met (a vertex is tested in many funnel rounds and sweeps).
+  std::unordered_map<int, double> cone_angles_;
+  double cone_angle(int v) {
+    auto [it, inserted] = cone_angles_.try_emplace(v, 0.0);
+    if (inserted) it->second = mesh_.cone_angle(v);
+    return it->second;
+  }
 };
 
 void Refiner::evaluate(const std::vector<double>& l, const std::vector<double>& z, bool hessian,
@@ -753,7 +769,7 @@ Refiner::Action Refiner::handle_vertex(int idx, int v, bool pushed_out, int* run
     return moved ? Action::Snapped : Action::Pinned;
   };
   if (mesh_.is_boundary_vertex(v) || tries >= kMaxTries) return pin();
-  const double other = mesh_.cone_angle(v) - theta;
+  const double other = cone_angle(v) - theta;
   if (!by_multiplier && !(other < M_PI - kAngleTol)) return pin();
   // Reroute: the fan on the other side of v, its crossings placed at v.
   std::vector<int> hs;
@@ -775,7 +791,7 @@ Refiner::Action Refiner::handle_vertex(int idx, int v, bool pushed_out, int* run
   return Action::Rerouted;
 }
 
-double Refiner::solve_fan(int before, int after, const std::vector<int>& hs, int v, bool solve,
+double Refiner::solve_fan(int before, int after, const std::vector<int>& hs, int v,
                           std::vector<double>* ls) {
   SurfacePath sub;
   sub.closed = false;
@@ -791,7 +807,6 @@ double Refiner::solve_fan(int before, int after, const std::vector<int>& hs, int
   o.max_iterations = 100;
   Refiner r(mesh_, sub, metric_, o, nullptr);
   r.events_enabled_ = false;
-  if (!solve) return r.value_only(r.lambda_, r.z_);
   // The passage through v is the non-smooth corner of the fan problem (zero-length segments);
   // the crossings are kept kFanGap of their spoke away from v, which makes the problem smooth.
   constexpr double kFanGap = 1e-7;
@@ -824,21 +839,41 @@ Refiner::Action Refiner::metric_vertex_test(int i, int j, int v, int before, int
   int& changes = lifts_at_[v];
   if (changes >= kMaxChanges) return Action::Pinned;
   const int n = j - i + 1;
+  const Vec3 P = before >= 0 ? point(before, lambda_) : ps_;
+  const Vec3 Q = after < k_ ? point(after, lambda_) : pt_;
+  // A run found pinned stays pinned while its ends and its crossings are unchanged (the sweeps
+  // between two solver steps test it again).
+  double signature = 0.0;
+  for (int q = 0; q < n; ++q) signature += (q + 1.0) * lambda_[i + q];
+  PinnedRun key{P, Q, path_.halfedges[i], path_.halfedges[j], n, signature};
+  if (auto it = pinned_runs_.find(v); it != pinned_runs_.end() && it->second == key)
+    return Action::Pinned;
   std::vector<int> run_h(n);
   for (int q = 0; q < n; ++q) run_h[q] = path_.halfedges[i + q];
-  std::vector<double> run_l(path_.lambdas.begin() + i, path_.lambdas.begin() + j + 1);
-  const double current = solve_fan(before, after, run_h, v, false, &run_l);
-  run_l.assign(n, 0.5);
-  const double same = solve_fan(before, after, run_h, v, true, &run_l);
+  double current = 0.0;  // the passage as it stands
+  {
+    Vec3 prev = P;
+    for (int q = 0; q < n; ++q) {
+      const Vec3 x = point(i + q, lambda_);
+      current += metric_.cost(mesh_.face(run_h[q]), x - prev);
+      prev = x;
+    }
+    current += metric_.cost(mesh_.face(mesh_.twin(run_h.back())), Q - prev);
+  }
+  std::vector<double> run_l(n, 0.5);
+  const double same = solve_fan(before, after, run_h, v, &run_l);
   std::vector<int> hs;
   std::vector<double> other_l;
   double other = std::numeric_limits<double>::infinity();
   if (!mesh_.is_boundary_vertex(v) && other_side_fan(i, j, v, &hs)) {
     other_l.assign(hs.size(), 0.5);
-    other = solve_fan(before, after, hs, v, true, &other_l);
+    other = solve_fan(before, after, hs, v, &other_l);
   }
   const double tol = 1e-12 * std::max(current, 1e-300);
-  if (!(std::min(same, other) < current - tol)) return Action::Pinned;
+  if (!(std::min(same, other) < current - tol)) {
+    pinned_runs_[v] = key;
+    return Action::Pinned;
+  }
   ++changes;
   if (same <= other) {
     for (int q = 0; q < n; ++q) lambda_[i + q] = run_l[q];
@@ -1077,7 +1112,7 @@ void Refiner::funnel_rounds() {
       for (int q = i; q <= j; ++q) run[q - i] = q;
       double theta = 0.0;
       fan_lift(run, v, P, Q, false, &theta);
-      const double other = mesh_.cone_angle(v) - theta;
+      const double other = cone_angle(v) - theta;
       if (theta >= M_PI && !mesh_.is_boundary_vertex(v) && other < M_PI - 1e-12) {
         std::vector<int> hs;
         if (other_side_fan(i, j, v, &hs)) splices.push_back({i, j, std::move(hs)});
