@@ -265,7 +265,10 @@ class Refiner {
   // strip), then reroutes around every vertex the path wraps with an angle < pi on the other
   // side; repeated until no reroute happens. Open paths only.
   void funnel_rounds();
-  void funnel_straighten();
+  // The exact shortest path through portals lo..hi-1 (crossings), from the path's start (or
+  // start_vertex, a vertex of face(h_lo)) to its end (or end_vertex, a vertex of the face after
+  // h_{hi-1}): the funnel algorithm on the unfolded strip; sets those crossings' lambdas.
+  void funnel_straighten(int lo, int hi, int start_vertex, int end_vertex);
 
   const Mesh& mesh_;
   const PathMetric& metric_;
@@ -949,12 +952,13 @@ bool Refiner::process_vertex_events(const Eval& ev) {
   return changed;
 }
 
-void Refiner::funnel_straighten() {
-  if (path_.closed || k_ == 0) return;
-  // Unfold the strip: the 2D corners of the current face, face by face.
-  std::vector<Vec2> L(k_ + 1), R(k_ + 1);
-  std::vector<int> Lv(k_ + 1, -1), Rv(k_ + 1, -1);
-  const int h0 = path_.halfedges[0];
+void Refiner::funnel_straighten(int lo, int hi, int start_vertex, int end_vertex) {
+  if (path_.closed || lo >= hi) return;
+  const int n = hi - lo;  // portals lo..hi-1
+  // Unfold the window's strip: the 2D corners of the current face, face by face.
+  std::vector<Vec2> L(n + 1), R(n + 1);
+  std::vector<int> Lv(n + 1, -1), Rv(n + 1, -1);
+  const int h0 = path_.halfedges[lo];
   const int f0 = mesh_.face(h0);
   Vec2 pos[3];
   int ids[3];
@@ -971,32 +975,40 @@ void Refiner::funnel_straighten() {
       if (ids[q] == v) return pos[q];
     return Vec2(NAN, NAN);
   };
-  // Start point in f0's placement.
-  const Vec3 bs = barycentric_in_face(mesh_, f0, path_.start);
+  // Start point in f0's placement: the path's start, or a vertex of f0.
   Vec2 s2 = Vec2::Zero();
-  for (int q = 0; q < 3; ++q) s2 += bs[q] * local(mesh_.triangle(f0)[q]);
-  for (int i = 0; i < k_; ++i) {
-    const int h = path_.halfedges[i];
+  if (start_vertex >= 0) {
+    s2 = local(start_vertex);
+  } else {
+    const Vec3 bs = barycentric_in_face(mesh_, f0, path_.start);
+    for (int q = 0; q < 3; ++q) s2 += bs[q] * local(mesh_.triangle(f0)[q]);
+  }
+  for (int t = 0; t < n; ++t) {
+    const int h = path_.halfedges[lo + t];
     // Leaving face(h) through h: to(h) is on the left of the travel direction.
-    L[i] = local(mesh_.to(h));
-    R[i] = local(mesh_.from(h));
-    Lv[i] = mesh_.to(h);
-    Rv[i] = mesh_.from(h);
-    const int t = mesh_.twin(h);
-    const int d = mesh_.to(mesh_.next(t));
+    L[t] = local(mesh_.to(h));
+    R[t] = local(mesh_.from(h));
+    Lv[t] = mesh_.to(h);
+    Rv[t] = mesh_.from(h);
+    const int tw = mesh_.twin(h);
+    const int d = mesh_.to(mesh_.next(tw));
     const Vec3& D = mesh_.position(d);
     // The next face (CCW: to(h) -> from(h) -> d) has d on the right of from(h) -> to(h).
-    const Vec2 pd = place_third(R[i], L[i], (D - mesh_.position(mesh_.from(h))).norm(),
+    const Vec2 pd = place_third(R[t], L[t], (D - mesh_.position(mesh_.from(h))).norm(),
                                 (D - mesh_.position(mesh_.to(h))).norm(), false);
-    ids[0] = mesh_.from(h); pos[0] = R[i];
-    ids[1] = mesh_.to(h);   pos[1] = L[i];
+    ids[0] = mesh_.from(h); pos[0] = R[t];
+    ids[1] = mesh_.to(h);   pos[1] = L[t];
     ids[2] = d;             pos[2] = pd;
   }
-  const int fk = mesh_.face(mesh_.twin(path_.halfedges[k_ - 1]));
-  const Vec3 bt = barycentric_in_face(mesh_, fk, path_.end);
   Vec2 t2 = Vec2::Zero();
-  for (int q = 0; q < 3; ++q) t2 += bt[q] * local(mesh_.triangle(fk)[q]);
-  L[k_] = R[k_] = t2;
+  if (end_vertex >= 0) {
+    t2 = local(end_vertex);
+  } else {
+    const int fk = mesh_.face(mesh_.twin(path_.halfedges[hi - 1]));
+    const Vec3 bt = barycentric_in_face(mesh_, fk, path_.end);
+    for (int q = 0; q < 3; ++q) t2 += bt[q] * local(mesh_.triangle(fk)[q]);
+  }
+  L[n] = R[n] = t2;
 
   // Simple stupid funnel (Mononen): corners of the shortest path with their portal indices.
   std::vector<Vec2> corner = {s2};
@@ -1005,7 +1017,7 @@ void Refiner::funnel_straighten() {
   Vec2 apex = s2, left = L[0], right = R[0];
   int apex_i = -1, left_i = 0, right_i = 0;
   const double eps = 1e-14 * scale_ * scale_;
-  for (int i = 1; i <= k_; ++i) {
+  for (int i = 1; i <= n; ++i) {
     const Vec2 &nl = L[i], &nr = R[i];
     // Tighten the right side.
     if (cross2(right - apex, nr - apex) >= -eps) {
@@ -1043,43 +1055,63 @@ void Refiner::funnel_straighten() {
     }
   }
   corner.push_back(t2);
-  corner_portal.push_back(k_);
+  corner_portal.push_back(n);
   corner_vertex.push_back(-1);
 
-  // Crossing parameters: portal i is cut by the corner segment that spans it.
+  // Crossing parameters: portal t is cut by the corner segment that spans it.
   std::size_t m = 0;
-  for (int i = 0; i < k_; ++i) {
-    while (m + 1 < corner.size() && corner_portal[m + 1] < i) ++m;
-    const int h = path_.halfedges[i];
-    if (corner_portal[m + 1] == i && corner_vertex[m + 1] >= 0) {
-      lambda_[i] = corner_vertex[m + 1] == mesh_.from(h) ? 0.0 : 1.0;
+  for (int t = 0; t < n; ++t) {
+    while (m + 1 < corner.size() && corner_portal[m + 1] < t) ++m;
+    const int h = path_.halfedges[lo + t];
+    double& lam = lambda_[lo + t];
+    if (corner_portal[m + 1] == t && corner_vertex[m + 1] >= 0) {
+      lam = corner_vertex[m + 1] == mesh_.from(h) ? 0.0 : 1.0;
       continue;
     }
     const Vec2 a = corner[m], b = corner[m + 1];
-    const Vec2 e = L[i] - R[i];  // from(h) -> to(h)
+    const Vec2 e = L[t] - R[t];  // from(h) -> to(h)
     const double den = cross2(b - a, e);
-    double l = den != 0.0 ? cross2(b - a, a - R[i]) / den : 0.5;
+    double l = den != 0.0 ? cross2(b - a, a - R[t]) / den : 0.5;
     if (corner_vertex[m] >= 0) {
       if (corner_vertex[m] == mesh_.from(h)) l = std::min(l, 1.0) * (l > 1e-12);
     }
-    lambda_[i] = std::clamp(l, 0.0, 1.0);
-    if (lambda_[i] < 1e-13) lambda_[i] = 0.0;
-    if (lambda_[i] > 1.0 - 1e-13) lambda_[i] = 1.0;
+    lam = std::clamp(l, 0.0, 1.0);
+    if (lam < 1e-13) lam = 0.0;
+    if (lam > 1.0 - 1e-13) lam = 1.0;
   }
 }
 
 void Refiner::funnel_rounds() {
   if (path_.closed) return;
-  // Each round: the exact shortest path in the strip, then every vertex it wraps is tested with
-  // the angle rule; all reroutes of a round are spliced into the strip in one pass.
+  // Each round: the shortest path in the strip, then every vertex it wraps is tested with the
+  // angle rule; all reroutes of a round are spliced into the strip in one pass. A full round
+  // straightens the whole strip; after a splice only windows do: the stretch between the vertex
+  // passages (anchors) around each rerouted run, straightened with the anchors held. When the
+  // windows bring no more reroutes, a full round checks the whole strip again (anchors may let
+  // go), and the rounds end only after a full round without a reroute: the result is the exact
+  // shortest path of the final strip, as before, at a fraction of the unfolding work.
   struct Splice {
     int i, j;
     std::vector<int> hs;
   };
+  struct Window {
+    int lo, hi, start_vertex, end_vertex;
+  };
   std::vector<Splice> splices;
+  std::vector<Window> windows;
   const double eps_d = 1e-12 * scale_;
+  auto vertex_at = [&](int i) {
+    const double l = lambda_[i];
+    const int h = path_.halfedges[i];
+    return l <= 0.0 ? mesh_.from(h) : l >= 1.0 ? mesh_.to(h) : -1;
+  };
+  bool full = true;
   for (int round = 0; round < 100000; ++round) {
-    funnel_straighten();
+    if (full) {
+      funnel_straighten(0, k_, -1, -1);
+    } else {
+      for (const Window& w : windows) funnel_straighten(w.lo, w.hi, w.start_vertex, w.end_vertex);
+    }
     splices.clear();
     bool collapsed = false;
     for (int i = 0; i < k_;) {
@@ -1119,11 +1151,19 @@ void Refiner::funnel_rounds() {
       }
       i = j + 1;
     }
-    if (collapsed) continue;
-    if (splices.empty()) break;
-    // Splice every reroute in one pass.
+    if (collapsed) {
+      full = true;
+      continue;
+    }
+    if (splices.empty()) {
+      if (full) break;
+      full = true;
+      continue;
+    }
+    // Splice every reroute in one pass, keeping the new index range of each rerouted run.
     std::vector<int> nh;
     std::vector<double> nl;
+    std::vector<std::pair<int, int>> spliced;
     nh.reserve(k_ + 16);
     nl.reserve(k_ + 16);
     int next = 0;
@@ -1132,10 +1172,12 @@ void Refiner::funnel_rounds() {
         nh.push_back(path_.halfedges[q]);
         nl.push_back(lambda_[q]);
       }
+      const int first = static_cast<int>(nh.size());
       for (int c : s.hs) {
         nh.push_back(c);
         nl.push_back(0.5);
       }
+      spliced.emplace_back(first, static_cast<int>(nh.size()) - 1);
       next = s.j + 1;
       ++reroutes_;
     }
@@ -1150,6 +1192,23 @@ void Refiner::funnel_rounds() {
     rebuild();
     if (k_ > 0) path_.start_face = mesh_.face(path_.halfedges[0]);
     if (reroutes_ > max_reroutes_) break;
+    // Windows: from the last crossing of the anchor run before each rerouted run to the first
+    // crossing of the anchor run after it (or the path's ends); overlapping windows merge.
+    windows.clear();
+    for (const auto& [a, b] : spliced) {
+      int p = a - 1;
+      while (p >= 0 && vertex_at(p) < 0) --p;
+      int q = b + 1;
+      while (q < k_ && vertex_at(q) < 0) ++q;
+      Window w{p + 1, q, p >= 0 ? vertex_at(p) : -1, q < k_ ? vertex_at(q) : -1};
+      if (!windows.empty() && w.lo <= windows.back().hi) {
+        windows.back().hi = std::max(windows.back().hi, w.hi);
+        windows.back().end_vertex = w.end_vertex;
+      } else {
+        windows.push_back(w);
+      }
+    }
+    full = false;
   }
   std::fill(fixed_.begin(), fixed_.end(), 0);
 }
