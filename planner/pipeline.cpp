@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "planner/cutlines.h"
 
@@ -28,6 +29,37 @@ class Stage {
   const PipelineOptions& options_;
   std::chrono::steady_clock::time_point t0_;
 };
+
+std::string fixed(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v + 0.0);
+  return buf;
+}
+
+std::string general(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3g", v + 0.0);
+  return buf;
+}
+
+// "winding.turns = 5 exceeds the 0.65 turns a geodesic can make between ...": the beta = 0
+// passes cannot be geodesics (planner/clairaut.h).
+std::string turn_limit_warning(const ClairautLimit& lim, const WindingOptions& wo) {
+  const bool s0 = wo.has_start_station(), s1 = wo.has_end_station();
+  const std::string ends = !s0 && !s1 ? "the boundary loops (the polar openings or tube ends)"
+                           : s0 && s1 ? "winding.start_station and winding.end_station"
+                           : s0       ? "winding.start_station and the end loop"
+                                      : "the start loop and winding.end_station";
+  const int whole = static_cast<int>(std::floor(lim.turns + 1e-9));
+  std::string w = "winding.turns = " + std::to_string(wo.turns) + " exceeds the " +
+                  general(lim.turns) + " turns a geodesic can make between " + ends +
+                  " (Clairaut: r sin a = c <= " + fixed(lim.min_radius, 2) +
+                  " mm, the smallest radius, at " + fixed(lim.min_at, 1) +
+                  " mm along the axis): with beta = 0 the passes wrap along the smaller end " +
+                  "instead of running as geodesics, and the fibre would slip there; use ";
+  if (whole >= 1) w += "turns <= " + std::to_string(whole) + ", ";
+  return w + "beta > 0, or stations (the limit is recomputed between them)";
+}
 
 }  // namespace
 
@@ -72,6 +104,22 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
   plan.circuits = build_circuits(ws.mesh, r.helices, ws.face_map, md.axis, wo);
   plan.metrics = compute_plan_metrics(ws.mesh, r.helices, plan.circuits, r.face_girth, md.axis,
                                       md.revolution, wo);
+  // The geodesic turn limit (shapes of revolution) between the ends of the passes.
+  if (md.revolution) {
+    const double x0 = wo.has_start_station() ? wo.start_station : ws.loops[0].axial;
+    const double x1 = wo.has_end_station() ? wo.end_station : ws.loops[1].axial;
+    const RadiusProfile meridian =
+        x1 > x0 ? meridian_profile(ws.mesh, md.axis, x0, x1) : RadiusProfile{};
+    if (!meridian.empty()) {
+      r.turn_limit = clairaut_turn_limit(meridian, x0, x1);
+      r.has_turn_limit = true;
+      plan.metrics.geodesic_turn_limit = r.turn_limit.turns;
+      plan.metrics.geodesic_min_radius = r.turn_limit.min_radius;
+      if (wo.beta == 0.0 && r.turn_limit.bounded && wo.turns > r.turn_limit.turns) {
+        plan.metrics.warnings.push_back(turn_limit_warning(r.turn_limit, wo));
+      }
+    }
+  }
   for (const std::string& w : md.warnings) plan.metrics.warnings.push_back("mandrel: " + w);
   r.passes = pass_reports(r.helices, plan.circuits, md.axis);
   metrics.done();

@@ -3,6 +3,12 @@
 // helices (planner/helix.h) -> continuous circuits with their differential geometry and the plan
 // metrics (planner/fibre_metrics.h) -> cut-lines (planner/cutlines.h) -> WindingPlan.
 //
+// On a shape of revolution the metrics stage also computes the geodesic turn limit N_max between
+// the ends of the passes (the boundary loops, or the stations; planner/clairaut.h) from the
+// wound region's meridian, reports it (PlanMetrics::geodesic_turn_limit) and, when beta = 0 and
+// winding.turns > N_max, warns that the passes cannot be geodesics and will wrap along the
+// smaller end (with beta > 0 the density bends the passes: the figure is reported, no warning).
+//
 // Export (export/export_plan.h) is the last stage of `windplan run`; it lives in export/, which
 // depends on planner/ (house style rule 1: no upward includes), so the CLI calls plan_job and
 // then export_plan. Stage wall times go into plan.metrics.timings in stage order (the files show
@@ -11,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "planner/clairaut.h"
 #include "planner/fibre_metrics.h"
 #include "planner/girth.h"
 #include "planner/helix.h"
@@ -34,6 +41,8 @@ struct PipelineResult {
   std::vector<double> face_girth;  ///< per winding-surface face (mm): girth field or 2 pi r
   HelixPlan helices;
   std::vector<PassReport> passes;
+  bool has_turn_limit = false;  ///< turn_limit was computed (a shape of revolution)
+  ClairautLimit turn_limit;     ///< N_max between the ends of the passes
   WindingPlan plan;
 };
 

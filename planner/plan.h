@@ -5,6 +5,7 @@
 // Frames: all positions and directions are in the mandrel frame (the frame of the mesh).
 // The spindle axis is a line (origin, unit direction) in that frame; "axial position" of a point
 // p is (p - origin) . direction, its "radius" the distance from the axis line.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,11 @@ struct PlanMetrics {
   double friction = 0.0;           ///< mu from the job
   double slip_fraction = 0.0;      ///< fraction of path length with slippage > mu
   double bridging_length = 0.0;    ///< mm of path with k_n <= 0 (fibre would bridge)
+  /// Shapes of revolution: N_max, the most turns a geodesic can make between the ends of the
+  /// passes (Clairaut, planner/clairaut.h; turns). +inf: no limit (a cylinder); NaN: not a shape
+  /// of revolution (not reported).
+  double geodesic_turn_limit = std::nan("");
+  double geodesic_min_radius = std::nan("");  ///< mm: r_min, the largest Clairaut constant; NaN
   std::vector<std::string> warnings;
   std::vector<StageTiming> timings;  ///< filled by the pipeline, in stage order
 };

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "geometry/errors.h"
+#include "tests/test_data.h"
 
 namespace windplan {
 namespace {
@@ -46,6 +47,14 @@ TEST(Pipeline, PipeJobGivesClosedFormHelices) {
     }
   }
   EXPECT_NEAR(plan.metrics.max_slippage, 0.0, 0.1);
+  // A cylinder: no geodesic turn limit, reported as such (+inf), and no warning.
+  ASSERT_TRUE(r.has_turn_limit);
+  EXPECT_FALSE(r.turn_limit.bounded);
+  EXPECT_TRUE(std::isinf(plan.metrics.geodesic_turn_limit));
+  EXPECT_NEAR(plan.metrics.geodesic_min_radius, 40.0, 1e-9);
+  for (const std::string& w : plan.metrics.warnings) {
+    EXPECT_EQ(w.find("turns a geodesic can make"), std::string::npos) << w;
+  }
 }
 
 // winding.start_station / end_station: the passes run between the station planes, the
@@ -91,6 +100,98 @@ TEST(Pipeline, StationOutsideTheMandrelNamesTheKeyAndRange) {
       EXPECT_NE(w.find("(0, 200) mm"), std::string::npos) << w;
     }
   }
+}
+
+bool has_turn_warning(const PlanMetrics& m) {
+  for (const std::string& w : m.warnings) {
+    if (w.find("turns a geodesic can make") != std::string::npos) return true;
+  }
+  return false;
+}
+
+// The geodesic turn limit (planner/clairaut.h) of a vessel with hemispherical domes: from the
+// equator to the opening r0 a great circle tangent to the opening turns by exactly pi / 2, and
+// the cylinder adds L r0 / (R sqrt(R^2 - r0^2)), so N_max = (pi + L r0 / (R sqrt(R^2 - r0^2)))
+// / (2 pi) = 0.6502 for R 100, L 300, r0 30 (mm). The tessellated mandrel gives it to 0.3%
+// (the meridian's chords); N = 1 exceeds it and beta = 0 warns, naming the figure.
+TEST(Pipeline, HemisphericalVesselTurnLimitHasTheClosedForm) {
+  const Job job = load_job_from_string(
+      "name: h\nmandrel:\n  source: vessel\n  vessel:\n    radius: 100\n    length: 300\n"
+      "    dome: {type: hemispherical, polar_opening: 30}\n"
+      "winding:\n  turns: 1\n  circuits: 1\n  band_width: 16\n",
+      "/tmp/h.yaml");
+  const PipelineResult r = plan_job(job);
+  const double R = 100.0, L = 300.0, r0 = 30.0;
+  const double expected = (M_PI + L * r0 / (R * std::sqrt(R * R - r0 * r0))) / (2.0 * M_PI);
+  ASSERT_TRUE(r.has_turn_limit);
+  ASSERT_TRUE(r.turn_limit.bounded) << r.turn_limit.reason;
+  EXPECT_NEAR(r.turn_limit.turns, expected, 0.01 * expected);
+  EXPECT_NEAR(r.turn_limit.min_radius, r0, 0.01);
+  EXPECT_EQ(r.plan.metrics.geodesic_turn_limit, r.turn_limit.turns);
+  ASSERT_TRUE(has_turn_warning(r.plan.metrics));
+  bool named = false;
+  for (const std::string& w : r.plan.metrics.warnings) {
+    named = named || w.find("winding.turns = 1 exceeds the 0.65") != std::string::npos;
+  }
+  EXPECT_TRUE(named);
+}
+
+// The shipped vessel (isotensoid domes, 30 mm openings) allows about 0.6 turns per geodesic
+// pass: with 5 turns and beta = 0 the passes hug the openings and the plan says so; with
+// beta = 1 the density bends the passes, so the limit is reported but not warned about.
+TEST(Pipeline, VesselWithTooManyTurnsWarnsAtBetaZeroOnly) {
+  Job job = load_job(test::source_dir() / "configs" / "vessel.yaml");
+  job.cutlines.clear();
+  job.winding.turns = 5;
+  job.winding.circuits = 1;
+  job.winding.beta = 0.0;
+  const PipelineResult geodesic = plan_job(job);
+  ASSERT_TRUE(geodesic.turn_limit.bounded) << geodesic.turn_limit.reason;
+  EXPECT_GT(geodesic.turn_limit.turns, 0.5);
+  EXPECT_LT(geodesic.turn_limit.turns, 0.8);
+  EXPECT_TRUE(has_turn_warning(geodesic.plan.metrics));
+  job.winding.beta = 1.0;
+  const PipelineResult density = plan_job(job);
+  EXPECT_FALSE(has_turn_warning(density.plan.metrics));
+  EXPECT_EQ(density.plan.metrics.geodesic_turn_limit, geodesic.plan.metrics.geodesic_turn_limit);
+}
+
+// With stations the limit is taken between them: on the cone 60 -> 40 mm over 400 mm, stations at
+// 100 and 300 mm (radii 55 and 45 mm) give arccos(45 / 55) / sin b = 1.952 turns (2.681 between
+// the ends); N = 3 exceeds it, N = 1 does not.
+TEST(Pipeline, ConeTurnLimitIsTakenBetweenTheStations) {
+  const std::string cone =
+      "name: c\nmandrel:\n  source: cone\n  cone: {radius_start: 60, radius_end: 40, length: "
+      "400}\nwinding:\n  circuits: 1\n  band_width: 10\n  start_station: 100\n"
+      "  end_station: 300\n";
+  const double sin_b = 20.0 / std::hypot(400.0, 20.0);
+  const double expected = std::acos(45.0 / 55.0) / sin_b / (2.0 * M_PI);
+  const PipelineResult three = plan_job(load_job_from_string(cone + "  turns: 3\n", "/tmp/c.yaml"));
+  ASSERT_TRUE(three.turn_limit.bounded) << three.turn_limit.reason;
+  EXPECT_NEAR(three.turn_limit.turns, expected, 1e-6 * expected);
+  EXPECT_DOUBLE_EQ(three.turn_limit.x0, 100.0);
+  EXPECT_DOUBLE_EQ(three.turn_limit.x1, 300.0);
+  EXPECT_TRUE(has_turn_warning(three.plan.metrics));
+  bool suggests = false;
+  for (const std::string& w : three.plan.metrics.warnings) {
+    suggests =
+        suggests || (w.find("winding.start_station and winding.end_station") != std::string::npos &&
+                     w.find("use turns <= 1") != std::string::npos);
+  }
+  EXPECT_TRUE(suggests);
+  const PipelineResult one = plan_job(load_job_from_string(cone + "  turns: 1\n", "/tmp/c.yaml"));
+  EXPECT_FALSE(has_turn_warning(one.plan.metrics));
+}
+
+// Not a shape of revolution (the bent tube): no limit is computed or reported.
+TEST(Pipeline, BentTubeHasNoTurnLimit) {
+  Job job = load_job(test::source_dir() / "configs" / "bent_tube.yaml");
+  job.cutlines.clear();
+  job.winding.circuits = 1;
+  const PipelineResult r = plan_job(job);
+  EXPECT_FALSE(r.has_turn_limit);
+  EXPECT_TRUE(std::isnan(r.plan.metrics.geodesic_turn_limit));
+  EXPECT_FALSE(has_turn_warning(r.plan.metrics));
 }
 
 TEST(Pipeline, WindingSectionErrorsNameTheKey) {
