@@ -20,7 +20,9 @@ const char* const kHelicesHelp =
     "helices, refinement under the density rho = (g / mean g)^-beta, continuous circuits with\n"
     "turnarounds on the openings or the stations. Prints one line per pass (length, winding\n"
     "angle at its two ends, max slippage, refinement) and the plan metrics (spacing, coverage,\n"
-    "pattern, stability, warnings).\n\n"
+    "pattern, stability, warnings). On a shape of revolution it also prints the geodesic turn\n"
+    "limit N_max (Clairaut: r sin a = c <= the smallest radius; the most turns a geodesic can\n"
+    "make between the ends of the passes) and, with beta = 0 and turns > N_max, warns.\n\n"
     "  --json          print the report as JSON on stdout\n"
     "  -o, --out DIR   also write fibre_path.csv, paths.ply, mesh.ply and report.json/md there\n";
 
@@ -51,6 +53,19 @@ int run_helices(const std::vector<std::string>& argv) {
     j.field("beta", job.winding.beta);
     j.field("girth_field", r.has_girth);
     j.field("conformal_error_deg", r.helices.coords.conformal_error);
+    if (r.has_turn_limit) {
+      const ClairautLimit& lim = r.turn_limit;
+      j.key("geodesic_turn_limit").begin_object();
+      j.field("bounded", lim.bounded);
+      j.field("turns", lim.turns);  // null when unbounded
+      j.field("angle_rad", lim.angle);
+      j.field("min_radius_mm", lim.min_radius);
+      j.field("min_at_mm", lim.min_at);
+      j.field("from_mm", lim.x0);
+      j.field("to_mm", lim.x1);
+      j.field("reason", lim.reason);
+      j.end_object();
+    }
     j.key("passes").begin_array();
     for (const PassReport& p : r.passes) {
       j.begin_object();
@@ -97,6 +112,17 @@ int run_helices(const std::vector<std::string>& argv) {
     << " circuits of N = " << job.winding.turns << " turns per pass, beta = " << job.winding.beta
     << (r.has_girth ? " (girth field)" : " (girth 2 pi r)") << "\n";
   s << "  conformal error " << r.helices.coords.conformal_error << " deg\n";
+  if (r.has_turn_limit) {
+    const ClairautLimit& lim = r.turn_limit;
+    s << "  geodesic turn limit: ";
+    if (lim.bounded) {
+      s << "N_max = " << lim.turns << " turns (" << lim.angle << " rad)";
+    } else {
+      s << "none (" << lim.reason << ")";
+    }
+    s << " between " << lim.x0 << " and " << lim.x1 << " mm along the axis, smallest radius "
+      << lim.min_radius << " mm at " << lim.min_at << " mm\n";
+  }
   for (const PassReport& p : r.passes) {
     s << "  circuit " << p.circuit << (p.hand > 0 ? " out   " : " return") << ": length "
       << p.length << " mm, angle " << p.angle_start << " deg at r = " << p.radius_start << " mm -> "

@@ -87,6 +87,10 @@ std::string report_json(const WindingPlan& plan, const ExportResult& r) {
   j.field("friction", m.friction);
   j.field("slip_fraction", m.slip_fraction);
   j.field("bridging_length_mm", m.bridging_length);
+  if (!std::isnan(m.geodesic_turn_limit)) {                 // shapes of revolution only
+    j.field("geodesic_turn_limit", m.geodesic_turn_limit);  // null: no limit (a cylinder)
+    j.field("geodesic_min_radius_mm", m.geodesic_min_radius);
+  }
   j.end_object();
   j.key("machine").begin_object();
   j.field("kind", r.machine.kind);
@@ -167,7 +171,14 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
     << "| max slippage | " << fmt("%.4f", m.max_slippage) << " (friction "
     << fmt("%.3f", m.friction) << ") |\n"
     << "| slip fraction | " << fmt("%.4f", m.slip_fraction) << " |\n"
-    << "| bridging length | " << fmt("%.3f", m.bridging_length) << " mm |\n\n"
+    << "| bridging length | " << fmt("%.3f", m.bridging_length) << " mm |\n";
+  if (!std::isnan(m.geodesic_turn_limit)) {
+    o << "| geodesic turn limit | "
+      << (std::isfinite(m.geodesic_turn_limit) ? fmt("%.4f", m.geodesic_turn_limit) + " turns"
+                                               : std::string("none"))
+      << " (Clairaut, smallest radius " << fmt("%.3f", m.geodesic_min_radius) << " mm) |\n";
+  }
+  o << "\n"
     << "## Machine\n\n| figure | value |\n|---|---|\n"
     << "| kind | " << r.machine.kind << " |\n"
     << "| G-code dialect | " << r.machine.gcode.dialect << " |\n"
@@ -228,8 +239,14 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
     << m.circuits_for_coverage << ")\n"
     << "  cover factor     " << fmt("%.3f", m.cover_factor) << "\n"
     << "  spacing CV       " << fmt("%.4f", m.spacing_cv) << "\n"
-    << "  max slippage     " << fmt("%.4f", m.max_slippage) << "\n"
-    << "  axis A           " << fmt("%.2f", mo.a.min) << " .. " << fmt("%.2f", mo.a.max) << " deg\n"
+    << "  max slippage     " << fmt("%.4f", m.max_slippage) << "\n";
+  if (!std::isnan(m.geodesic_turn_limit)) {
+    o << "  geodesic limit   "
+      << (std::isfinite(m.geodesic_turn_limit) ? fmt("%.2f", m.geodesic_turn_limit) + " turns"
+                                               : std::string("none"))
+      << " per pass (N = " << m.turns_per_pass << ")\n";
+  }
+  o << "  axis A           " << fmt("%.2f", mo.a.min) << " .. " << fmt("%.2f", mo.a.max) << " deg\n"
     << "  axis X           " << fmt("%.2f", mo.x.min) << " .. " << fmt("%.2f", mo.x.max) << " mm\n"
     << "  axis Y           " << fmt("%.2f", mo.y.min) << " .. " << fmt("%.2f", mo.y.max) << " mm\n"
     << "  axis B           " << fmt("%.2f", mo.b.min) << " .. " << fmt("%.2f", mo.b.max) << " deg\n"

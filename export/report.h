@@ -1,7 +1,8 @@
 #pragma once
 // The plan's figures in three forms: report.json (machine-readable), report.md (human-readable,
 // with a table per circuit) and the stdout summary. All three carry the same figures: fibre
-// length, wind time, circuits, coverage, spacing CV, max slippage, axis ranges, cut-line planes
+// length, wind time, circuits, coverage, spacing CV, max slippage, the geodesic turn limit (shapes
+// of revolution only; JSON null / "none" when there is no limit), axis ranges, cut-line planes
 // and the files written. Stage timings (PlanMetrics::timings) appear in the files only when
 // ExportResult::timings (output.timings) is set, so that files stay byte-identical between runs;
 // the stdout summary always shows them. Numbers have fixed formats (deterministic).

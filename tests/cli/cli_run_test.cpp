@@ -89,6 +89,13 @@ TEST_F(CliRun, VesselRunsAndTwoRunsAreByteIdentical) {
   // report.json is JSON (YAML reads it) with the plan's circuits.
   const YAML::Node rep = YAML::LoadFile((a / "report.json").string());
   EXPECT_TRUE(rep.IsMap());
+  // The shipped vessel (isotensoid domes, 30 mm openings) allows about 0.6 turns per geodesic
+  // pass between the openings (planner/clairaut.h): its N = 1 is reported and warned about.
+  const double limit = rep["summary"]["geodesic_turn_limit"].as<double>();
+  EXPECT_GT(limit, 0.5);
+  EXPECT_LT(limit, 0.8);
+  EXPECT_NE(r1.err.find("warning: winding.turns = 1 exceeds the"), std::string::npos) << r1.err;
+  EXPECT_NE(r1.out.find("geodesic limit"), std::string::npos) << r1.out;
 }
 
 TEST_F(CliRun, EveryShippedConfigRunsEndToEnd) {
@@ -182,6 +189,10 @@ TEST_F(CliRun, HelicesJsonReportsEveryPass) {
   EXPECT_EQ(static_cast<int>(j["passes"].size()), 2 * K);
   EXPECT_TRUE(j["metrics"]["spacing_cv"].IsScalar());
   EXPECT_LT(j["metrics"]["max_slippage"].as<double>(), 0.2);  // geodesics on a cylinder
+  // A cylinder has no geodesic turn limit.
+  EXPECT_FALSE(j["geodesic_turn_limit"]["bounded"].as<bool>());
+  EXPECT_TRUE(j["geodesic_turn_limit"]["turns"].IsNull());
+  EXPECT_NEAR(j["geodesic_turn_limit"]["min_radius_mm"].as<double>(), 50.0, 1e-9);
 }
 
 }  // namespace

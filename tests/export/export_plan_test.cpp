@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <thread>
@@ -170,6 +171,32 @@ TEST(ExportPlan, WritesEveryFileConsistently) {
   EXPECT_NE(summary.find("wind time"), std::string::npos);
   EXPECT_NE(summary.find("time girth"), std::string::npos);
   EXPECT_NE(summary.find("report.md"), std::string::npos);
+}
+
+// The geodesic turn limit (planner/clairaut.h): only for shapes of revolution (NaN: no key, no
+// row); +inf (a cylinder) is JSON null and "none"; a number otherwise.
+TEST(ExportPlan, ReportsCarryTheGeodesicTurnLimitOfShapesOfRevolution) {
+  WindingPlan plan = sample_plan(100, 1);
+  plan.metrics.turns_per_pass = 5;
+  const ExportResult r;
+  EXPECT_EQ(report_json(plan, r).find("geodesic"), std::string::npos);
+  EXPECT_EQ(report_markdown(plan, r).find("geodesic"), std::string::npos);
+  EXPECT_EQ(summary_text(plan, r).find("geodesic"), std::string::npos);
+  plan.metrics.geodesic_turn_limit = 0.6081234;
+  plan.metrics.geodesic_min_radius = 30.1128;
+  EXPECT_NE(report_json(plan, r).find("\"geodesic_turn_limit\": 0.6081234"), std::string::npos);
+  EXPECT_NE(report_json(plan, r).find("\"geodesic_min_radius_mm\": 30.1128"), std::string::npos);
+  EXPECT_NE(report_markdown(plan, r).find("| geodesic turn limit | 0.6081 turns (Clairaut, "
+                                          "smallest radius 30.113 mm) |"),
+            std::string::npos)
+      << report_markdown(plan, r);
+  EXPECT_NE(summary_text(plan, r).find("geodesic limit   0.61 turns per pass (N = 5)"),
+            std::string::npos)
+      << summary_text(plan, r);
+  plan.metrics.geodesic_turn_limit = std::numeric_limits<double>::infinity();
+  EXPECT_NE(report_json(plan, r).find("\"geodesic_turn_limit\": null"), std::string::npos);
+  EXPECT_NE(report_markdown(plan, r).find("| geodesic turn limit | none "), std::string::npos);
+  EXPECT_NE(summary_text(plan, r).find("geodesic limit   none per pass"), std::string::npos);
 }
 
 TEST(ExportPlan, TwoExportsAreByteIdentical) {
