@@ -112,7 +112,7 @@ bool has_turn_warning(const PlanMetrics& m) {
 // The geodesic turn limit (planner/clairaut.h) of a vessel with hemispherical domes: from the
 // equator to the opening r0 a great circle tangent to the opening turns by exactly pi / 2, and
 // the cylinder adds L r0 / (R sqrt(R^2 - r0^2)), so N_max = (pi + L r0 / (R sqrt(R^2 - r0^2)))
-// / (2 pi) = 0.6502 for R 100, L 300, r0 30 (mm). The tessellated mandrel gives it to 0.3%
+// / (2 pi) = 0.6502 for R 100, L 300, r0 30 (mm). The tessellated mandrel gives it to 0.2%
 // (the meridian's chords); N = 1 exceeds it and beta = 0 warns, naming the figure.
 TEST(Pipeline, HemisphericalVesselTurnLimitHasTheClosedForm) {
   const Job job = load_job_from_string(
