@@ -72,8 +72,10 @@ TEST_P(GeodesicSolvers, PathAlongEdgesThroughFlatVertices) {
 
 // Newton only: the paper's projected L-BFGS approaches the vertex passages of the sweep too
 // slowly here and stalls before the refraction point (bench/README.md compares the two solvers).
-TEST(GeodesicNewton, TwoDensitiesRefractBySnellsLaw) {
-  GeodesicOptions opts;
+// Both solvers: the density's vertex decisions are the exact fan test, and crossings that
+// converge onto a vertex are snapped, so the projected L-BFGS reaches the refraction point too.
+TEST_P(GeodesicSolvers, TwoDensitiesRefractBySnellsLaw) {
+  const GeodesicOptions opts = options();
   // Plane [-10,10] x [0,20]; rho = 1 for x < 0 and 2 for x > 0 (the interface is a grid line).
   // Vertices off the interface and the border are jittered: a regular grid lines its edges up
   // along diagonals, which a sweeping path then meets many vertices at once (a degenerate case
