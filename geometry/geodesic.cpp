@@ -620,7 +620,7 @@ bool Refiner::other_side_fan(int i, int j, int v, std::vector<int>* hs) const {
   // The current side crosses prev(hv) (counter-clockwise) or hv (clockwise) first.
   const bool ccw = path_.halfedges[i] == hv;
   int face = f_in;
-  const int limit = 2 * mesh_.valence(v) + 2;
+  const int limit = 4096;  // a guard only: the walk meets f_out within one turn around v
   for (int step = 0; step < limit && face != f_out; ++step) {
     const int c = ccw ? mesh_.prev(hv) : hv;
     const int t = mesh_.twin(c);
