@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
       double total = 0.0;
       for (const StageTiming& t : m.timings) total += t.seconds;
       std::printf(
-          "%-16s N=%d K=%d beta=%.1f | spacing mean %.2f mm, CV(norm) %.3f | coverage "
+          "%-16s N=%g K=%d beta=%.1f | spacing mean %.2f mm, CV(norm) %.3f | coverage "
           "needs %d, cover %.3f | max |kg/kn| %.3f (mu %.2f), above mu %.1f%%, "
           "bridging %.1f mm | passes not converged %d | %.2f s\n",
           name.c_str(), job.winding.turns, m.circuits, job.winding.beta, m.spacing_mean,

@@ -15,14 +15,16 @@ namespace windplan::cli {
 
 const char* const kHelicesHelp =
     "usage: windplan helices <job.yaml> [--json] [-o DIR]\n\n"
-    "Plans the equally spaced geodesic helices of a job (winding: turns, circuits, band_width,\n"
-    "beta, mu, start_station, end_station): conformal coordinates of the wound region, level-set\n"
+    "Plans the equally spaced geodesic helices of a job (winding: turns, the turns N of a pass\n"
+    "about the axis, > 0 and not necessarily whole, e.g. 0.5; circuits, band_width, beta, mu,\n"
+    "start_station, end_station): conformal coordinates of the wound region, level-set\n"
     "helices, refinement under the density rho = (g / mean g)^-beta, continuous circuits with\n"
     "turnarounds on the openings or the stations. Prints one line per pass (length, winding\n"
     "angle at its two ends, max slippage, refinement) and the plan metrics (spacing, coverage,\n"
     "pattern, stability, warnings). On a shape of revolution it also prints the geodesic turn\n"
     "limit N_max (Clairaut: r sin a = c <= the smallest radius; the most turns a geodesic can\n"
-    "make between the ends of the passes) and, with beta = 0 and turns > N_max, warns.\n\n"
+    "make between the ends of the passes) and, with beta = 0 and turns > N_max, warns and\n"
+    "suggests turns <= N_max rounded down to hundredths.\n\n"
     "  --json          print the report as JSON on stdout\n"
     "  -o, --out DIR   also write fibre_path.csv, paths.ply, mesh.ply and report.json/md there\n";
 
@@ -109,7 +111,8 @@ int run_helices(const std::vector<std::string>& argv) {
   s.setf(std::ios::fixed);
   s.precision(3);
   s << "helices: " << job.name << ": K = " << hs.circuits << (hs.circuits_auto ? " (auto)" : "")
-    << " circuits of N = " << job.winding.turns << " turns per pass, beta = " << job.winding.beta
+    << " circuits of N = " << format_turns(job.winding.turns)
+    << " turns per pass, beta = " << job.winding.beta
     << (r.has_girth ? " (girth field)" : " (girth 2 pi r)") << "\n";
   s << "  conformal error " << r.helices.coords.conformal_error << " deg\n";
   if (r.has_turn_limit) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "geometry/json.h"
+#include "planner/winding_options.h"
 #include "windplan_version.h"
 
 namespace windplan {
@@ -161,7 +162,7 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
     << "| fibre length | " << fmt("%.3f", m.fibre_length) << " mm |\n"
     << "| wind time | " << fmt("%.3f", mo.wind_time) << " s |\n"
     << "| circuits | " << plan.circuits.size() << " |\n"
-    << "| turns per pass | " << m.turns_per_pass << " |\n"
+    << "| turns per pass | " << format_turns(m.turns_per_pass) << " |\n"
     << "| band width | " << fmt("%.3f", m.band_width) << " mm |\n"
     << "| circuits for coverage | " << m.circuits_for_coverage << " |\n"
     << "| cover factor | " << fmt("%.4f", m.cover_factor) << " |\n"
@@ -244,7 +245,7 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
     o << "  geodesic limit   "
       << (std::isfinite(m.geodesic_turn_limit) ? fmt("%.2f", m.geodesic_turn_limit) + " turns"
                                                : std::string("none"))
-      << " per pass (N = " << m.turns_per_pass << ")\n";
+      << " per pass (N = " << format_turns(m.turns_per_pass) << ")\n";
   }
   o << "  axis A           " << fmt("%.2f", mo.a.min) << " .. " << fmt("%.2f", mo.a.max) << " deg\n"
     << "  axis X           " << fmt("%.2f", mo.x.min) << " .. " << fmt("%.2f", mo.x.max) << " mm\n"

@@ -180,8 +180,10 @@ std::array<double, 2> surface_point_coordinates(const Mesh& m, const HarmonicCoo
 }
 
 SurfacePath trace_helix(const Mesh& m, const HarmonicCoordinates& hc, const SurfacePoint& start,
-                        int turns, int hand, const HelixTraceOptions& options) {
-  if (turns < 1) throw InputError("trace_helix: turns must be >= 1");
+                        double turns, int hand, const HelixTraceOptions& options) {
+  if (!(turns > 0.0) || !std::isfinite(turns)) {
+    throw InputError("trace_helix: turns must be > 0 (got " + num_str(turns) + ")");
+  }
   if (hand != 1 && hand != -1) throw InputError("trace_helix: hand must be +1 or -1");
   if (!(options.height_span > 0.0) || !std::isfinite(options.height_span)) {
     throw InputError("trace_helix: height_span must be > 0 (got " + num_str(options.height_span) +
@@ -229,8 +231,11 @@ SurfacePath trace_helix(const Mesh& m, const HarmonicCoordinates& hc, const Surf
   }
   path.start_face = f;
   here = barycentric_in_face(m, f, path.start);
-  // A face can be crossed once per turn (long CAD triangles span the whole length).
-  const int max_steps = 4 * (turns + 1) * m.num_faces() + 64;
+  // A face can be crossed once per (started) turn (long CAD triangles span the whole length).
+  const double steps_cap = 4.0 * (std::ceil(turns) + 1.0) * m.num_faces() + 64.0;
+  const int max_steps = steps_cap < std::numeric_limits<int>::max()
+                            ? static_cast<int>(steps_cap)
+                            : std::numeric_limits<int>::max();
   for (int step = 0; step < max_steps; ++step) {
     int best = -1;
     double best_lambda = 0.0;
@@ -505,6 +510,16 @@ std::array<double, 2> station_range(const Mesh& m, const std::array<std::vector<
   return {lo, hi};
 }
 
+double turnaround_dwell(double turns, int circuits, int pattern_step) {
+  // A circuit advances theta by 4 pi N + 2 dwell; it must be 2 pi p / K modulo 2 pi, so the
+  // dwell is pi + pi p / K modulo pi, less 2 pi N. Only the fractional part of N matters
+  // (N - floor(N) is exact), so whole N give exactly pi + pi p / K as before fractional turns;
+  // the correction is the one nearest 0 (half turns: none), keeping the dwell near half a turn.
+  const double frac = turns - std::floor(turns);
+  const double c = std::remainder(-kTwoPi * frac, M_PI);
+  return M_PI + M_PI * pattern_step / circuits + c;
+}
+
 std::vector<double> density_from_girth(const Mesh& m, const std::vector<double>& g, double beta) {
   if (static_cast<int>(g.size()) != m.num_faces()) {
     throw InputError("density: " + std::to_string(g.size()) + " girth values for " +
@@ -570,7 +585,7 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
   if (stations[0]) to_start.stop_station = options.start_station;
   const PathMetric metric = rho.empty() ? PathMetric() : PathMetric::density(m, rho);
   const GeodesicOptions& gopt = geodesic;
-  const int N = options.turns;
+  const double N = options.turns;
 
   auto refine = [&](HelixPass* p) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -647,7 +662,7 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
   plan.summary.circuits = K;
   plan.summary.pattern_step = 1;
   const double advance = kTwoPi * plan.summary.pattern_step / K;
-  const double dwell = M_PI + 0.5 * advance;
+  const double dwell = turnaround_dwell(N, K, plan.summary.pattern_step);
   const double theta_first = surface_point_coordinates(m, hc, first)[0];
 
   SurfacePoint start = first;

@@ -16,12 +16,14 @@
 //    A turnaround is a dwell arc along the boundary loop (polar opening or tube end), or along
 //    the station circle when the job gives `start_station` / `end_station` (the section of the
 //    wound region by the plane normal to the spindle axis there: a parallel on a shape of
-//    revolution), while the mandrel advances by `dwell` radians of theta; both dwells are
-//    pi + pi p / K so that each circuit advances the start by the pattern's 2 pi p / K (p coprime
-//    to K; p = 1) and the K circuits close into one continuous fibre. With stations, the N turns
-//    of a pass are made between the two stations (h0, h1 the mean heights of their circles);
-//    h varies slightly along a station circle, so the dwell at the start end is corrected to
-//    start circuit k exactly 2 pi p k / K after circuit 0.
+//    revolution), while the mandrel advances by `dwell` radians of theta. Each pass advances
+//    theta by 2 pi N, so a circuit advances it by 4 pi N + 2 dwell, which must be the pattern's
+//    2 pi p / K modulo 2 pi (p coprime to K; p = 1) for the K circuits to close into one
+//    continuous fibre: both dwells are pi + pi p / K + c with c = -2 pi N reduced modulo pi into
+//    [-pi/2, pi/2] (c = 0 for whole and half turns, N need not be whole). With stations, the N
+//    turns of a pass are made between the two stations (h0, h1 the mean heights of their
+//    circles); h varies slightly along a station circle, so the dwell at the start end is
+//    corrected to start circuit k exactly 2 pi p k / K after circuit 0.
 // Paper: the density idea (equally spaced helices as geodesics of rho = 1/g) follows the windplan
 // design card; the geodesic refinement is Liu et al. (see geometry/geodesic.h).
 #include <array>
@@ -60,14 +62,15 @@ struct HelixTraceOptions {
 /// \param start an edge point on a boundary edge (the trace runs away from that loop), or a point
 ///        inside the annulus (a face point or an edge point on an interior edge; hand +1 runs
 ///        towards loop 1, hand -1 towards loop 0)
+/// \param turns N (turns, finite, > 0; need not be whole)
 /// \return a SurfacePath from `start`; its end is an edge point on the boundary loop, or a face
 ///         point (barycentric in the last strip face) on the stop station
-/// \throw InputError if start is a vertex or not a point of the mesh, turns < 1, hand not +-1 or
-///        height_span not > 0; TopologyError if the level set returns to the loop it left, reaches
-///        a boundary loop before the stop station, or does not end (h not monotone along it),
-///        naming the face.
+/// \throw InputError if start is a vertex or not a point of the mesh, turns not finite or <= 0,
+///        hand not +-1 or height_span not > 0; TopologyError if the level set returns to the loop
+///        it left, reaches a boundary loop before the stop station, or does not end (h not monotone
+///        along it), naming the face.
 SurfacePath trace_helix(const Mesh& annulus, const HarmonicCoordinates& hc,
-                        const SurfacePoint& start, int turns, int hand,
+                        const SurfacePoint& start, double turns, int hand,
                         const HelixTraceOptions& options = {});
 
 /// A dwell arc along a boundary loop or a station circle, from `start` on by `dwell` radians of
@@ -138,8 +141,10 @@ struct HelixPass {
 
 struct Turnaround {
   int circuit = 0;
-  int loop = 0;        ///< 0: at the start (loop 0 or start station), 1: at the end
-  double dwell = 0.0;  ///< radians of theta (pi + pi p / K; corrected at the start with stations)
+  int loop = 0;  ///< 0: at the start (loop 0 or start station), 1: at the end
+  /// Radians of theta: turnaround_dwell(N, K, p) (pi + pi p / K for whole and half turns);
+  /// corrected at the start with stations.
+  double dwell = 0.0;
   /// mm: the station circle the arc runs along; NaN: the boundary loop.
   double station = std::nan("");
   LoopArc arc;
@@ -181,6 +186,12 @@ struct HelixPlan {
 HelixPlan plan_helices(const Mesh& annulus, const std::array<std::vector<int>, 2>& loops,
                        const std::vector<double>& rho, const SpindleAxis& axis,
                        const WindingOptions& options = {}, const GeodesicOptions& geodesic = {});
+
+/// The dwell (radians of theta, in [pi/2, 3 pi/2] + pi p / K) of both turnarounds of a circuit
+/// whose passes make `turns` turns each, so that each circuit advances theta by 2 pi p / K modulo
+/// 2 pi: pi + pi p / K + c with c = -2 pi N reduced modulo pi into [-pi/2, pi/2]. Exactly
+/// pi + pi p / K when N is a whole or half number.
+double turnaround_dwell(double turns, int circuits, int pattern_step);
 
 /// The density of a girth field: rho_f = (g_f / mean g)^(-beta) (area-weighted mean).
 /// \throw InputError for a non-positive girth or a size mismatch.

@@ -42,22 +42,24 @@ std::string general(double v) {
   return buf;
 }
 
-// "winding.turns = 5 exceeds the 0.65 turns a geodesic can make between ...": the beta = 0
-// passes cannot be geodesics (planner/clairaut.h).
+// "winding.turns = 5 exceeds the 0.65 turns a geodesic can make between ... use turns <= 0.65,
+// ...": the beta = 0 passes cannot be geodesics (planner/clairaut.h).
 std::string turn_limit_warning(const ClairautLimit& lim, const WindingOptions& wo) {
   const bool s0 = wo.has_start_station(), s1 = wo.has_end_station();
   const std::string ends = !s0 && !s1 ? "the boundary loops (the polar openings or tube ends)"
                            : s0 && s1 ? "winding.start_station and winding.end_station"
                            : s0       ? "winding.start_station and the end loop"
                                       : "the start loop and winding.end_station";
-  const int whole = static_cast<int>(std::floor(lim.turns + 1e-9));
-  std::string w = "winding.turns = " + std::to_string(wo.turns) + " exceeds the " +
+  // The suggestion: N_max rounded down to hundredths, so that it never exceeds the limit (a
+  // limit of exactly k / 100 may come out a hundredth lower by rounding); none below 0.01.
+  const double suggest = std::floor(100.0 * lim.turns) / 100.0;
+  std::string w = "winding.turns = " + format_turns(wo.turns) + " exceeds the " +
                   general(lim.turns) + " turns a geodesic can make between " + ends +
                   " (Clairaut: r sin a = c <= " + fixed(lim.min_radius, 2) +
                   " mm, the smallest radius, at " + fixed(lim.min_at, 1) +
                   " mm along the axis): with beta = 0 the passes wrap along the smaller end " +
                   "instead of running as geodesics, and the fibre would slip there; use ";
-  if (whole >= 1) w += "turns <= " + std::to_string(whole) + ", ";
+  if (suggest >= 0.01) w += "turns <= " + format_turns(suggest) + ", ";
   return w + "beta > 0, or stations (the limit is recomputed between them)";
 }
 

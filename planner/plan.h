@@ -65,7 +65,7 @@ struct StageTiming {
 struct PlanMetrics {
   double fibre_length = 0.0;       ///< mm, all circuits
   int circuits = 0;
-  int turns_per_pass = 0;          ///< N
+  double turns_per_pass = 0.0;     ///< N (turns, > 0, need not be whole)
   double band_width = 0.0;         ///< mm
   int circuits_for_coverage = 0;   ///< circuits needed for full coverage
   double cover_factor = 0.0;       ///< fraction of the surface covered (>= 1: full)

@@ -3,14 +3,24 @@
 // friction (docs/config.md). Read by the helix planner (planner/helix.h), the plan metrics
 // (planner/fibre_metrics.h) and the pipeline (planner/pipeline.h).
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace windplan {
 
+/// A number of turns N for messages and reports, e.g. "1", "0.55", "2.5" (%g: six significant
+/// digits, whole numbers without a decimal point).
+inline std::string format_turns(double n) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", n + 0.0);
+  return buf;
+}
+
 struct WindingOptions {
   /// N: turns of each pass about the axis, from one end of the wound region to the other
-  /// (count, >= 1).
-  int turns = 2;
+  /// (turns, finite, > 0; need not be whole: a geodesic pass between the polar openings of a
+  /// vessel makes well under one turn, planner/clairaut.h).
+  double turns = 2.0;
   /// K: circuits (each circuit = out pass, turnaround, return pass, turnaround); 0 = `auto`:
   /// the circuits needed for full coverage with `band_width` (count, >= 1 or 0).
   int circuits = 0;
@@ -39,7 +49,9 @@ struct WindingOptions {
       if (why) *why = m;
       return false;
     };
-    if (turns < 1) return fail("turns must be >= 1 (got " + std::to_string(turns) + ")");
+    if (!(turns > 0.0) || !std::isfinite(turns)) {
+      return fail("turns must be > 0 (got " + format_turns(turns) + ")");
+    }
     if (circuits < 0) {
       return fail("circuits must be >= 1 or auto (got " + std::to_string(circuits) + ")");
     }

@@ -199,6 +199,26 @@ TEST(ExportPlan, ReportsCarryTheGeodesicTurnLimitOfShapesOfRevolution) {
   EXPECT_NE(summary_text(plan, r).find("geodesic limit   none per pass"), std::string::npos);
 }
 
+// Turns per pass need not be whole: a JSON number (0.55, and 1 for a whole N as before), the same
+// figure in report.md and the run summary.
+TEST(ExportPlan, ReportsCarryFractionalTurnsPerPass) {
+  WindingPlan plan = sample_plan(100, 1);
+  const ExportResult r;
+  plan.metrics.turns_per_pass = 1;
+  EXPECT_NE(report_json(plan, r).find("\"turns_per_pass\": 1,"), std::string::npos);
+  EXPECT_NE(report_markdown(plan, r).find("| turns per pass | 1 |"), std::string::npos);
+  plan.metrics.turns_per_pass = 0.55;
+  plan.metrics.geodesic_turn_limit = 0.6081234;
+  plan.metrics.geodesic_min_radius = 30.1128;
+  EXPECT_NE(report_json(plan, r).find("\"turns_per_pass\": 0.55,"), std::string::npos)
+      << report_json(plan, r);
+  EXPECT_NE(report_markdown(plan, r).find("| turns per pass | 0.55 |"), std::string::npos)
+      << report_markdown(plan, r);
+  EXPECT_NE(summary_text(plan, r).find("geodesic limit   0.61 turns per pass (N = 0.55)"),
+            std::string::npos)
+      << summary_text(plan, r);
+}
+
 TEST(ExportPlan, TwoExportsAreByteIdentical) {
   const WindingPlan plan = sample_plan();
   const Mesh mesh = sample_mesh();

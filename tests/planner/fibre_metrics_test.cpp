@@ -85,6 +85,30 @@ TEST(FibreMetrics, InverseGirthDensityEquallySpacesTheTurns) {
   EXPECT_GT(s[1].cv, 0.1);
 }
 
+// Fractional turns: with K = 6 passes of N = 0.55 turns on a cylinder, each pass crosses a
+// meridian once or not at all (floor or ceil of N, by its phase), so every meridian is crossed
+// floor(K N) = 3 or ceil(K N) = 4 times, and successive crossings are L / (K N) apart along it
+// whatever their number (the helices are straight lines of the unrolled prism).
+TEST(FibreMetrics, FractionalTurnsSpaceTheCrossingsByLengthOverKN) {
+  const double R = 40.0, L = 150.0;
+  const Mesh m(test::open_cylinder(R, L, 96, 20));
+  WindingOptions o;
+  o.circuits = 6;
+  o.band_width = 12.0;
+  for (double N : {0.55, 1.3}) {
+    o.turns = N;
+    const HelixPlan plan = plan_helices(m, test::loops_by_z(m), {}, SpindleAxis{}, o);
+    const SpacingStats s = turn_spacing(m, plan, {}, SpindleAxis{}, 36);
+    const double KN = 6 * N;
+    // Crossings per meridian: floor(K N) or ceil(K N), one spacing fewer each.
+    EXPECT_GE(s.samples, 36 * (static_cast<int>(std::floor(KN)) - 1)) << "N = " << N;
+    EXPECT_LE(s.samples, 36 * (static_cast<int>(std::ceil(KN)) - 1)) << "N = " << N;
+    EXPECT_GT(s.samples, 36 * (static_cast<int>(std::floor(KN)) - 1)) << "some meridians get ceil";
+    EXPECT_NEAR(s.mean, L / KN, 1e-3 * L / KN) << "N = " << N;
+    EXPECT_LT(s.cv, 1e-3) << "N = " << N;
+  }
+}
+
 TEST(FibreMetrics, CylinderCoverageAndStability) {
   const double R = 40.0, L = 150.0;
   const Mesh m(test::open_cylinder(R, L, 96, 20));

@@ -22,14 +22,15 @@ SurfacePoint start_point(const Mesh& m, const HarmonicCoordinates& hc,
 
 // The N-turn helix on a cylinder: after refinement it is the straight line of the unrolled
 // prism, length sqrt(L^2 + (N P)^2) with P the prism's perimeter, and it tends to the smooth
-// sqrt(L^2 + (2 pi R N)^2) as the tessellation refines.
+// sqrt(L^2 + (2 pi R N)^2) as the tessellation refines. N need not be whole: half a turn is
+// sqrt(L^2 + (pi R)^2).
 TEST(Helix, CylinderHelixHasTheClosedFormLength) {
   const double R = 50.0, L = 200.0;
   const int n = 96;
   const Mesh m(test::open_cylinder(R, L, n, 30));
   const auto loops = loops_by_z(m);
   const HarmonicCoordinates hc = compute_harmonic_coordinates(m, loops);
-  for (int N : {1, 3}) {
+  for (double N : {1.0, 3.0, 0.5, 0.55}) {
     const SurfacePath init = trace_helix(m, hc, start_point(m, hc, loops, 0.3), N, +1);
     std::string why;
     ASSERT_TRUE(is_valid_path(m, init, &why)) << why;
@@ -50,6 +51,14 @@ TEST(Helix, CylinderHelixHasTheClosedFormLength) {
       ASSERT_NEAR(test::segment_angle(pl[i], pl[i + 1], 0.0), a_exact, 0.5 + 180.0 / n)
           << "segment " << i;
     }
+    // The pass turns by 2 pi N about the axis: theta runs clockwise seen from +z (n x grad h,
+    // harmonic_test.cpp), so the end's polar angle is the start's - 2 pi N modulo 2 pi, up to the
+    // chords' bulge (the polar angle is not linear along an edge: < 1e-4 rad for 96 sides).
+    const Vec3 a = pl.front(), b = pl.back();
+    EXPECT_NEAR(a.z(), 0.0, 1e-9);
+    EXPECT_NEAR(b.z(), L, 1e-9);
+    const double turned = std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x());
+    EXPECT_NEAR(std::remainder(turned - 2.0 * M_PI * N, 2.0 * M_PI), 0.0, 1e-4) << "N = " << N;
   }
 }
 
@@ -118,11 +127,11 @@ TEST(Helix, PlainGeodesicObeysClairaut) {
   for (double x : c) EXPECT_NEAR(x, c0, 0.02 * c0);
 }
 
-TEST(Helix, CircuitsAreContinuousAndClosePattern) {
+void expect_closed_pattern_on_cylinder(double turns, double dwell) {
   const Mesh m(test::open_cylinder(40.0, 150.0, 64, 20));
   const auto loops = loops_by_z(m);
   WindingOptions o;
-  o.turns = 2;
+  o.turns = turns;
   o.circuits = 5;
   const HelixPlan plan = plan_helices(m, loops, {}, SpindleAxis{}, o);
   ASSERT_EQ(plan.summary.circuits, 5);
@@ -145,16 +154,60 @@ TEST(Helix, CircuitsAreContinuousAndClosePattern) {
     // Ends on the right loops.
     EXPECT_NEAR(position(m, out.path.start).z(), 0.0, 1e-9);
     EXPECT_NEAR(position(m, out.path.end).z(), 150.0, 1e-9);
-    // Dwell = pi + pi / K of the loop (R = 40): arc length ~ R (pi + pi / 5).
-    EXPECT_NEAR(top.arc.length, 40.0 * (M_PI + M_PI / 5), 0.02 * 40.0 * M_PI);
+    // The dwell of the loop (R = 40): arc length ~ R dwell.
+    EXPECT_NEAR(top.dwell, dwell, 1e-12);
+    EXPECT_NEAR(bottom.dwell, dwell, 1e-12);
+    EXPECT_NEAR(top.arc.length, 40.0 * dwell, 0.02 * 40.0 * M_PI);
+    EXPECT_NEAR(bottom.arc.length, 40.0 * dwell, 0.02 * 40.0 * M_PI);
+    // Each pass turns by 2 pi N about the axis (clockwise seen from +z, as theta).
+    for (const HelixPass* p : {&out, &back}) {
+      const Vec3 a = position(m, p->path.start), b = position(m, p->path.end);
+      const double turned = std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x());
+      EXPECT_NEAR(std::remainder(turned - 2.0 * M_PI * turns, 2.0 * M_PI), 0.0, 1e-3);
+    }
   }
-  // Circuit starts advance by 1/K turn.
+  // Circuit starts advance by 1/K turn (clockwise seen from +z).
   for (int k = 0; k + 1 < 5; ++k) {
     const Vec3 a = position(m, plan.passes[2 * k].path.start);
     const Vec3 b = position(m, plan.passes[2 * k + 2].path.start);
-    double d = std::atan2(b.y(), b.x()) - std::atan2(a.y(), a.x());
-    d -= 2.0 * M_PI * std::floor(d / (2.0 * M_PI));
-    EXPECT_NEAR(std::min(d, 2.0 * M_PI - d), 2.0 * M_PI / 5, 1e-3);
+    const double d = std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x());
+    EXPECT_NEAR(std::remainder(d - 2.0 * M_PI / 5, 2.0 * M_PI), 0.0, 1e-3);
+  }
+}
+
+// K = 5 circuits on a cylinder close into one fibre: each piece starts where the previous one
+// ends, the last turnaround ends where circuit 0 starts, and circuit k starts 2 pi k / K after
+// circuit 0. With N = 0.55 each pass advances 1.1 pi, so both dwells are pi + pi / K - 0.1 pi
+// (the circuit then advances 2.2 pi + 2 pi - 0.2 pi + 2 pi / K, i.e. 2 pi / K modulo 2 pi).
+TEST(Helix, CircuitsAreContinuousAndClosePattern) {
+  for (double N : {2.0, 0.55}) {
+    SCOPED_TRACE("N = " + format_turns(N));
+    const double dwell = N == 2.0 ? M_PI + M_PI / 5 : M_PI + M_PI / 5 - 0.1 * M_PI;
+    expect_closed_pattern_on_cylinder(N, dwell);
+  }
+}
+
+TEST(Helix, TurnaroundDwellClosesThePatternForAnyN) {
+  // Whole and half turns: exactly the dwell of whole turns, pi + pi p / K.
+  for (double N : {1.0, 2.0, 5.0, 0.5, 1.5}) {
+    EXPECT_EQ(turnaround_dwell(N, 5, 1), M_PI + M_PI / 5) << N;
+  }
+  EXPECT_NEAR(turnaround_dwell(0.55, 5, 1), M_PI + M_PI / 5 - 0.1 * M_PI, 1e-12);
+  EXPECT_NEAR(turnaround_dwell(0.25, 7, 1), M_PI / 2 + M_PI / 7, 1e-12);
+  EXPECT_NEAR(turnaround_dwell(0.8, 7, 1), 1.4 * M_PI + M_PI / 7, 1e-12);
+  EXPECT_NEAR(turnaround_dwell(2.3, 12, 5), 1.4 * M_PI + 5 * M_PI / 12, 1e-12);
+  // A circuit (two passes of 2 pi N, two dwells) advances 2 pi p / K modulo 2 pi; the dwell stays
+  // within a quarter turn of half a turn (plus pi p / K).
+  for (int K : {1, 5, 38}) {
+    for (int i = 1; i <= 400; ++i) {
+      const double N = 0.0137 * i;
+      const double d = turnaround_dwell(N, K, 1);
+      const double circuit = 4.0 * M_PI * N + 2.0 * d;
+      EXPECT_NEAR(std::remainder(circuit - 2.0 * M_PI / K, 2.0 * M_PI), 0.0, 1e-9)
+          << "N = " << N << ", K = " << K;
+      EXPECT_GE(d - M_PI / K, 0.5 * M_PI - 1e-12) << N;
+      EXPECT_LE(d - M_PI / K, 1.5 * M_PI + 1e-12) << N;
+    }
   }
 }
 
@@ -185,8 +238,10 @@ TEST(Helix, BadOptionsAreRejected) {
     }
   };
   WindingOptions o;
-  o.turns = 0;
-  expect_config(o, "turns");
+  for (double bad : {0.0, -1.0, -0.5, std::nan(""), HUGE_VAL}) {
+    o.turns = bad;
+    expect_config(o, "turns must be > 0");
+  }
   o = {};
   o.circuits = -1;
   expect_config(o, "circuits");
@@ -205,12 +260,17 @@ TEST(Helix, BadOptionsAreRejected) {
   // A start that is not on the boundary.
   const HarmonicCoordinates hc = compute_harmonic_coordinates(m, loops);
   EXPECT_THROW(trace_helix(m, hc, SurfacePoint::at_vertex(0), 1, 1), InputError);
+  const SurfacePoint on_loop = start_point(m, hc, loops, 0.3);
+  for (double bad : {0.0, -1.0, std::nan("")}) {
+    EXPECT_THROW(trace_helix(m, hc, on_loop, bad, 1), InputError) << bad;
+  }
 }
 
 // Axial stations on a cylinder: every pass runs from one station plane to the other with N turns
 // between them, so after refinement it is the straight line of the unrolled prism between the
 // stations, sqrt(L'^2 + (N P)^2) (L' the station distance), and tends to the smooth
-// sqrt(L'^2 + (2 pi R N)^2); the turnarounds are dwell arcs on the station circles.
+// sqrt(L'^2 + (2 pi R N)^2); the turnarounds are dwell arcs on the station circles. Fractional N
+// too: half a turn keeps the dwell pi + pi / K, N = 0.55 takes 0.1 pi off it.
 TEST(HelixStations, PassesRunBetweenTheStationPlanes) {
   const double R = 50.0, L = 200.0;
   const int n = 96;
@@ -218,7 +278,7 @@ TEST(HelixStations, PassesRunBetweenTheStationPlanes) {
   const auto loops = loops_by_z(m);
   const double z0 = 0.25 * L, z1 = 0.75 * L, Lp = z1 - z0;
   const double P = n * 2.0 * R * std::sin(M_PI / n);
-  for (int N : {1, 2}) {
+  for (double N : {1.0, 2.0, 0.5, 0.55}) {
     WindingOptions o;
     o.turns = N;
     o.circuits = 3;
@@ -268,10 +328,18 @@ TEST(HelixStations, PassesRunBetweenTheStationPlanes) {
       const HelixPass& next = plan.passes[(2 * k + 2) % 6];
       EXPECT_NEAR((position(m, next.path.start) - bottom.arc.points.back()).norm(), 0.0,
                   k == 2 ? 1e-3 : 1e-9);
-      // Dwell pi + pi / K of theta, which is linear along the prism's perimeter P.
-      const double dwell = (M_PI + M_PI / 3) / (2.0 * M_PI) * P;
-      EXPECT_NEAR(top.arc.length, dwell, 1e-6 * P);
-      EXPECT_NEAR(bottom.arc.length, dwell, 1e-6 * P);
+      // Dwell pi + pi / K (- 0.1 pi for N = 0.55) of theta, which is linear along the prism's
+      // perimeter P.
+      const double theta = M_PI + M_PI / 3 - (N == 0.55 ? 0.1 * M_PI : 0.0);
+      const double dwell = theta / (2.0 * M_PI) * P;
+      EXPECT_NEAR(top.arc.length, dwell, 1e-6 * P) << "N = " << N;
+      EXPECT_NEAR(bottom.arc.length, dwell, 1e-6 * P) << "N = " << N;
+      // The pass turns by 2 pi N about the axis (clockwise seen from +z, as theta).
+      for (const HelixPass* p : {&out, &back}) {
+        const Vec3 a = position(m, p->path.start), b = position(m, p->path.end);
+        const double turned = std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x());
+        EXPECT_NEAR(std::remainder(turned - 2.0 * M_PI * N, 2.0 * M_PI), 0.0, 1e-4);
+      }
     }
   }
 }
@@ -309,7 +377,7 @@ TEST(HelixStations, OneStationKeepsTheOtherLoop) {
 // On an irregular tessellation of a curved surface h is not constant on a station circle, so the
 // passes advance theta by 2 pi N only nearly; the start dwell takes up the difference and the K
 // circuits still close: the last turnaround ends where circuit 0 starts, each circuit starting
-// 1/K turn after the previous one.
+// 1/K turn after the previous one. The same with N = 0.55 (nominal dwell pi + pi / K - 0.1 pi).
 TEST(HelixStations, PatternClosesOnAnIrregularTessellation) {
   auto r = [](double z) { return 40.0 + 15.0 * std::sin(M_PI * z / 160.0); };
   const double L = 160.0;
@@ -325,36 +393,38 @@ TEST(HelixStations, PatternClosesOnAnIrregularTessellation) {
   }
   const Mesh m(soup);
   const auto loops = loops_by_z(m);
-  WindingOptions o;
-  o.turns = 2;
-  o.circuits = 5;
-  o.start_station = 45.0;
-  o.end_station = 115.0;
-  const HelixPlan plan = plan_helices(m, loops, {}, SpindleAxis{}, o);
-  ASSERT_EQ(plan.passes.size(), 10u);
-  const double nominal = M_PI + M_PI / 5;
-  double spread = 0.0;
-  for (int k = 0; k < 5; ++k) {
-    const Turnaround& top = plan.turnarounds[2 * k];
-    const Turnaround& bottom = plan.turnarounds[2 * k + 1];
-    EXPECT_EQ(top.dwell, nominal);
-    EXPECT_NEAR(bottom.dwell, nominal, 0.1);
-    spread = std::max(spread, std::fabs(bottom.dwell - nominal));
-    for (const Vec3& q : bottom.arc.points) EXPECT_NEAR(q.z(), 45.0, 1e-6);
-    for (const Vec3& q : top.arc.points) EXPECT_NEAR(q.z(), 115.0, 1e-6);
-    const HelixPass& next = plan.passes[(2 * k + 2) % 10];
-    EXPECT_LT((position(m, next.path.start) - bottom.arc.points.back()).norm(), 1e-4);
-    // Theta is close to the polar angle here (up to the jitter).
-    const Vec3 a = position(m, plan.passes[2 * k].path.start);
-    const Vec3 b = bottom.arc.points.back();
-    double d = std::atan2(b.y(), b.x()) - std::atan2(a.y(), a.x());
-    d -= 2.0 * M_PI * std::floor(d / (2.0 * M_PI));
-    EXPECT_NEAR(std::min(d, 2.0 * M_PI - d), 2.0 * M_PI / 5, 0.05) << "circuit " << k;
-  }
-  EXPECT_GT(spread, 1e-4) << "the tessellation should make h vary along the station circles";
-  for (const HelixPass& p : plan.passes) {
-    EXPECT_NEAR(position(m, p.path.start).z(), p.hand > 0 ? 45.0 : 115.0, 1e-6);
-    EXPECT_NEAR(position(m, p.path.end).z(), p.hand > 0 ? 115.0 : 45.0, 1e-6);
+  for (double N : {2.0, 0.55}) {
+    SCOPED_TRACE("N = " + format_turns(N));
+    WindingOptions o;
+    o.turns = N;
+    o.circuits = 5;
+    o.start_station = 45.0;
+    o.end_station = 115.0;
+    const HelixPlan plan = plan_helices(m, loops, {}, SpindleAxis{}, o);
+    ASSERT_EQ(plan.passes.size(), 10u);
+    const double nominal = M_PI + M_PI / 5 - (N == 2.0 ? 0.0 : 0.1 * M_PI);
+    double spread = 0.0;
+    for (int k = 0; k < 5; ++k) {
+      const Turnaround& top = plan.turnarounds[2 * k];
+      const Turnaround& bottom = plan.turnarounds[2 * k + 1];
+      EXPECT_NEAR(top.dwell, nominal, N == 2.0 ? 0.0 : 1e-12);  // whole N: exactly pi + pi / K
+      EXPECT_NEAR(bottom.dwell, nominal, 0.1);
+      spread = std::max(spread, std::fabs(bottom.dwell - nominal));
+      for (const Vec3& q : bottom.arc.points) EXPECT_NEAR(q.z(), 45.0, 1e-6);
+      for (const Vec3& q : top.arc.points) EXPECT_NEAR(q.z(), 115.0, 1e-6);
+      const HelixPass& next = plan.passes[(2 * k + 2) % 10];
+      EXPECT_LT((position(m, next.path.start) - bottom.arc.points.back()).norm(), 1e-4);
+      // Theta is close to the polar angle here (up to the jitter).
+      const Vec3 a = position(m, plan.passes[2 * k].path.start);
+      const Vec3 b = bottom.arc.points.back();
+      const double d = std::atan2(a.y(), a.x()) - std::atan2(b.y(), b.x());  // clockwise from +z
+      EXPECT_NEAR(std::remainder(d - 2.0 * M_PI / 5, 2.0 * M_PI), 0.0, 0.05) << "circuit " << k;
+    }
+    EXPECT_GT(spread, 1e-4) << "the tessellation should make h vary along the station circles";
+    for (const HelixPass& p : plan.passes) {
+      EXPECT_NEAR(position(m, p.path.start).z(), p.hand > 0 ? 45.0 : 115.0, 1e-6);
+      EXPECT_NEAR(position(m, p.path.end).z(), p.hand > 0 ? 115.0 : 45.0, 1e-6);
+    }
   }
 }
 

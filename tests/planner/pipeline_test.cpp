@@ -57,6 +57,23 @@ TEST(Pipeline, PipeJobGivesClosedFormHelices) {
   }
 }
 
+// winding.turns need not be whole: YAML 0.55 gives passes of 0.55 turns, each the helix of
+// length sqrt(L^2 + (2 pi R 0.55)^2); a whole number still reads as before.
+TEST(Pipeline, FractionalTurnsAreReadAndWound) {
+  std::string yaml = kPipe;
+  yaml.replace(yaml.find("turns: 2"), 8, "turns: 0.55");
+  const Job job = load_job_from_string(yaml, "/tmp/p.yaml");
+  EXPECT_EQ(job.winding.turns, 0.55);
+  const PipelineResult r = plan_job(job);
+  EXPECT_EQ(r.plan.metrics.turns_per_pass, 0.55);
+  EXPECT_EQ(r.helices.summary.not_converged, 0);
+  const double smooth = std::sqrt(200.0 * 200.0 + std::pow(2.0 * M_PI * 40.0 * 0.55, 2));
+  ASSERT_EQ(r.passes.size(), 6u);
+  for (const PassReport& p : r.passes) EXPECT_NEAR(p.length, smooth, 0.01 * smooth);
+  EXPECT_NEAR(r.plan.metrics.max_slippage, 0.0, 0.1);
+  EXPECT_EQ(load_job_from_string(kPipe, "/tmp/p.yaml").winding.turns, 2.0);
+}
+
 // winding.start_station / end_station: the passes run between the station planes, the
 // turnarounds dwell on them, and the circuits (what export/ writes) stay continuous.
 TEST(Pipeline, StationsBoundThePassesAndTheTurnarounds) {
@@ -131,7 +148,8 @@ TEST(Pipeline, HemisphericalVesselTurnLimitHasTheClosedForm) {
   ASSERT_TRUE(has_turn_warning(r.plan.metrics));
   bool named = false;
   for (const std::string& w : r.plan.metrics.warnings) {
-    named = named || w.find("winding.turns = 1 exceeds the 0.65") != std::string::npos;
+    named = named || (w.find("winding.turns = 1 exceeds the 0.65") != std::string::npos &&
+                      w.find("use turns <= 0.65, beta > 0") != std::string::npos);
   }
   EXPECT_TRUE(named);
 }
@@ -150,6 +168,13 @@ TEST(Pipeline, VesselWithTooManyTurnsWarnsAtBetaZeroOnly) {
   EXPECT_GT(geodesic.turn_limit.turns, 0.5);
   EXPECT_LT(geodesic.turn_limit.turns, 0.8);
   EXPECT_TRUE(has_turn_warning(geodesic.plan.metrics));
+  // It suggests N_max rounded down to hundredths (0.6077 -> 0.6).
+  bool suggests = false;
+  for (const std::string& w : geodesic.plan.metrics.warnings) {
+    suggests = suggests || (w.find("winding.turns = 5 exceeds the 0.608") != std::string::npos &&
+                            w.find("use turns <= 0.6, beta > 0") != std::string::npos);
+  }
+  EXPECT_TRUE(suggests);
   job.winding.beta = 1.0;
   const PipelineResult density = plan_job(job);
   EXPECT_FALSE(has_turn_warning(density.plan.metrics));
@@ -158,7 +183,7 @@ TEST(Pipeline, VesselWithTooManyTurnsWarnsAtBetaZeroOnly) {
 
 // With stations the limit is taken between them: on the cone 60 -> 40 mm over 400 mm, stations at
 // 100 and 300 mm (radii 55 and 45 mm) give arccos(45 / 55) / sin b = 1.952 turns (2.681 between
-// the ends); N = 3 exceeds it, N = 1 does not.
+// the ends); N = 3 exceeds it (the warning suggests 1.95), N = 1 does not.
 TEST(Pipeline, ConeTurnLimitIsTakenBetweenTheStations) {
   const std::string cone =
       "name: c\nmandrel:\n  source: cone\n  cone: {radius_start: 60, radius_end: 40, length: "
@@ -176,7 +201,7 @@ TEST(Pipeline, ConeTurnLimitIsTakenBetweenTheStations) {
   for (const std::string& w : three.plan.metrics.warnings) {
     suggests =
         suggests || (w.find("winding.start_station and winding.end_station") != std::string::npos &&
-                     w.find("use turns <= 1") != std::string::npos);
+                     w.find("use turns <= 1.95, beta > 0") != std::string::npos);
   }
   EXPECT_TRUE(suggests);
   const PipelineResult one = plan_job(load_job_from_string(cone + "  turns: 1\n", "/tmp/c.yaml"));
@@ -206,7 +231,11 @@ TEST(Pipeline, WindingSectionErrorsNameTheKey) {
       EXPECT_NE(std::string(e.what()).find("j.yaml"), std::string::npos) << e.what();
     }
   };
-  expect_error("  turns: 0\n", "turns");
+  expect_error("  turns: 0\n", "turns must be > 0 (got 0)");
+  expect_error("  turns: -1\n", "turns must be > 0 (got -1)");
+  expect_error("  turns: .nan\n", "key 'winding.turns': expected a number");
+  expect_error("  turns: .inf\n", "key 'winding.turns': expected a number");
+  expect_error("  turns: half\n", "key 'winding.turns': expected a number");
   expect_error("  circuits: 0\n", "circuits");
   expect_error("  circuits: many\n", "circuits");
   expect_error("  beta: 2\n", "beta");
