@@ -129,6 +129,14 @@ SurfacePath reversed(const Mesh& m, const SurfacePath& p) {
   return r;
 }
 
+// Every crossing parameter and end point finite (a refined path can come back with NaN).
+bool finite_path(const Mesh& m, const SurfacePath& p) {
+  for (double l : p.lambdas) {
+    if (!std::isfinite(l)) return false;
+  }
+  return position(m, p.start).allFinite() && position(m, p.end).allFinite();
+}
+
 }  // namespace
 
 std::array<double, 2> edge_point_coordinates(const Mesh& m, const HarmonicCoordinates& hc, int h,
@@ -599,10 +607,31 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
     GeodesicOptions go = gopt;
     if (go.max_reroutes == 0) go.max_reroutes = 1000 + 20 * init.num_crossings();
     GeodesicResult r = refine_path(m, init, metric, go);
+    // The funnel start has been seen to return a path with NaN crossings while reporting
+    // convergence (the shipped vessel at N = 0.5, one pass in 76): such a path would put NaN
+    // points into every output. Refine that pass from the level set instead, and if that fails
+    // too keep the level set and count the pass as not converged.
+    const std::string which =
+        "circuit " + std::to_string(p->circuit) + (p->hand > 0 ? " out pass" : " return pass");
+    if (!finite_path(m, r.path) && go.funnel_start) {
+      GeodesicOptions direct = go;
+      direct.funnel_start = false;
+      r = refine_path(m, init, metric, direct);
+      plan.summary.warnings.push_back(which +
+                                      ": the geodesic core's funnel start gave a non-finite path; "
+                                      "refined from the traced level set instead");
+    }
+    const bool finite = finite_path(m, r.path);
+    if (!finite) {
+      r.path = init;
+      plan.summary.warnings.push_back(which +
+                                      ": the geodesic refinement gave a non-finite path; the "
+                                      "traced level set is kept");
+    }
     plan.summary.refine_ms += ms_since(t0);
     p->path = p->hand < 0 ? reversed(m, r.path) : std::move(r.path);
     p->summary = r.summary;
-    if (!p->summary.converged()) ++plan.summary.not_converged;
+    if (!finite || !p->summary.converged()) ++plan.summary.not_converged;
   };
   // The start of circuit 0: theta of the first loop vertex (or station crossing), nudged off the
   // vertices.
@@ -671,6 +700,7 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
     if (k == 0) {
       out = std::move(first_pass);
     } else {
+      out.circuit = k;  // (named in refine's warnings)
       const auto t0 = std::chrono::steady_clock::now();
       out.initial = trace_helix(m, hc, start, N, +1, to_end);
       plan.summary.trace_ms += ms_since(t0);

@@ -180,6 +180,9 @@ struct HelixPlan {
 /// \param axis spindle axis (for K auto: the winding angle at the largest radius; the stations)
 /// \param options with start_station / end_station the passes run between those axial stations
 ///        (mm) and turn around on their circles; a missing one is the boundary loop
+/// A pass whose refinement comes back with non-finite crossings (seen from the core's funnel
+/// start) is refined again from its traced level set without it; if that fails too the level set
+/// is kept and the pass counts as not converged. Both are named in summary.warnings.
 /// \throw ConfigError for invalid options, naming winding.start_station / winding.end_station
 ///        and the valid range (mm) for a station outside station_range() or whose plane does not
 ///        cut the wound region around the mandrel; as compute_harmonic_coordinates / trace_helix.

@@ -181,6 +181,36 @@ TEST(Pipeline, VesselWithTooManyTurnsWarnsAtBetaZeroOnly) {
   EXPECT_EQ(density.plan.metrics.geodesic_turn_limit, geodesic.plan.metrics.geodesic_turn_limit);
 }
 
+// The shipped vessel with geodesically feasible passes: N = 0.5 (below its 0.61 turn limit) at
+// beta = 0 is not warned about, and every pass converges to a finite path (the core's funnel
+// start returned NaN crossings for one of the 76 passes, circuit 27 out, while reporting
+// convergence; planner/helix.cpp refines such a pass from the level set: 557.34 mm, within
+// 0.03% of the others). Half a turn is a geodesic with c below the opening's radius: it meets
+// the opening at 67-80 deg instead of tangentially, bridges the isotensoid's concave neck
+// (153 mm of k_n < 0 over all passes) and max |k_g / k_n| spikes to 141 where k_n ~ 0, but only
+// 1.2% of the pass length is above mu (15% at N = 1, the passes wrapping along the openings).
+TEST(Pipeline, ShippedVesselWithHalfTurnsIsFeasible) {
+  Job job = load_job(test::source_dir() / "configs" / "vessel.yaml");
+  job.cutlines.clear();
+  job.winding.turns = 0.5;
+  job.winding.beta = 0.0;
+  const PipelineResult r = plan_job(job);
+  ASSERT_TRUE(r.turn_limit.bounded) << r.turn_limit.reason;
+  EXPECT_LT(0.5, r.turn_limit.turns);
+  EXPECT_FALSE(has_turn_warning(r.plan.metrics));
+  EXPECT_EQ(r.helices.summary.not_converged, 0);
+  for (const HelixPass& p : r.helices.passes) {
+    EXPECT_TRUE(p.summary.converged()) << p.summary.brief_report();
+  }
+  for (const Circuit& c : r.plan.circuits) {
+    for (const FibrePoint& q : c.points) ASSERT_TRUE(q.position.allFinite()) << c.index;
+  }
+  const PlanMetrics& m = r.plan.metrics;
+  EXPECT_EQ(m.circuits, 38);  // auto: the band at the cylinder's winding angle
+  EXPECT_EQ(m.turns_per_pass, 0.5);
+  EXPECT_LT(m.slip_fraction, 0.02);
+}
+
 // With stations the limit is taken between them: on the cone 60 -> 40 mm over 400 mm, stations at
 // 100 and 300 mm (radii 55 and 45 mm) give arccos(45 / 55) / sin b = 1.952 turns (2.681 between
 // the ends); N = 3 exceeds it (the warning suggests 1.95), N = 1 does not.
