@@ -211,6 +211,34 @@ TEST(Pipeline, ShippedVesselWithHalfTurnsIsFeasible) {
   EXPECT_LT(m.slip_fraction, 0.02);
 }
 
+// The shipped vessel jobs wind fractional N below their turn limits (configs/vessel.yaml 0.59 of
+// 0.608, configs/vessel_step.yaml 0.62 of 0.663): no turn-limit warning, every pass converges,
+// no bridging, and little of the pass length above mu (0.04% and 2.6%; at N = 1 it was 14.9%
+// and 11.0%) with max |k_g / k_n| 0.76 and 4.05 (3.12 and 8.38 at N = 1).
+TEST(Pipeline, ShippedVesselJobsStayBelowTheTurnLimit) {
+  struct Expect {
+    const char* file;
+    double turns, max_slippage, slip_fraction;
+  };
+  for (const Expect& e :
+       {Expect{"vessel.yaml", 0.59, 1.0, 0.001}, Expect{"vessel_step.yaml", 0.62, 5.0, 0.03}}) {
+    SCOPED_TRACE(e.file);
+    Job job = load_job(test::source_dir() / "configs" / e.file);
+    job.cutlines.clear();
+    EXPECT_EQ(job.winding.turns, e.turns);
+    EXPECT_EQ(job.winding.beta, 0.0);
+    const PipelineResult r = plan_job(job);
+    ASSERT_TRUE(r.turn_limit.bounded) << r.turn_limit.reason;
+    EXPECT_LT(e.turns, r.turn_limit.turns);
+    EXPECT_FALSE(has_turn_warning(r.plan.metrics));
+    EXPECT_EQ(r.helices.summary.not_converged, 0);
+    const PlanMetrics& m = r.plan.metrics;
+    EXPECT_LT(m.max_slippage, e.max_slippage);
+    EXPECT_LT(m.slip_fraction, e.slip_fraction);
+    EXPECT_EQ(m.bridging_length, 0.0);
+  }
+}
+
 // With stations the limit is taken between them: on the cone 60 -> 40 mm over 400 mm, stations at
 // 100 and 300 mm (radii 55 and 45 mm) give arccos(45 / 55) / sin b = 1.952 turns (2.681 between
 // the ends); N = 3 exceeds it (the warning suggests 1.95), N = 1 does not.
