@@ -1132,8 +1132,11 @@ void Refiner::funnel_rounds() {
       if ((P - pv).norm() <= eps_d || (Q - pv).norm() <= eps_d) {
         // The path starts or ends at v (or a neighbouring crossing sits on it): the general
         // handler drops the crossings around an endpoint at v; anything else stays pinned.
+        // Any change there (a collapse, or a lift or reroute of the handler) shifts or moves
+        // crossings: the round starts again; a pinned run is passed over.
         int rs = i, rl = 1;
-        if (handle_vertex(i, v, false, &rs, &rl) == Action::Collapsed) {
+        const Action a = handle_vertex(i, v, false, &rs, &rl);
+        if (a != Action::None && a != Action::Pinned) {
           collapsed = true;
           break;
         }
@@ -1151,7 +1154,7 @@ void Refiner::funnel_rounds() {
       }
       i = j + 1;
     }
-    if (collapsed) {
+    if (collapsed) {  // the path changed under the scan: straighten it all again
       full = true;
       continue;
     }
