@@ -607,10 +607,10 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
     GeodesicOptions go = gopt;
     if (go.max_reroutes == 0) go.max_reroutes = 1000 + 20 * init.num_crossings();
     GeodesicResult r = refine_path(m, init, metric, go);
-    // The funnel start has been seen to return a path with NaN crossings while reporting
-    // convergence (the shipped vessel at N = 0.5, one pass in 76): such a path would put NaN
-    // points into every output. Refine that pass from the level set instead, and if that fails
-    // too keep the level set and count the pass as not converged.
+    // A guard: a path with non-finite crossings would put NaN points into every output. The
+    // funnel rounds once produced one (a broken strip spliced with stale indices, the shipped
+    // vessel at N = 0.5, fixed in the core); should it happen again the pass is refined from the
+    // level set, and if that fails too the level set is kept and counted as not converged.
     const std::string which =
         "circuit " + std::to_string(p->circuit) + (p->hand > 0 ? " out pass" : " return pass");
     if (!finite_path(m, r.path) && go.funnel_start) {
