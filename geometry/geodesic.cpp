@@ -1132,11 +1132,12 @@ void Refiner::funnel_rounds() {
       if ((P - pv).norm() <= eps_d || (Q - pv).norm() <= eps_d) {
         // The path starts or ends at v (or a neighbouring crossing sits on it): the general
         // handler drops the crossings around an endpoint at v; anything else stays pinned.
-        // Any change there (a collapse, or a lift or reroute of the handler) shifts or moves
-        // crossings: the round starts again; a pinned run is passed over.
+        // A change of the strip there (a collapse or a reroute) shifts the indices: the round
+        // starts again. A pinned run is passed over, and so is a lift (the next straightening
+        // places those crossings anyway; restarting on it made rounds spin).
         int rs = i, rl = 1;
         const Action a = handle_vertex(i, v, false, &rs, &rl);
-        if (a != Action::None && a != Action::Pinned) {
+        if (a == Action::Collapsed || a == Action::Rerouted || a == Action::Rotated) {
           collapsed = true;
           break;
         }
