@@ -13,17 +13,19 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 
-// Arc-length interpolation along a polyline (cumulative lengths `cum`), clamped to its ends.
-Vec3 at_length(const std::vector<FibrePoint>& p, const std::vector<double>& cum, double s) {
+// Arc-length interpolation of a point attribute (position, normal) along a polyline (cumulative
+// lengths `cum`), clamped to its ends.
+Vec3 at_length(const std::vector<FibrePoint>& p, const std::vector<double>& cum, double s,
+               Vec3 FibrePoint::*field = &FibrePoint::position) {
   const std::size_t n = p.size();
-  if (s <= cum.front()) return p.front().position;
-  if (s >= cum.back()) return p.back().position;
+  if (s <= cum.front()) return p.front().*field;
+  if (s >= cum.back()) return p.back().*field;
   const std::size_t i =
       static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), s) - cum.begin());
   const std::size_t a = std::min(i, n - 1) - 1, b = a + 1;
   const double d = cum[b] - cum[a];
   const double u = d > 0.0 ? (s - cum[a]) / d : 0.0;
-  return (1.0 - u) * p[a].position + u * p[b].position;
+  return (1.0 - u) * (p[a].*field) + u * (p[b].*field);
 }
 
 Vec3 chord_direction(const std::vector<FibrePoint>& p, const std::vector<double>& cum, double s,
@@ -114,16 +116,33 @@ void annotate_fibre_points(std::vector<FibrePoint>* points, const SpindleAxis& a
     const Vec3 t = tangent_at(cum[i], q.normal);
     if (t.norm() > 0.0) q.tangent = t;
     q.winding_angle = winding_angle_deg(axis, q.normal, q.tangent);
-    const double lo = std::max(0.0, cum[i] - half), hi = std::min(cum.back(), cum[i] + half);
-    if (hi - lo <= 0.0) {
+    // The window keeps its full width at the ends of the polyline (shifted inwards, one-sided):
+    // a window cut to half there held too little bend, and k_g / k_n of two tiny values spiked.
+    const double lo = std::clamp(cum[i] - half, 0.0, cum.back() - w), hi = lo + w;
+    // Chord tangents (unprojected) at both ends of the window, over the distance between the
+    // chords' midpoints (chords are cut at the polyline's ends).
+    auto chord_mid = [&](double x) {
+      return 0.5 * (std::max(0.0, x - half) + std::min(cum.back(), x + half));
+    };
+    const double span = chord_mid(hi) - chord_mid(lo);
+    if (!(span > 0.0)) {
       q.k_n = q.k_g = q.slippage = 0.0;
       continue;
     }
-    // Chord tangents (unprojected) at both ends of the window: their difference over the span.
     const Vec3 ta = chord_direction(p, cum, lo, half), tb = chord_direction(p, cum, hi, half);
-    const Vec3 dt = (tb - ta) / (hi - lo);
-    q.k_n = -dt.dot(q.normal);  // > 0 where the fibre bends towards the mandrel (convex)
-    q.k_g = dt.dot(q.normal.cross(q.tangent));
+    const Vec3 dt = (tb - ta) / span;
+    // Split into normal and geodesic parts in the frame where the window is centred (the
+    // point's own frame except in a shifted end window).
+    Vec3 nc = q.normal, tc = q.tangent;
+    const double centre = 0.5 * (chord_mid(lo) + chord_mid(hi));
+    if (std::fabs(centre - cum[i]) > 1e-9 * w) {
+      nc = at_length(p, cum, centre, &FibrePoint::normal);
+      if (nc.norm() > 0.0) nc.normalize();
+      const Vec3 t = tangent_at(centre, nc);
+      if (t.norm() > 0.0) tc = t;
+    }
+    q.k_n = -dt.dot(nc);  // > 0 where the fibre bends towards the mandrel (convex)
+    q.k_g = dt.dot(nc.cross(tc));
     q.slippage = std::fabs(q.k_n) > 1e-12 ? std::fabs(q.k_g / q.k_n)
                                           : (std::fabs(q.k_g) > 1e-12 ? 1e12 : 0.0);
   }
