@@ -395,9 +395,26 @@ void Refiner::evaluate(const std::vector<double>& l, const std::vector<double>& 
 }
 
 double Refiner::value_only(const std::vector<double>& l, const std::vector<double>& z) {
-  Eval ev;
-  evaluate(l, z, false, &ev);
-  return ev.value;
+  // The objective of evaluate() without derivatives (the line search's trial points).
+  ++evaluations_;
+  double value = 0.0;
+  const int ns = num_segments();
+  for (int j = 0; j < ns; ++j) {
+    int L, R, f;
+    segment(j, &L, &R, &f);
+    value += metric_.cost(f, endpoint(R, l) - endpoint(L, l));
+  }
+  if (penalty_on_ && con_) {
+    std::vector<double> drdz(m_);
+    Vec3 drdp;
+    const int nres = path_.closed ? k_ : k_ + 2;
+    for (int q = 0; q < nres; ++q) {
+      const Vec3 p = path_.closed || q < k_ ? point(q, l) : (q == k_ ? ps_ : pt_);
+      const double r = con_->evaluate(p, z.data(), &drdp, m_ > 0 ? drdz.data() : nullptr);
+      value += mu_[q] * r + 0.5 * M_ * r * r;
+    }
+  }
+  return value;
 }
 
 double Refiner::max_residual() const {
