@@ -1161,12 +1161,16 @@ void Refiner::funnel_rounds() {
         i = j + 1;
         continue;
       }
+      if (mesh_.is_boundary_vertex(v)) {  // no other side to reroute to
+        i = j + 1;
+        continue;
+      }
       std::vector<int> run(j - i + 1);
       for (int q = i; q <= j; ++q) run[q - i] = q;
       double theta = 0.0;
       fan_lift(run, v, P, Q, false, &theta);
       const double other = cone_angle(v) - theta;
-      if (theta >= M_PI && !mesh_.is_boundary_vertex(v) && other < M_PI - 1e-12) {
+      if (theta >= M_PI && other < M_PI - 1e-12) {
         std::vector<int> hs;
         if (other_side_fan(i, j, v, &hs)) splices.push_back({i, j, std::move(hs)});
       }
