@@ -678,7 +678,17 @@ void Refiner::replace_run(int i, int j, const std::vector<int>& hs, const std::v
     touched_.erase(touched_.begin() + i, touched_.begin() + j + 1);
     touched_.insert(touched_.begin() + i, hs.size(), 1);
   }
-  rebuild();
+  // The strip data of the replaced run only (rebuild() would redo all k crossings).
+  a_.erase(a_.begin() + i, a_.begin() + j + 1);
+  d_.erase(d_.begin() + i, d_.begin() + j + 1);
+  std::vector<Vec3> na(hs.size()), nd(hs.size());
+  for (std::size_t q = 0; q < hs.size(); ++q) {
+    na[q] = mesh_.position(mesh_.from(hs[q]));
+    nd[q] = mesh_.position(mesh_.to(hs[q])) - na[q];
+  }
+  a_.insert(a_.begin() + i, na.begin(), na.end());
+  d_.insert(d_.begin() + i, nd.begin(), nd.end());
+  k_ = path_.num_crossings();
 }
 
 Refiner::Action Refiner::handle_vertex(int idx, int v, bool pushed_out, int* run_start,
