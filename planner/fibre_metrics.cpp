@@ -398,8 +398,9 @@ PlanMetrics compute_plan_metrics(const Mesh& m, const HelixPlan& plan,
   for (const std::string& w : plan.summary.warnings) pm.warnings.push_back(w);
   if (pm.max_slippage > options.mu) {
     pm.warnings.push_back("slippage: max |k_g/k_n| = " + fmt(pm.max_slippage) + " exceeds mu = " +
-                          fmt(options.mu) + " on " + fmt(100.0 * pm.slip_fraction, 1) +
-                          "% of the pass length: the fibre may slip there (lower beta)");
+                          fmt(options.mu) + " on " + fmt(slip_len, 1) + " mm (" +
+                          fmt(100.0 * pm.slip_fraction, 2) +
+                          "% of the pass length): the fibre may slip there (lower beta)");
   }
   if (pm.bridging_length > 0.0) {
     pm.warnings.push_back("bridging: " + fmt(pm.bridging_length, 1) +
