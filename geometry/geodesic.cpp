@@ -188,15 +188,23 @@ class Refiner {
     a_.resize(k_);
     d_.resize(k_);
     if (static_cast<int>(fixed_.size()) != k_) fixed_.assign(k_, 0);
-    for (int i = 0; i < k_; ++i) {
+    fill_strip(0, k_);
+    const int nres = path_.closed ? k_ : k_ + 2;
+    if (static_cast<int>(mu_.size()) != nres) mu_.assign(nres, 0.0);
+  }
+  // a_ and d_ (crossing i = a_[i] + l d_[i]) of crossings lo..hi-1 from their halfedges.
+  void fill_strip(int lo, int hi) {
+    for (int i = lo; i < hi; ++i) {
       const int h = path_.halfedges[i];
       a_[i] = mesh_.position(mesh_.from(h));
       d_[i] = mesh_.position(mesh_.to(h)) - a_[i];
     }
-    const int nres = path_.closed ? k_ : k_ + 2;
-    if (static_cast<int>(mu_.size()) != nres) mu_.assign(nres, 0.0);
   }
   Vec3 point(int i, const std::vector<double>& l) const { return a_[i] + l[i] * d_[i]; }
+  // Constraint residual point q: the crossings, then (open paths) the start and the end.
+  Vec3 constraint_point(int q, const std::vector<double>& l) const {
+    return path_.closed || q < k_ ? point(q, l) : (q == k_ ? ps_ : pt_);
+  }
   int num_segments() const { return path_.closed ? k_ : k_ + 1; }
   // Segment j: endpoints as variable indices (-1: start, -2: end) and its face.
   void segment(int j, int* left, int* right, int* face) const {
@@ -254,7 +262,8 @@ class Refiner {
   // Metric-exact vertex test (density, anisotropic; no penalty): the cheapest passage from the
   // crossing before the run to the one after it, on the current side of v and on the other side,
   // each the global optimum of its fan (a convex problem), against the current passage.
-  Action metric_vertex_test(int i, int j, int v, int before, int after);
+  Action metric_vertex_test(int i, int j, int v, int before, int after, const Vec3& P,
+                            const Vec3& Q);
   // A fan sub-problem: from crossing `before` (or the start) over the crossings hs (around v) to
   // crossing `after` (or the end), solved from *ls; returns the optimum's cost, *ls the optimum.
   double solve_fan(int before, int after, const std::vector<int>& hs, int v,
@@ -363,18 +372,8 @@ void Refiner::evaluate(const std::vector<double>& l, const std::vector<double>& 
     std::vector<double> drdz(m_);
     const int nres = path_.closed ? k_ : k_ + 2;
     for (int q = 0; q < nres; ++q) {
-      int var;
-      Vec3 p;
-      if (path_.closed) {
-        var = q;
-        p = point(q, l);
-      } else if (q < k_) {
-        var = q;
-        p = point(q, l);
-      } else {
-        var = -1;
-        p = q == k_ ? ps_ : pt_;
-      }
+      const int var = path_.closed || q < k_ ? q : -1;
+      const Vec3 p = constraint_point(q, l);
       Vec3 drdp;
       const double r = con_->evaluate(p, z.data(), &drdp, m_ > 0 ? drdz.data() : nullptr);
       ev->value += mu_[q] * r + 0.5 * M_ * r * r;
@@ -409,7 +408,7 @@ double Refiner::value_only(const std::vector<double>& l, const std::vector<doubl
     Vec3 drdp;
     const int nres = path_.closed ? k_ : k_ + 2;
     for (int q = 0; q < nres; ++q) {
-      const Vec3 p = path_.closed || q < k_ ? point(q, l) : (q == k_ ? ps_ : pt_);
+      const Vec3 p = constraint_point(q, l);
       const double r = con_->evaluate(p, z.data(), &drdp, m_ > 0 ? drdz.data() : nullptr);
       value += mu_[q] * r + 0.5 * M_ * r * r;
     }
@@ -424,7 +423,7 @@ double Refiner::max_residual() const {
   Vec3 drdp;
   const int nres = path_.closed ? k_ : k_ + 2;
   for (int q = 0; q < nres; ++q) {
-    const Vec3 p = q < k_ ? point(q, lambda_) : (q == k_ ? ps_ : pt_);
+    const Vec3 p = constraint_point(q, lambda_);
     worst = std::max(worst, std::fabs(con_->evaluate(p, z_.data(), &drdp,
                                                      m_ > 0 ? drdz.data() : nullptr)));
   }
@@ -681,14 +680,10 @@ void Refiner::replace_run(int i, int j, const std::vector<int>& hs, const std::v
   // The strip data of the replaced run only (rebuild() would redo all k crossings).
   a_.erase(a_.begin() + i, a_.begin() + j + 1);
   d_.erase(d_.begin() + i, d_.begin() + j + 1);
-  std::vector<Vec3> na(hs.size()), nd(hs.size());
-  for (std::size_t q = 0; q < hs.size(); ++q) {
-    na[q] = mesh_.position(mesh_.from(hs[q]));
-    nd[q] = mesh_.position(mesh_.to(hs[q])) - na[q];
-  }
-  a_.insert(a_.begin() + i, na.begin(), na.end());
-  d_.insert(d_.begin() + i, nd.begin(), nd.end());
+  a_.insert(a_.begin() + i, hs.size(), Vec3::Zero());
+  d_.insert(d_.begin() + i, hs.size(), Vec3::Zero());
   k_ = path_.num_crossings();
+  fill_strip(i, i + static_cast<int>(hs.size()));
 }
 
 Refiner::Action Refiner::handle_vertex(int idx, int v, bool pushed_out, int* run_start,
@@ -747,7 +742,7 @@ Refiner::Action Refiner::handle_vertex(int idx, int v, bool pushed_out, int* run
       rotate_closed(i);  // the run wraps around the arrays' end: handled on the next sweep
       return Action::Rotated;
     }
-    return metric_vertex_test(i, j, v, before, after);
+    return metric_vertex_test(i, j, v, before, after, P, Q);
   }
 
   constexpr double kAngleTol = 1e-12;
@@ -857,7 +852,8 @@ double Refiner::solve_fan(int before, int after, const std::vector<int>& hs, int
   return cost;
 }
 
-Refiner::Action Refiner::metric_vertex_test(int i, int j, int v, int before, int after) {
+Refiner::Action Refiner::metric_vertex_test(int i, int j, int v, int before, int after,
+                                            const Vec3& P, const Vec3& Q) {
   // Each side's fan problem is convex (a sum of metric norms of affine maps of the lambdas, in a
   // box) and its closure contains the passage through v. Each side is solved kept a tiny gap off
   // v (smooth), and taken when it is lower than the passage through v by more than round-off:
@@ -869,8 +865,6 @@ Refiner::Action Refiner::metric_vertex_test(int i, int j, int v, int before, int
   int& changes = lifts_at_[v];
   if (changes >= kMaxChanges) return Action::Pinned;
   const int n = j - i + 1;
-  const Vec3 P = before >= 0 ? point(before, lambda_) : ps_;
-  const Vec3 Q = after < k_ ? point(after, lambda_) : pt_;
   // A run found pinned stays pinned while its ends and its crossings are unchanged (the sweeps
   // between two solver steps test it again).
   double signature = 0.0;
@@ -1142,13 +1136,11 @@ void Refiner::funnel_rounds() {
     splices.clear();
     bool collapsed = false;
     for (int i = 0; i < k_;) {
-      const double l = lambda_[i];
-      if (l > 0.0 && l < 1.0) {
+      const int v = vertex_at(i);
+      if (v < 0) {
         ++i;
         continue;
       }
-      const int h = path_.halfedges[i];
-      const int v = l <= 0.0 ? mesh_.from(h) : mesh_.to(h);
       int j = i;
       while (j + 1 < k_ && (mesh_.from(path_.halfedges[j + 1]) == v ||
                             mesh_.to(path_.halfedges[j + 1]) == v))
@@ -1368,7 +1360,7 @@ GeodesicResult Refiner::run() {
       std::vector<double> drdz(m_);
       Vec3 drdp;
       for (int q = 0; q < npts; ++q) {
-        const Vec3 p = q < k_ ? point(q, lambda_) : (q == k_ ? ps_ : pt_);
+        const Vec3 p = constraint_point(q, lambda_);
         const double r = con_->evaluate(p, z_.data(), &drdp, m_ > 0 ? drdz.data() : nullptr);
         h2 += r * r;
       }
@@ -1391,7 +1383,7 @@ GeodesicResult Refiner::run() {
       std::vector<double> drdz(m_);
       Vec3 drdp;
       for (int q = 0; q < npts && q < static_cast<int>(mu_.size()); ++q) {
-        const Vec3 p = q < k_ ? point(q, lambda_) : (q == k_ ? ps_ : pt_);
+        const Vec3 p = constraint_point(q, lambda_);
         mu_[q] += M_ * con_->evaluate(p, z_.data(), &drdp, m_ > 0 ? drdz.data() : nullptr);
       }
       if (res > 0.25 * last) M_ *= 10.0;
