@@ -270,6 +270,12 @@ class Refiner {
                    std::vector<double>* ls);
 
   bool inner_solve(GeodesicSummary* summary, Clock::time_point t0);
+  // Drops what only makes an open strip longer: a crossing followed by its own twin (a fold:
+  // the strip enters a face and leaves it through the same edge), and crossings of edges that
+  // hold the start or the end point (the strip turning around its own endpoint). Such strips
+  // come from edge paths that start along an edge; the funnel and the vertex tests would pin
+  // the path at the fold.
+  void simplify_strip();
   // Exact Euclidean shortest path inside the current strip (funnel algorithm on the unfolded
   // strip), then reroutes around every vertex the path wraps with an angle < pi on the other
   // side; repeated until no reroute happens. Open paths only.
@@ -314,6 +320,15 @@ class Refiner {
   std::unordered_map<int, PinnedRun> pinned_runs_;  // metric_vertex_test's pinned decisions
   // Cone angles of the vertices met (a vertex is tested in many funnel rounds and sweeps).
   std::unordered_map<int, double> cone_angles_;
+  // funnel_straighten's buffers (it runs every funnel round).
+  std::vector<Vec2> unfold_L_, unfold_R_, corner_;
+  std::vector<int> unfold_Lv_, unfold_Rv_, corner_portal_, corner_vertex_;
+  // funnel_rounds' splice buffers (swapped with the path's arrays).
+  std::vector<int> splice_h_;
+  std::vector<double> splice_l_;
+  std::vector<Vec3> splice_a_, splice_d_;
+  std::vector<int> scan_run_;
+  std::vector<double> fan_phi_;  // fan_lift's spoke angles
   double cone_angle(int v) {
     auto [it, inserted] = cone_angles_.try_emplace(v, 0.0);
     if (inserted) it->second = mesh_.cone_angle(v);
@@ -600,7 +615,8 @@ bool Refiner::fan_lift(const std::vector<int>& run, int v, const Vec3& P, const 
   const Vec3 dP = P - pv, dQ = Q - pv;
   const double rP = dP.norm(), rQ = dQ.norm();
   const int n = static_cast<int>(run.size());
-  std::vector<double> phi(n);
+  std::vector<double>& phi = fan_phi_;
+  phi.resize(n);
   auto spoke = [&](int m) {
     const int h = path_.halfedges[m];
     return mesh_.position(mesh_.from(h) == v ? mesh_.to(h) : mesh_.from(h)) - pv;
@@ -976,11 +992,19 @@ bool Refiner::process_vertex_events(const Eval& ev) {
 void Refiner::funnel_straighten(int lo, int hi, int start_vertex, int end_vertex) {
   if (path_.closed || lo >= hi) return;
   const int n = hi - lo;  // portals lo..hi-1
-  // Unfold the window's strip: the 2D corners of the current face, face by face.
-  std::vector<Vec2> L(n + 1), R(n + 1);
-  std::vector<int> Lv(n + 1, -1), Rv(n + 1, -1);
+  // Unfold the window's strip: portal t runs from R[t] (from(h)) to L[t] (to(h)); the face after
+  // it is placed from the portal by place_across (member buffers: this runs every round).
+  std::vector<Vec2>& L = unfold_L_;
+  std::vector<Vec2>& R = unfold_R_;
+  std::vector<int>& Lv = unfold_Lv_;
+  std::vector<int>& Rv = unfold_Rv_;
+  L.resize(n + 1);
+  R.resize(n + 1);
+  Lv.resize(n + 1);
+  Rv.resize(n + 1);
   const int h0 = path_.halfedges[lo];
   const int f0 = mesh_.face(h0);
+  // The current face's corners and their placement (f0 first, then the face after each portal).
   Vec2 pos[3];
   int ids[3];
   {
@@ -1004,22 +1028,36 @@ void Refiner::funnel_straighten(int lo, int hi, int start_vertex, int end_vertex
     const Vec3 bs = barycentric_in_face(mesh_, f0, path_.start);
     for (int q = 0; q < 3; ++q) s2 += bs[q] * local(mesh_.triangle(f0)[q]);
   }
+  // Portal 0's corners come from f0's placement; each next portal is an edge of the face after
+  // the current one (b -> a -> d, d placed across the portal a -> b): either a -> d or d -> b.
+  Rv[0] = mesh_.from(h0);
+  Lv[0] = mesh_.to(h0);
+  R[0] = local(Rv[0]);
+  L[0] = local(Lv[0]);
   for (int t = 0; t < n; ++t) {
     const int h = path_.halfedges[lo + t];
-    // Leaving face(h) through h: to(h) is on the left of the travel direction.
-    L[t] = local(mesh_.to(h));
-    R[t] = local(mesh_.from(h));
-    Lv[t] = mesh_.to(h);
-    Rv[t] = mesh_.from(h);
+    const int a = Rv[t], b = Lv[t];  // from(h), to(h): to(h) is on the left of the travel
     const int tw = mesh_.twin(h);
     const int d = mesh_.to(mesh_.next(tw));
-    const Vec3& D = mesh_.position(d);
-    // The next face (CCW: to(h) -> from(h) -> d) has d on the right of from(h) -> to(h).
-    const Vec2 pd = place_third(R[t], L[t], (D - mesh_.position(mesh_.from(h))).norm(),
-                                (D - mesh_.position(mesh_.to(h))).norm(), false);
-    ids[0] = mesh_.from(h); pos[0] = R[t];
-    ids[1] = mesh_.to(h);   pos[1] = L[t];
-    ids[2] = d;             pos[2] = pd;
+    const Vec2 pd =
+        place_across(mesh_.position(a), mesh_.position(b), mesh_.position(d), R[t], L[t]);
+    if (t + 1 < n) {
+      const int hn = path_.halfedges[lo + t + 1];
+      if (hn == mesh_.next(tw)) {  // a -> d
+        Rv[t + 1] = a; R[t + 1] = R[t];
+        Lv[t + 1] = d; L[t + 1] = pd;
+      } else if (hn == mesh_.prev(tw)) {  // d -> b
+        Rv[t + 1] = d; R[t + 1] = pd;
+        Lv[t + 1] = b; L[t + 1] = L[t];
+      } else {  // back through the same edge (b -> a): a strip that folds back
+        Rv[t + 1] = b; R[t + 1] = L[t];
+        Lv[t + 1] = a; L[t + 1] = R[t];
+      }
+    } else {
+      ids[0] = a; pos[0] = R[t];
+      ids[1] = b; pos[1] = L[t];
+      ids[2] = d; pos[2] = pd;
+    }
   }
   Vec2 t2 = Vec2::Zero();
   if (end_vertex >= 0) {
@@ -1030,11 +1068,15 @@ void Refiner::funnel_straighten(int lo, int hi, int start_vertex, int end_vertex
     for (int q = 0; q < 3; ++q) t2 += bt[q] * local(mesh_.triangle(fk)[q]);
   }
   L[n] = R[n] = t2;
+  Lv[n] = Rv[n] = -1;
 
   // Simple stupid funnel (Mononen): corners of the shortest path with their portal indices.
-  std::vector<Vec2> corner = {s2};
-  std::vector<int> corner_portal = {-1};
-  std::vector<int> corner_vertex = {-1};
+  std::vector<Vec2>& corner = corner_;
+  std::vector<int>& corner_portal = corner_portal_;
+  std::vector<int>& corner_vertex = corner_vertex_;
+  corner.assign(1, s2);
+  corner_portal.assign(1, -1);
+  corner_vertex.assign(1, -1);
   Vec2 apex = s2, left = L[0], right = R[0];
   int apex_i = -1, left_i = 0, right_i = 0;
   const double eps = 1e-14 * scale_ * scale_;
@@ -1120,6 +1162,7 @@ void Refiner::funnel_rounds() {
   };
   std::vector<Splice> splices;
   std::vector<Window> windows;
+  std::vector<std::pair<int, int>> ranges;  // crossings first..last to test in a round
   const double eps_d = 1e-12 * scale_;
   auto vertex_at = [&](int i) {
     const double l = lambda_[i];
@@ -1135,7 +1178,29 @@ void Refiner::funnel_rounds() {
     }
     splices.clear();
     bool collapsed = false;
-    for (int i = 0; i < k_;) {
+    // What to test: the whole path after a full straightening; after windows only the windows
+    // with their anchor runs (elsewhere the path and its vertex passages are as they were when
+    // the last scan found nothing to reroute there).
+    ranges.clear();
+    if (full) {
+      ranges.emplace_back(0, k_ - 1);
+    } else {
+      for (const Window& w : windows) {
+        int first = w.lo;
+        if (w.lo > 0 && w.start_vertex >= 0) {
+          first = w.lo - 1;
+          while (first > 0 && vertex_at(first - 1) == w.start_vertex) --first;
+        }
+        ranges.emplace_back(first, std::min(w.hi, k_ - 1));
+      }
+    }
+    // One pass over the ranges in order (they may share an anchor run: each run is tested once).
+    std::size_t r = 0;
+    for (int i = ranges.empty() ? 0 : ranges[0].first; r < ranges.size();) {
+      if (i > ranges[r].second) {
+        if (++r < ranges.size()) i = std::max(i, ranges[r].first);
+        continue;
+      }
       const int v = vertex_at(i);
       if (v < 0) {
         ++i;
@@ -1167,7 +1232,8 @@ void Refiner::funnel_rounds() {
         i = j + 1;
         continue;
       }
-      std::vector<int> run(j - i + 1);
+      std::vector<int>& run = scan_run_;
+      run.resize(j - i + 1);
       for (int q = i; q <= j; ++q) run[q - i] = q;
       double theta = 0.0;
       fan_lift(run, v, P, Q, false, &theta);
@@ -1187,37 +1253,60 @@ void Refiner::funnel_rounds() {
       full = true;
       continue;
     }
-    // Splice every reroute in one pass, keeping the new index range of each rerouted run.
-    std::vector<int> nh;
-    std::vector<double> nl;
+    // Splice every reroute in one pass, keeping the new index range of each rerouted run; the
+    // strip data (a_, d_) of the kept crossings move with them.
+    std::vector<int>& nh = splice_h_;
+    std::vector<double>& nl = splice_l_;
+    std::vector<Vec3>& na = splice_a_;
+    std::vector<Vec3>& nd = splice_d_;
+    nh.clear();
+    nl.clear();
+    na.clear();
+    nd.clear();
     std::vector<std::pair<int, int>> spliced;
-    nh.reserve(k_ + 16);
-    nl.reserve(k_ + 16);
+    // A crossing followed by its own twin (the strip enters a face and leaves it through the
+    // same edge) is a fold: both are dropped (the funnel would only pin the path to a corner).
+    auto push = [&](int h, double l, const Vec3& a, const Vec3& d) {
+      if (!nh.empty() && nh.back() == mesh_.twin(h)) {
+        nh.pop_back();
+        nl.pop_back();
+        na.pop_back();
+        nd.pop_back();
+        return;
+      }
+      nh.push_back(h);
+      nl.push_back(l);
+      na.push_back(a);
+      nd.push_back(d);
+    };
+    auto keep = [&](int q) { push(path_.halfedges[q], lambda_[q], a_[q], d_[q]); };
+    const int first_face = mesh_.face(path_.halfedges[0]);
     int next = 0;
     for (const Splice& s : splices) {
-      for (int q = next; q < s.i; ++q) {
-        nh.push_back(path_.halfedges[q]);
-        nl.push_back(lambda_[q]);
-      }
+      for (int q = next; q < s.i; ++q) keep(q);
       const int first = static_cast<int>(nh.size());
       for (int c : s.hs) {
-        nh.push_back(c);
-        nl.push_back(0.5);
+        const Vec3& a = mesh_.position(mesh_.from(c));
+        push(c, 0.5, a, mesh_.position(mesh_.to(c)) - a);
       }
       spliced.emplace_back(first, static_cast<int>(nh.size()) - 1);
       next = s.j + 1;
       ++reroutes_;
     }
-    for (int q = next; q < k_; ++q) {
-      nh.push_back(path_.halfedges[q]);
-      nl.push_back(lambda_[q]);
+    for (int q = next; q < k_; ++q) keep(q);
+    const int size = static_cast<int>(nh.size());
+    for (auto& [a, b] : spliced) {  // folds may have dropped crossings of a spliced run
+      a = std::min(a, size);
+      b = std::min(b, size - 1);
     }
-    path_.halfedges = std::move(nh);
-    path_.lambdas = std::move(nl);
-    mu_.clear();
-    fixed_.clear();
-    rebuild();
-    if (k_ > 0) path_.start_face = mesh_.face(path_.halfedges[0]);
+    path_.halfedges.swap(nh);
+    lambda_.swap(nl);
+    a_.swap(na);
+    d_.swap(nd);
+    k_ = static_cast<int>(path_.halfedges.size());
+    fixed_.assign(k_, 0);
+    mu_.assign(k_ + 2, 0.0);  // open paths only here: the crossings and the two endpoints
+    path_.start_face = k_ > 0 ? mesh_.face(path_.halfedges[0]) : first_face;
     if (reroutes_ > max_reroutes_) break;
     // Windows: from the last crossing of the anchor run before each rerouted run to the first
     // crossing of the anchor run after it (or the path's ends); overlapping windows merge.
@@ -1332,15 +1421,64 @@ bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
   return true;
 }
 
+void Refiner::simplify_strip() {
+  if (path_.closed || k_ == 0) return;
+  auto holds = [&](const SurfacePoint& p, int h) {
+    switch (p.kind) {
+      case SurfacePoint::Kind::Vertex:
+        return mesh_.from(h) == p.element || mesh_.to(h) == p.element;
+      case SurfacePoint::Kind::Edge:
+        return mesh_.edge(h) == mesh_.edge(p.element);
+      case SurfacePoint::Kind::Face:
+        return false;
+    }
+    return false;
+  };
+  std::vector<int> h;
+  std::vector<double> l;
+  h.reserve(k_);
+  l.reserve(k_);
+  for (int q = 0; q < k_; ++q) {
+    const int c = path_.halfedges[q];
+    if (!h.empty() && h.back() == mesh_.twin(c)) {
+      h.pop_back();
+      l.pop_back();
+      continue;
+    }
+    h.push_back(c);
+    l.push_back(lambda_[q]);
+  }
+  // Leading crossings on edges through the start: the path may start in the face after them.
+  int first = 0, last = static_cast<int>(h.size());
+  while (first < last && holds(path_.start, h[first])) ++first;
+  while (last > first && holds(path_.end, h[last - 1])) --last;
+  if (first == 0 && last == static_cast<int>(h.size()) && last == k_) return;
+  if (first == last) {
+    // Nothing left: one face must hold both endpoints. The face after the dropped leading
+    // crossings holds the start; it holds the end when every crossing went that way.
+    const int f = first > 0 ? mesh_.face(mesh_.twin(h[first - 1]))
+                            : (h.empty() ? path_.start_face : mesh_.face(h[0]));
+    path_.start_face = f;
+  } else {
+    path_.start_face = mesh_.face(h[first]);
+  }
+  path_.halfedges.assign(h.begin() + first, h.begin() + last);
+  lambda_.assign(l.begin() + first, l.begin() + last);
+  mu_.clear();
+  fixed_.clear();
+  rebuild();
+}
+
 GeodesicResult Refiner::run() {
   const auto t0 = Clock::now();
   GeodesicSummary summary;
-  max_reroutes_ = opt_.max_reroutes > 0 ? opt_.max_reroutes : 50 + 10 * k_;
   {
     Eval ev;
     evaluate(lambda_, z_, false, &ev);
     summary.initial_length = ev.length;
   }
+  simplify_strip();
+  max_reroutes_ = opt_.max_reroutes > 0 ? opt_.max_reroutes : 50 + 10 * k_;
   if (!con_) {
     // The funnel gives the exact Euclidean path; under a density or anisotropic metric it starts
     // the optimisation on a path through many vertices and ends longer (measured on cones and

@@ -22,4 +22,16 @@ inline Vec2 place_third(const Vec2& a, const Vec2& b, double la, double lb, bool
   return a + x * u + (left ? y : -y) * n;
 }
 
+/// Places d, the far corner of the triangle across edge a -> b (placed at a2 -> b2), on the
+/// right of a2 -> b2: d2 = a2 + u e2 + w perp(e2) with e2 = b2 - a2, u and w read off the 3D
+/// triangle (one square root, no lengths of the placed edge: cheaper than place_third).
+inline Vec2 place_across(const Vec3& a, const Vec3& b, const Vec3& d, const Vec2& a2,
+                         const Vec2& b2) {
+  const Vec3 e = b - a, f = d - a;
+  const double inv = 1.0 / e.squaredNorm();
+  const double u = e.dot(f) * inv, w = e.cross(f).norm() * inv;
+  const Vec2 e2 = b2 - a2;
+  return a2 + u * e2 + w * Vec2(e2.y(), -e2.x());
+}
+
 }  // namespace windplan

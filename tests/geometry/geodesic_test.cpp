@@ -70,6 +70,30 @@ TEST_P(GeodesicSolvers, PathAlongEdgesThroughFlatVertices) {
   EXPECT_NEAR(r.summary.final_length, 10.0 * std::sqrt(2.0), 1e-9);
 }
 
+TEST_P(GeodesicSolvers, StripThatFoldsBackAtItsStartVertex) {
+  // An edge path that starts along an edge gives a strip that crosses an edge through the start
+  // vertex and comes straight back (a fold). The refinement must still end on the straight
+  // segment, with the funnel's exact answer (no optimiser iterations).
+  const Mesh mesh(test::grid(20, 20));
+  const GeodesicContext ctx(mesh);
+  const int s = 3 * 21 + 2, t = 15 * 21 + 17;
+  SurfacePath path = initial_open_path(mesh, ctx.graph(), SurfacePoint::at_vertex(s),
+                                       SurfacePoint::at_vertex(t));
+  const int f0 = mesh.face(path.halfedges.front());
+  int h = mesh.face_halfedge(f0);
+  while (mesh.from(h) != s) h = mesh.next(h);
+  path.halfedges.insert(path.halfedges.begin(), {h, mesh.twin(h)});
+  path.lambdas.insert(path.lambdas.begin(), {0.5, 0.5});
+  std::string why;
+  ASSERT_TRUE(is_valid_path(mesh, path, &why)) << why;
+  const GeodesicResult r = refine_path(mesh, path, ctx.metric(), options());
+  EXPECT_TRUE(r.summary.converged()) << r.summary.brief_report();
+  EXPECT_EQ(r.summary.iterations, 0) << r.summary.brief_report();
+  const double exact = (mesh.position(t) - mesh.position(s)).norm();
+  EXPECT_NEAR(r.summary.final_length, exact, 1e-9 * exact);
+  EXPECT_TRUE(is_valid_path(mesh, r.path, &why)) << why;
+}
+
 // Newton only: the paper's projected L-BFGS approaches the vertex passages of the sweep too
 // slowly here and stalls before the refraction point (bench/README.md compares the two solvers).
 // Both solvers: the density's vertex decisions are the exact fan test, and crossings that
