@@ -284,6 +284,13 @@ class Refiner {
   // start_vertex, a vertex of face(h_lo)) to its end (or end_vertex, a vertex of the face after
   // h_{hi-1}): the funnel algorithm on the unfolded strip; sets those crossings' lambdas.
   void funnel_straighten(int lo, int hi, int start_vertex, int end_vertex);
+  // Closed loops (Euclidean): the shortest loop through the strip is straightened with the
+  // crossing at index 0 held (the funnel from it round the loop back to it, portals 1..k-1),
+  // then again with the crossing half way round held, and so on while the length drops; vertex
+  // events (lifts, reroutes, pins) are processed between the straightenings. The optimiser then
+  // starts on the exact loop of the final strip.
+  void loop_rounds();
+  bool loop_anchor_ = false;  // funnel_straighten: start and end at crossing 0 (closed loops)
 
   const Mesh& mesh_;
   const PathMetric& metric_;
@@ -990,7 +997,7 @@ bool Refiner::process_vertex_events(const Eval& ev) {
 }
 
 void Refiner::funnel_straighten(int lo, int hi, int start_vertex, int end_vertex) {
-  if (path_.closed || lo >= hi) return;
+  if ((path_.closed && !loop_anchor_) || lo >= hi) return;
   const int n = hi - lo;  // portals lo..hi-1
   // Unfold the window's strip: portal t runs from R[t] (from(h)) to L[t] (to(h)); the face after
   // it is placed from the portal by place_across (member buffers: this runs every round).
@@ -1021,9 +1028,16 @@ void Refiner::funnel_straighten(int lo, int hi, int start_vertex, int end_vertex
     return Vec2(NAN, NAN);
   };
   // Start point in f0's placement: the path's start, or a vertex of f0.
+  // A loop's anchor: crossing 0, on an edge of the faces before portal 1 and after k-1.
+  auto anchor = [&]() -> Vec2 {
+    const int ha = path_.halfedges[0];
+    return (1.0 - lambda_[0]) * local(mesh_.from(ha)) + lambda_[0] * local(mesh_.to(ha));
+  };
   Vec2 s2 = Vec2::Zero();
   if (start_vertex >= 0) {
     s2 = local(start_vertex);
+  } else if (loop_anchor_) {
+    s2 = anchor();
   } else {
     const Vec3 bs = barycentric_in_face(mesh_, f0, path_.start);
     for (int q = 0; q < 3; ++q) s2 += bs[q] * local(mesh_.triangle(f0)[q]);
@@ -1062,6 +1076,8 @@ void Refiner::funnel_straighten(int lo, int hi, int start_vertex, int end_vertex
   Vec2 t2 = Vec2::Zero();
   if (end_vertex >= 0) {
     t2 = local(end_vertex);
+  } else if (loop_anchor_) {
+    t2 = anchor();
   } else {
     const int fk = mesh_.face(mesh_.twin(path_.halfedges[hi - 1]));
     const Vec3 bt = barycentric_in_face(mesh_, fk, path_.end);
@@ -1329,6 +1345,50 @@ void Refiner::funnel_rounds() {
   std::fill(fixed_.begin(), fixed_.end(), 0);
 }
 
+void Refiner::loop_rounds() {
+  if (!path_.closed) return;
+  auto length = [&]() {
+    double len = 0.0;
+    for (int i = 0; i < k_; ++i) len += (point((i + 1) % k_, lambda_) - point(i, lambda_)).norm();
+    return len;
+  };
+  // Rotates the arrays so that crossing 0 is the one near it that lies farthest inside its edge
+  // (an anchor held at a vertex would keep the loop's corner there, and a vertex run across the
+  // arrays' seam would only be rotated by the vertex sweep).
+  auto pick_anchor = [&]() {
+    int best = 0;
+    auto inside = [&](int q) { return std::min(lambda_[q], 1.0 - lambda_[q]); };
+    for (int d = 0; d < std::max(1, k_ / 4); ++d)
+      for (int q : {d, (k_ - d) % k_})
+        if (inside(q) > inside(best) + 0.05) best = q;
+    rotate_closed(best);
+  };
+  double last = length();
+  for (int round = 0; round < 200 && k_ >= 3; ++round) {
+    // Two straightenings, held at crossing 0 and at the crossing half way round.
+    for (int half = 0; half < 2; ++half) {
+      pick_anchor();
+      loop_anchor_ = true;
+      funnel_straighten(1, k_, -1, -1);
+      loop_anchor_ = false;
+      rotate_closed(k_ / 2);
+    }
+    pick_anchor();
+    const int before = reroutes_ + lifts_ + events_;
+    for (int sweep = 0; sweep < 4; ++sweep) {  // a Rotated event returns before the sweep ends
+      Eval ev;
+      evaluate(lambda_, z_, false, &ev);
+      if (!process_vertex_events(ev)) break;
+    }
+    const bool changed = reroutes_ + lifts_ + events_ != before;
+    const double now = length();
+    if (!changed && last - now <= 1e-15 * std::max(1.0, last)) break;
+    last = now;
+    if (reroutes_ + lifts_ > max_reroutes_) break;
+  }
+  std::fill(fixed_.begin(), fixed_.end(), 0);
+}
+
 bool Refiner::inner_solve(GeodesicSummary* summary, Clock::time_point t0) {
   (void)t0;
   Eval ev;
@@ -1483,8 +1543,10 @@ GeodesicResult Refiner::run() {
     // The funnel gives the exact Euclidean path; under a density or anisotropic metric it starts
     // the optimisation on a path through many vertices and ends longer (measured on cones and
     // the vessel), so it is used for the Euclidean length only.
-    if (opt_.funnel_start && metric_.kind() == PathMetric::Kind::Euclidean)
+    if (opt_.funnel_start && metric_.kind() == PathMetric::Kind::Euclidean) {
       funnel_rounds();
+      loop_rounds();
+    }
     inner_solve(&summary, t0);
   } else {
     // Penalty weight: the initial penalty at a residual of one mean edge length per point is
