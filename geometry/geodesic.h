@@ -44,8 +44,9 @@ struct GeodesicOptions {
   /// Stop also when the relative objective change of an iteration is below this, twice in a row.
   double objective_tolerance = 1e-15;
   int max_iterations = 2000;
-  /// Open paths without constraints under the Euclidean metric: start from the exact shortest
-  /// path in the strip (funnel algorithm on the unfolded strip, alternated with reroutes).
+  /// Paths without constraints under the Euclidean metric: start from the exact shortest path
+  /// in the strip (funnel algorithm on the unfolded strip, alternated with reroutes; loops are
+  /// straightened with one crossing held at a time, alternating between two of them).
   bool funnel_start = true;
   /// geodesic_between: refine from two initial paths (shortest paths in the plain edge graph and
   /// in the graph with unfolded diagonals) and keep the shorter result. Local methods settle on
