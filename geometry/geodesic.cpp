@@ -1295,11 +1295,25 @@ void Refiner::funnel_rounds() {
       na.push_back(a);
       nd.push_back(d);
     };
-    auto keep = [&](int q) { push(path_.halfedges[q], lambda_[q], a_[q], d_[q]); };
+    // Kept crossings lo..hi-1: a fold can only form where the range meets what came before;
+    // the rest is copied as a block.
+    auto keep = [&](int lo, int hi) {
+      for (; lo < hi && !nh.empty() && nh.back() == mesh_.twin(path_.halfedges[lo]); ++lo) {
+        nh.pop_back();
+        nl.pop_back();
+        na.pop_back();
+        nd.pop_back();
+      }
+      if (lo >= hi) return;
+      nh.insert(nh.end(), path_.halfedges.begin() + lo, path_.halfedges.begin() + hi);
+      nl.insert(nl.end(), lambda_.begin() + lo, lambda_.begin() + hi);
+      na.insert(na.end(), a_.begin() + lo, a_.begin() + hi);
+      nd.insert(nd.end(), d_.begin() + lo, d_.begin() + hi);
+    };
     const int first_face = mesh_.face(path_.halfedges[0]);
     int next = 0;
     for (const Splice& s : splices) {
-      for (int q = next; q < s.i; ++q) keep(q);
+      keep(next, s.i);
       const int first = static_cast<int>(nh.size());
       for (int c : s.hs) {
         const Vec3& a = mesh_.position(mesh_.from(c));
@@ -1309,7 +1323,7 @@ void Refiner::funnel_rounds() {
       next = s.j + 1;
       ++reroutes_;
     }
-    for (int q = next; q < k_; ++q) keep(q);
+    keep(next, k_);
     const int size = static_cast<int>(nh.size());
     for (auto& [a, b] : spliced) {  // folds may have dropped crossings of a spliced run
       a = std::min(a, size);
