@@ -65,12 +65,73 @@ double cv_of(const std::vector<double>& v) {
   return std::sqrt(s / v.size()) / std::fabs(m);
 }
 
+// The curvature window w (mm) of the options: curvature_window, or the band width.
+double curvature_window(const WindingOptions& o) {
+  return o.curvature_window > 0.0 ? o.curvature_window : o.band_width;
+}
+
+// The points of a dwell arc (not yet annotated). The arc runs on the boundary (or across faces
+// on a station circle): each point takes the normal of the face of the segment that leaves it.
+std::vector<FibrePoint> turnaround_points(const Mesh& m, const LoopArc& arc) {
+  std::vector<FibrePoint> pts;
+  for (std::size_t i = 0; i < arc.points.size(); ++i) {
+    FibrePoint q;
+    q.position = arc.points[i];
+    const int f = arc.faces[std::min(i, arc.faces.size() - 1)];
+    q.normal = m.face_normal(f);
+    q.face = f;
+    pts.push_back(q);
+  }
+  return pts;
+}
+
+// Stability figures of runs of annotated fibre points (passes or dwell arcs). A segment counts
+// as above mu when the mean slippage of its two ends exceeds mu, as bridging when the mean k_n
+// of its ends is below -kBridgeTol.
+struct RunStability {
+  static constexpr double kBridgeTol = 1e-5;  // 1/mm
+  double length = 0.0, max_slippage = 0.0, slip_length = 0.0, bridging_length = 0.0;
+
+  void add(const std::vector<FibrePoint>& p, int first, int last, double mu) {
+    for (int j = first; j <= last; ++j) {
+      max_slippage = std::max(max_slippage, p[j].slippage);
+      if (j == first) continue;
+      const FibrePoint& a = p[j - 1];
+      const FibrePoint& b = p[j];
+      const double L = b.s - a.s;
+      length += L;
+      if (0.5 * (a.slippage + b.slippage) > mu) slip_length += L;
+      if (0.5 * (a.k_n + b.k_n) < -kBridgeTol) bridging_length += L;
+    }
+  }
+  double slip_fraction() const { return length > 0.0 ? slip_length / length : 0.0; }
+};
+
+void add_run(const RunStability& r, TurnaroundStability* t) {
+  t->length += r.length;
+  t->max_slippage = std::max(t->max_slippage, r.max_slippage);
+  t->slip_length += r.slip_length;
+  t->bridging_length += r.bridging_length;
+  t->slip_fraction = t->length > 0.0 ? t->slip_length / t->length : 0.0;
+}
+
 std::string fmt(double x, int prec = 3) {
   std::ostringstream o;
   o.setf(std::ios::fixed);
   o.precision(prec);
   o << x;
   return o.str();
+}
+
+// "the start station circle (winding.start_station = 50.000 mm)" / "the end loop (polar opening
+// or tube end)": where the dwell arcs of one end run, for warnings.
+std::string turnaround_place(int end, const TurnaroundStability& t) {
+  const std::string which = end == 0 ? "start" : "end";
+  if (t.at_station()) {
+    return "the " + which + " station circle (winding." + which + "_station = " + fmt(t.station) +
+           " mm)";
+  }
+  return "the " + which + " loop (polar opening or tube end)";
 }
 
 }  // namespace
@@ -172,8 +233,7 @@ std::vector<Circuit> build_circuits(const Mesh& m, const HelixPlan& plan,
                                     const std::vector<int>& face_map, const SpindleAxis& axis,
                                     const WindingOptions& options) {
   const std::vector<Vec3> vn = vertex_normals(m);
-  const double window =
-      options.curvature_window > 0.0 ? options.curvature_window : options.band_width;
+  const double window = curvature_window(options);
   const int K = plan.summary.circuits;
   std::vector<Circuit> circuits;
   for (int k = 0; k < K; ++k) {
@@ -192,23 +252,10 @@ std::vector<Circuit> build_circuits(const Mesh& m, const HelixPlan& plan,
       for (std::size_t i = skip; i < pts.size(); ++i) c.points.push_back(pts[i]);
       c.segments.push_back({kind, first, static_cast<int>(c.points.size()) - 1});
     };
-    auto arc_points = [&](const LoopArc& arc) {
-      std::vector<FibrePoint> pts;
-      for (std::size_t i = 0; i < arc.points.size(); ++i) {
-        FibrePoint q;
-        q.position = arc.points[i];
-        const int f = arc.faces[std::min(i, arc.faces.size() - 1)];
-        // The arc runs on the boundary: the normal of its face.
-        q.normal = m.face_normal(f);
-        q.face = f;
-        pts.push_back(q);
-      }
-      return pts;
-    };
     append(path_points(m, plan.passes[2 * k].path, vn), CircuitSegment::Kind::Pass);
-    append(arc_points(plan.turnarounds[2 * k].arc), CircuitSegment::Kind::Turnaround);
+    append(turnaround_points(m, plan.turnarounds[2 * k].arc), CircuitSegment::Kind::Turnaround);
     append(path_points(m, plan.passes[2 * k + 1].path, vn), CircuitSegment::Kind::Pass);
-    append(arc_points(plan.turnarounds[2 * k + 1].arc), CircuitSegment::Kind::Turnaround);
+    append(turnaround_points(m, plan.turnarounds[2 * k + 1].arc), CircuitSegment::Kind::Turnaround);
     if (!face_map.empty()) {
       for (FibrePoint& q : c.points) {
         if (q.face >= 0 && q.face < static_cast<int>(face_map.size())) q.face = face_map[q.face];
@@ -376,35 +423,62 @@ PlanMetrics compute_plan_metrics(const Mesh& m, const HelixPlan& plan,
   }
 
   // Stability on the passes.
-  double pass_len = 0.0, slip_len = 0.0;
-  constexpr double kBridgeTol = 1e-5;  // 1/mm: k_n below -tol counts as bridging
+  RunStability passes;
   for (const Circuit& c : circuits) {
     for (const CircuitSegment& seg : c.segments) {
       if (seg.kind != CircuitSegment::Kind::Pass) continue;
-      for (int j = seg.first; j <= seg.last; ++j) {
-        pm.max_slippage = std::max(pm.max_slippage, c.points[j].slippage);
-        if (j == seg.first) continue;
-        const FibrePoint& a = c.points[j - 1];
-        const FibrePoint& b = c.points[j];
-        const double L = b.s - a.s;
-        pass_len += L;
-        if (0.5 * (a.slippage + b.slippage) > options.mu) slip_len += L;
-        if (0.5 * (a.k_n + b.k_n) < -kBridgeTol) pm.bridging_length += L;
-      }
+      passes.add(c.points, seg.first, seg.last, options.mu);
     }
   }
-  pm.slip_fraction = pass_len > 0.0 ? slip_len / pass_len : 0.0;
+  pm.max_slippage = passes.max_slippage;
+  pm.slip_fraction = passes.slip_fraction();
+  pm.bridging_length = passes.bridging_length;
+
+  // Stability on the turnarounds: each dwell arc annotated on its own points and window, as
+  // build_circuits annotates it before joining it to its passes (whose annotation the circuit
+  // keeps at the two junction points), so the figures do not depend on the corner where a pass
+  // meets the arc (see the header comment).
+  const double window = curvature_window(options);
+  for (const Turnaround& t : plan.turnarounds) {
+    std::vector<FibrePoint> pts = turnaround_points(m, t.arc);
+    annotate_fibre_points(&pts, axis, window);
+    RunStability arc;
+    if (!pts.empty()) arc.add(pts, 0, static_cast<int>(pts.size()) - 1, options.mu);
+    TurnaroundStability& end = pm.turnaround_ends[t.loop == 0 ? 0 : 1];
+    end.station = t.station;
+    add_run(arc, &end);
+    add_run(arc, &pm.turnarounds);
+  }
 
   for (const std::string& w : plan.summary.warnings) pm.warnings.push_back(w);
   if (pm.max_slippage > options.mu) {
     pm.warnings.push_back("slippage: max |k_g/k_n| = " + fmt(pm.max_slippage) + " exceeds mu = " +
-                          fmt(options.mu) + " on " + fmt(slip_len, 1) + " mm (" +
+                          fmt(options.mu) + " on " + fmt(passes.slip_length, 1) + " mm (" +
                           fmt(100.0 * pm.slip_fraction, 2) +
                           "% of the pass length): the fibre may slip there (lower beta)");
   }
   if (pm.bridging_length > 0.0) {
     pm.warnings.push_back("bridging: " + fmt(pm.bridging_length, 1) +
                           " mm of pass with k_n <= 0: the fibre would bridge a concave region");
+  }
+  for (int e = 0; e < 2; ++e) {
+    const TurnaroundStability& t = pm.turnaround_ends[e];
+    if (t.max_slippage > options.mu) {
+      pm.warnings.push_back(
+          "turnaround slippage: max |k_g/k_n| = " + fmt(t.max_slippage) + " on the dwell arcs " +
+          "along " + turnaround_place(e, t) + " exceeds mu = " + fmt(options.mu) + " by " +
+          fmt(t.max_slippage - options.mu) + ", on " + fmt(t.slip_length, 1) + " mm (" +
+          fmt(100.0 * t.slip_fraction, 2) + "% of the turnaround length there): the fibre may " +
+          "slip off the turnaround (a circle about the axis is a geodesic only where the radius " +
+          "does not change along the axis" +
+          (t.at_station() ? ": move the station onto a cylindrical part)"
+                          : ": dwell on a station on a cylindrical part instead)"));
+    }
+    if (t.bridging_length > 0.0) {
+      pm.warnings.push_back("turnaround bridging: " + fmt(t.bridging_length, 1) +
+                            " mm of dwell arc along " + turnaround_place(e, t) +
+                            " with k_n <= 0: the fibre would bridge a concave region");
+    }
   }
   if (pm.cover_factor > 0.0 && pm.cover_factor < 1.0) {
     pm.warnings.push_back("coverage: " + std::to_string(K) + " circuits of band " +

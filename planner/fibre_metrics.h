@@ -19,8 +19,24 @@
 //
 // Coverage (shapes of revolution): at the largest radius R with winding angle a there, full
 // coverage needs ceil(2 pi R cos a / B) circuits; cover factor K B / (2 pi R cos a).
-// Stability is evaluated on the passes (the turnarounds are dwell arcs on the opening or the
-// station circle).
+//
+// Stability (slippage |k_g / k_n| against the friction coefficient mu; bridging where k_n <= 0)
+// is evaluated on the passes and, separately, on the turnarounds; the pass figures
+// (PlanMetrics::max_slippage, slip_fraction, bridging_length) do not include the turnarounds.
+// A turnaround is a dwell arc along the boundary loop (polar opening or tube end) or a station
+// circle; its figures (PlanMetrics::turnarounds, and per end turnaround_ends) come from the arc's
+// own geometry: its points with the normal of the face each segment lies in, annotated on their
+// own as build_circuits does before joining the arc to its passes. So the corner where a pass
+// meets the arc (the pass's winding angle against the arc's hoop direction) counts in neither
+// figure (in the circuit, i.e. fibre_path.csv, an arc's end points carry the adjoining passes'
+// values; the figures take the arc's own). Near an arc's
+// ends the window keeps its width, shifted inwards, as on the passes. An arc shorter than the
+// window is one window (w cut to the arc's length): every point gets the arc's mean bend, the
+// chords over its two halves split in the frame at its middle; on a parallel that bend points
+// at the axis, so |k_g / k_n| is unchanged (tan b on a cone of half-angle b, 0 on a cylinder)
+// while k_n and k_g are both low by sin(phi / 4) / (phi / 4) for an arc turning by phi. An arc of
+// a single segment has no bend (k_n = k_g = 0: slippage 0, no bridging). A segment counts above
+// mu (bridging) when the mean slippage (k_n) of its two ends is above mu (below -1e-5 / mm).
 #include <string>
 #include <vector>
 
@@ -86,7 +102,10 @@ std::vector<PassReport> pass_reports(const HelixPlan& plan, const std::vector<Ci
                                      const SpindleAxis& axis);
 
 /// Spacing, coverage/pattern and stability of a plan (fills every PlanMetrics field except
-/// timings), with warnings.
+/// timings and the geodesic turn limit), with warnings: slippage and bridging on the passes, and
+/// on the turnarounds per end ("turnaround slippage: ...", naming the start or end loop or
+/// station circle, the max |k_g/k_n|, by how much it exceeds mu, and the length above mu).
+/// The turnaround figures are computed from plan.turnarounds on `annulus` (see the header comment).
 PlanMetrics compute_plan_metrics(const Mesh& annulus, const HelixPlan& plan,
                                  const std::vector<Circuit>& circuits,
                                  const std::vector<double>& face_girth, const SpindleAxis& axis,

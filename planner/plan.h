@@ -5,6 +5,7 @@
 // Frames: all positions and directions are in the mandrel frame (the frame of the mesh).
 // The spindle axis is a line (origin, unit direction) in that frame; "axial position" of a point
 // p is (p - origin) . direction, its "radius" the distance from the axis line.
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -61,6 +62,21 @@ struct StageTiming {
   double seconds = 0.0;
 };
 
+/// Fibre stability on turnarounds (the dwell arcs; planner/fibre_metrics.h): of the arcs at one
+/// end of the passes, or of all of them. Kept apart from the passes' figures in PlanMetrics.
+struct TurnaroundStability {
+  double length = 0.0;           ///< mm: the dwell arcs summed over all circuits
+  double max_slippage = 0.0;     ///< max |k_g/k_n| over their points
+  double slip_length = 0.0;      ///< mm of dwell arc with |k_g/k_n| > mu
+  double slip_fraction = 0.0;    ///< slip_length / length
+  double bridging_length = 0.0;  ///< mm of dwell arc with k_n <= 0 (the fibre would bridge)
+  /// Per end only: the station circle the arcs run along (mm along the spindle axis); NaN: the
+  /// boundary loop (polar opening or tube end).
+  double station = std::nan("");
+
+  bool at_station() const { return std::isfinite(station); }
+};
+
 /// Figures of a plan, reported in the summary, report.json and report.md.
 struct PlanMetrics {
   double fibre_length = 0.0;       ///< mm, all circuits
@@ -76,6 +92,11 @@ struct PlanMetrics {
   double friction = 0.0;           ///< mu from the job
   double slip_fraction = 0.0;      ///< fraction of path length with slippage > mu
   double bridging_length = 0.0;    ///< mm of path with k_n <= 0 (fibre would bridge)
+  // max_slippage, slip_fraction and bridging_length are of the passes; the turnarounds have
+  // their own figures:
+  TurnaroundStability turnarounds;  ///< all dwell arcs (station unused)
+  /// Per end of the passes: [0] the start (loop 0 or winding.start_station), [1] the end.
+  std::array<TurnaroundStability, 2> turnaround_ends;
   /// Shapes of revolution: N_max, the most turns a geodesic can make between the ends of the
   /// passes (Clairaut, planner/clairaut.h; turns). +inf: no limit (a cylinder); NaN: not a shape
   /// of revolution (not reported).

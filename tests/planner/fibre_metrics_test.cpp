@@ -153,3 +153,194 @@ TEST(FibreMetrics, CylinderCoverageAndStability) {
 
 }  // namespace
 }  // namespace windplan
+
+namespace windplan {
+namespace {
+
+// The cone r(z) = r0 - tan(b) z about z (b the half-angle between axis and generator), from
+// r0 = 60 mm at z = 0 to 30 mm at z = 150 mm: tan b = 0.2.
+constexpr double kConeTanB = 0.2;
+double cone_radius(double z) { return 60.0 - kConeTanB * z; }
+
+// N = 0.5 turns stays below the cone's geodesic turn limit (0.85 turns between the loops), so the
+// plain geodesic passes run from loop to loop and the turnarounds dwell on the loops.
+WindingOptions cone_options(double mu) {
+  WindingOptions o;
+  o.turns = 0.5;
+  o.circuits = 4;
+  o.band_width = 10.0;
+  o.mu = mu;
+  return o;
+}
+
+bool has_warning(const PlanMetrics& pm, const std::string& prefix) {
+  for (const std::string& w : pm.warnings) {
+    if (w.rfind(prefix, 0) == 0) return true;
+  }
+  return false;
+}
+
+struct PlannedJob {
+  HelixPlan plan;
+  std::vector<Circuit> circuits;
+  PlanMetrics metrics;
+};
+
+PlannedJob plan_and_measure(const Mesh& m, const WindingOptions& o) {
+  PlannedJob j;
+  j.plan = plan_helices(m, test::loops_by_z(m), {}, SpindleAxis{}, o);
+  j.circuits = build_circuits(m, j.plan, {}, SpindleAxis{}, o);
+  j.metrics = compute_plan_metrics(m, j.plan, j.circuits, {}, SpindleAxis{}, true, o);
+  return j;
+}
+
+double total_arc_length(const HelixPlan& plan, int loop) {
+  double L = 0.0;
+  for (const Turnaround& t : plan.turnarounds) {
+    if (loop < 0 || t.loop == loop) L += t.arc.length;
+  }
+  return L;
+}
+
+// On a cylinder a circle about the axis (a tube end or a station circle) is a geodesic: the
+// dwell arcs have k_g ~ 0 and k_n = 1/R, so even a tiny mu is not exceeded on the turnarounds.
+TEST(TurnaroundStability, CylinderDwellIsAGeodesic) {
+  const double R = 40.0, L = 150.0;
+  const Mesh m(test::open_cylinder(R, L, 96, 20));
+  for (bool stations : {false, true}) {
+    WindingOptions o;
+    o.turns = 1;
+    o.circuits = 5;
+    o.band_width = 12.0;
+    o.mu = 0.01;
+    if (stations) {
+      o.start_station = 40.0;
+      o.end_station = 110.0;
+    }
+    const PlannedJob j = plan_and_measure(m, o);
+    const PlanMetrics& pm = j.metrics;
+    const std::string label = stations ? "stations" : "loops";
+    // The figures cover every dwell arc, apart from the passes.
+    EXPECT_NEAR(pm.turnarounds.length, total_arc_length(j.plan, -1), 1e-9) << label;
+    EXPECT_GT(pm.turnarounds.length, 5 * 2 * M_PI * R * 0.5) << label;  // dwell > pi / 2 each
+    for (int e = 0; e < 2; ++e) {
+      const TurnaroundStability& t = pm.turnaround_ends[e];
+      EXPECT_NEAR(t.length, total_arc_length(j.plan, e), 1e-9) << label << " end " << e;
+      EXPECT_EQ(t.at_station(), stations) << label << " end " << e;
+      if (stations) {
+        EXPECT_EQ(t.station, e == 0 ? 40.0 : 110.0);
+      }
+      EXPECT_LT(t.max_slippage, 1e-3) << label << " end " << e;
+      EXPECT_EQ(t.slip_length, 0.0) << label << " end " << e;
+      EXPECT_EQ(t.bridging_length, 0.0) << label << " end " << e;
+    }
+    EXPECT_LT(pm.turnarounds.max_slippage, 1e-3) << label;
+    EXPECT_EQ(pm.turnarounds.slip_fraction, 0.0) << label;
+    EXPECT_FALSE(has_warning(pm, "turnaround")) << label;
+    // The turnaround points of the circuits (the junction points are the passes'): k_n = 1/R to
+    // the chord smoothing's O(w^2 / R^2) (w = 12 mm, R = 40 mm: 0.4%) and the 96-gon's facets.
+    for (const Circuit& c : j.circuits) {
+      for (const CircuitSegment& seg : c.segments) {
+        if (seg.kind != CircuitSegment::Kind::Turnaround) continue;
+        ASSERT_GT(seg.last - seg.first, 2);
+        for (int i = seg.first + 1; i < seg.last; ++i) {
+          ASSERT_NEAR(c.points[i].k_n, 1.0 / R, 0.02 / R) << label << " point " << i;
+          ASSERT_NEAR(c.points[i].k_g, 0.0, 1e-3 / R) << label << " point " << i;
+        }
+      }
+    }
+  }
+}
+
+// A parallel of a cone of half-angle b at radius r has k_n = cos(b) / r and k_g = sin(b) / r:
+// |k_g / k_n| = tan b on every turnaround point, on the loops (r = 60 and 30 mm) and on station
+// circles (r = 54 and 36 mm). Tolerance 2%: the 96-gon's facets are planes whose slope is
+// tan(b) cos(pi / 96) (-0.05%), and each arc point takes the normal of its facet, interpolated
+// linearly in between (errors of O((pi / 96)^2)); 2% leaves room for the shifted end windows.
+TEST(TurnaroundStability, ConeParallelSlipsByTanB) {
+  const Mesh m(test::revolution(cone_radius, 0.0, 150.0, 96, 40));
+  for (bool stations : {false, true}) {
+    WindingOptions o = cone_options(0.15);
+    if (stations) {
+      o.start_station = 30.0;
+      o.end_station = 120.0;
+    }
+    const PlannedJob j = plan_and_measure(m, o);
+    const PlanMetrics& pm = j.metrics;
+    const std::string label = stations ? "stations" : "loops";
+    for (int e = 0; e < 2; ++e) {
+      const TurnaroundStability& t = pm.turnaround_ends[e];
+      EXPECT_NEAR(t.max_slippage, kConeTanB, 0.02 * kConeTanB) << label << " end " << e;
+      // mu = 0.15 < tan b: every segment of every arc is above mu (no dips either).
+      EXPECT_NEAR(t.slip_length, t.length, 1e-9 * t.length) << label << " end " << e;
+      EXPECT_NEAR(t.slip_fraction, 1.0, 1e-12) << label << " end " << e;
+      EXPECT_EQ(t.bridging_length, 0.0) << label << " end " << e;
+    }
+    EXPECT_NEAR(pm.turnarounds.max_slippage, kConeTanB, 0.02 * kConeTanB) << label;
+    // Every interior turnaround point of the circuits: tan b within 2% too.
+    for (const Circuit& c : j.circuits) {
+      for (const CircuitSegment& seg : c.segments) {
+        if (seg.kind != CircuitSegment::Kind::Turnaround) continue;
+        for (int i = seg.first + 1; i < seg.last; ++i) {
+          ASSERT_NEAR(c.points[i].slippage, kConeTanB, 0.02 * kConeTanB) << label << " " << i;
+        }
+      }
+    }
+    // The warning names each end and where it runs.
+    std::string all;
+    for (const std::string& w : pm.warnings) all += w + "\n";
+    for (const char* place : {"the start ", "the end "}) {
+      const std::string where =
+          std::string(place) + (stations ? "station circle (winding." : "loop (polar opening");
+      EXPECT_NE(all.find(where), std::string::npos) << label << ": " << where << "\n" << all;
+    }
+    if (stations) {
+      EXPECT_NE(all.find("winding.start_station = 30.000 mm"), std::string::npos) << all;
+      EXPECT_NE(all.find("winding.end_station = 120.000 mm"), std::string::npos) << all;
+    }
+    // The pass figures are the passes' alone: the geodesic passes stay below mu.
+    EXPECT_LT(pm.max_slippage, 0.15) << label;
+  }
+}
+
+// A window longer than the dwell arcs (2 m here): each arc is then one window (the window is
+// cut to the arc's length), so every point gets the arc's mean curvature from the chords over
+// its two halves, split in the frame at its middle. On a parallel that bend points at the axis,
+// so |k_g / k_n| is still tan b (cone) and 0 (cylinder).
+TEST(TurnaroundStability, ArcShorterThanTheWindowKeepsItsRatio) {
+  const Mesh cone(test::revolution(cone_radius, 0.0, 150.0, 96, 40));
+  const Mesh cylinder(test::open_cylinder(40.0, 150.0, 96, 20));
+  WindingOptions o = cone_options(0.15);
+  o.curvature_window = 2000.0;
+  for (const Mesh* m : {&cone, &cylinder}) {
+    const PlannedJob j = plan_and_measure(*m, o);
+    for (const Turnaround& t : j.plan.turnarounds) ASSERT_LT(t.arc.length, o.curvature_window);
+    const double expected = m == &cone ? kConeTanB : 0.0;
+    for (int e = 0; e < 2; ++e) {
+      const TurnaroundStability& t = j.metrics.turnaround_ends[e];
+      EXPECT_NEAR(t.max_slippage, expected, 0.02 * kConeTanB) << "end " << e;
+      EXPECT_NEAR(t.slip_fraction, m == &cone ? 1.0 : 0.0, 1e-12) << "end " << e;
+      EXPECT_EQ(t.bridging_length, 0.0) << "end " << e;
+    }
+  }
+}
+
+// A parallel of the cone has |k_g / k_n| = tan b, so the dwell arcs on the cone's end loops slip
+// when mu < tan b: the plan warns then (naming the turnarounds and the end), and not when
+// mu > tan b.
+TEST(TurnaroundStability, ConeParallelWarnsOnlyWhenMuIsBelowTanB) {
+  const Mesh m(test::revolution(cone_radius, 0.0, 150.0, 96, 40));
+  const auto loops = test::loops_by_z(m);
+  for (double mu : {0.15, 0.25}) {
+    const WindingOptions o = cone_options(mu);
+    const HelixPlan plan = plan_helices(m, loops, {}, SpindleAxis{}, o);
+    const std::vector<Circuit> circuits = build_circuits(m, plan, {}, SpindleAxis{}, o);
+    const PlanMetrics pm = compute_plan_metrics(m, plan, circuits, {}, SpindleAxis{}, true, o);
+    std::string all;
+    for (const std::string& w : pm.warnings) all += w + "\n";
+    EXPECT_EQ(has_warning(pm, "turnaround slippage"), mu < kConeTanB) << "mu " << mu << "\n" << all;
+  }
+}
+
+}  // namespace
+}  // namespace windplan

@@ -103,6 +103,18 @@ TEST(Pipeline, StationsBoundThePassesAndTheTurnarounds) {
   }
   EXPECT_GT(r.plan.metrics.spacing_mean, 0.0);
   EXPECT_NEAR(r.plan.metrics.max_slippage, 0.0, 0.1);
+  // The turnarounds' own figures: every dwell arc, on the station circles of a cylinder
+  // (geodesics: no slippage, no bridging, no warning).
+  const PlanMetrics& m = r.plan.metrics;
+  double arcs = 0.0;
+  for (const Turnaround& t : r.helices.turnarounds) arcs += t.arc.length;
+  EXPECT_NEAR(m.turnarounds.length, arcs, 1e-9 * arcs);
+  EXPECT_EQ(m.turnaround_ends[0].station, z0);
+  EXPECT_EQ(m.turnaround_ends[1].station, z1);
+  EXPECT_LT(m.turnarounds.max_slippage, 1e-3);
+  EXPECT_EQ(m.turnarounds.slip_length, 0.0);
+  EXPECT_EQ(m.turnarounds.bridging_length, 0.0);
+  for (const std::string& w : m.warnings) EXPECT_EQ(w.find("turnaround"), std::string::npos) << w;
 }
 
 TEST(Pipeline, StationOutsideTheMandrelNamesTheKeyAndRange) {
