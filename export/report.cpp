@@ -60,6 +60,13 @@ void range_json(JsonWriter& j, const std::string& key, const Range& r) {
   j.key(key).begin_object().field("min", r.min).field("max", r.max).end_object();
 }
 
+const char* const kEndName[2] = {"start", "end"};
+
+// "loop" or "station 50.000 mm": what the turnarounds of one end run along (report.md, summary).
+std::string turnaround_along(const TurnaroundStability& t) {
+  return t.at_station() ? "station " + fmt("%.3f", t.station) + " mm" : std::string("loop");
+}
+
 std::string feed_name(const Motion& m) {
   return m.inverse_time ? "G93 inverse time (F = 1/min)" : "G94 per minute (deg counted as mm)";
 }
@@ -88,11 +95,32 @@ std::string report_json(const WindingPlan& plan, const ExportResult& r) {
   j.field("friction", m.friction);
   j.field("slip_fraction", m.slip_fraction);
   j.field("bridging_length_mm", m.bridging_length);
+  // The turnarounds (dwell arcs), apart from the passes' figures above.
+  j.field("turnaround_length_mm", m.turnarounds.length);
+  j.field("turnaround_max_slippage", m.turnarounds.max_slippage);
+  j.field("turnaround_slip_length_mm", m.turnarounds.slip_length);
+  j.field("turnaround_slip_fraction", m.turnarounds.slip_fraction);
+  j.field("turnaround_bridging_length_mm", m.turnarounds.bridging_length);
   if (!std::isnan(m.geodesic_turn_limit)) {                 // shapes of revolution only
     j.field("geodesic_turn_limit", m.geodesic_turn_limit);  // null: no limit (a cylinder)
     j.field("geodesic_min_radius_mm", m.geodesic_min_radius);
   }
   j.end_object();
+  j.key("turnarounds").begin_array();
+  for (int e = 0; e < 2; ++e) {
+    const TurnaroundStability& t = m.turnaround_ends[e];
+    j.begin_object();
+    j.field("end", kEndName[e]);
+    j.field("along", t.at_station() ? "station" : "loop");
+    if (t.at_station()) j.field("station_mm", t.station);
+    j.field("length_mm", t.length);
+    j.field("max_slippage", t.max_slippage);
+    j.field("slip_length_mm", t.slip_length);
+    j.field("slip_fraction", t.slip_fraction);
+    j.field("bridging_length_mm", t.bridging_length);
+    j.end_object();
+  }
+  j.end_array();
   j.key("machine").begin_object();
   j.field("kind", r.machine.kind);
   j.field("dialect", r.machine.gcode.dialect);
@@ -172,12 +200,28 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
     << "| max slippage | " << fmt("%.4f", m.max_slippage) << " (friction "
     << fmt("%.3f", m.friction) << ") |\n"
     << "| slip fraction | " << fmt("%.4f", m.slip_fraction) << " |\n"
-    << "| bridging length | " << fmt("%.3f", m.bridging_length) << " mm |\n";
+    << "| bridging length | " << fmt("%.3f", m.bridging_length) << " mm |\n"
+    << "| turnaround max slippage | " << fmt("%.4f", m.turnarounds.max_slippage) << " (friction "
+    << fmt("%.3f", m.friction) << ") |\n"
+    << "| turnaround above mu | " << fmt("%.3f", m.turnarounds.slip_length) << " mm ("
+    << fmt("%.4f", m.turnarounds.slip_fraction) << " of " << fmt("%.3f", m.turnarounds.length)
+    << " mm) |\n"
+    << "| turnaround bridging length | " << fmt("%.3f", m.turnarounds.bridging_length) << " mm |\n";
   if (!std::isnan(m.geodesic_turn_limit)) {
     o << "| geodesic turn limit | "
       << (std::isfinite(m.geodesic_turn_limit) ? fmt("%.4f", m.geodesic_turn_limit) + " turns"
                                                : std::string("none"))
       << " (Clairaut, smallest radius " << fmt("%.3f", m.geodesic_min_radius) << " mm) |\n";
+  }
+  o << "\n"
+    << "## Turnarounds\n\n"
+    << "| end | along | length [mm] | max slippage | above mu [mm] | above mu "
+       "[fraction] | bridging [mm] |\n|---|---|---|---|---|---|---|\n";
+  for (int e = 0; e < 2; ++e) {
+    const TurnaroundStability& t = m.turnaround_ends[e];
+    o << "| " << kEndName[e] << " | " << turnaround_along(t) << " | " << fmt("%.3f", t.length)
+      << " | " << fmt("%.4f", t.max_slippage) << " | " << fmt("%.3f", t.slip_length) << " | "
+      << fmt("%.4f", t.slip_fraction) << " | " << fmt("%.3f", t.bridging_length) << " |\n";
   }
   o << "\n"
     << "## Machine\n\n| figure | value |\n|---|---|\n"
@@ -240,7 +284,11 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
     << m.circuits_for_coverage << ")\n"
     << "  cover factor     " << fmt("%.3f", m.cover_factor) << "\n"
     << "  spacing CV       " << fmt("%.4f", m.spacing_cv) << "\n"
-    << "  max slippage     " << fmt("%.4f", m.max_slippage) << "\n";
+    << "  max slippage     " << fmt("%.4f", m.max_slippage) << "\n"
+    << "  turnarounds      max slippage " << fmt("%.4f", m.turnarounds.max_slippage) << ", "
+    << fmt("%.1f", m.turnarounds.slip_length) << " mm above mu ("
+    << fmt("%.2f", 100.0 * m.turnarounds.slip_fraction) << "%), bridging "
+    << fmt("%.1f", m.turnarounds.bridging_length) << " mm\n";
   if (!std::isnan(m.geodesic_turn_limit)) {
     o << "  geodesic limit   "
       << (std::isfinite(m.geodesic_turn_limit) ? fmt("%.2f", m.geodesic_turn_limit) + " turns"

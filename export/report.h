@@ -1,11 +1,13 @@
 #pragma once
 // The plan's figures in three forms: report.json (machine-readable), report.md (human-readable,
 // with a table per circuit) and the stdout summary. All three carry the same figures: fibre
-// length, wind time, circuits, coverage, spacing CV, max slippage, the geodesic turn limit (shapes
-// of revolution only; JSON null / "none" when there is no limit), axis ranges, cut-line planes
-// and the files written. Stage timings (PlanMetrics::timings) appear in the files only when
-// ExportResult::timings (output.timings) is set, so that files stay byte-identical between runs;
-// the stdout summary always shows them. Numbers have fixed formats (deterministic).
+// length, wind time, circuits, coverage, spacing CV, max slippage (of the passes), the stability
+// of the turnarounds (max slippage, length above friction, bridging; in report.json and report.md
+// also per end), the geodesic turn limit (shapes of revolution only; JSON null / "none" when
+// there is no limit), axis ranges, cut-line planes and the files written. Stage timings
+// (PlanMetrics::timings) appear in the files only when ExportResult::timings (output.timings) is
+// set, so that files stay byte-identical between runs; the stdout summary always shows them.
+// Numbers have fixed formats (deterministic).
 #include <string>
 
 #include "export/export_plan.h"

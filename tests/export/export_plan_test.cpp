@@ -219,6 +219,58 @@ TEST(ExportPlan, ReportsCarryFractionalTurnsPerPass) {
       << summary_text(plan, r);
 }
 
+// The turnarounds' stability (PlanMetrics::turnarounds, turnaround_ends) is reported apart from
+// the passes' figures, which keep their keys and values: in report.json (summary keys with units
+// and a per-end array), in report.md (summary rows and a per-end table) and in the run summary.
+TEST(ExportPlan, ReportsCarryTheTurnaroundStabilityApartFromThePasses) {
+  WindingPlan plan = sample_plan(100, 1);
+  PlanMetrics& m = plan.metrics;
+  m.max_slippage = 0.125;
+  m.friction = 0.2;
+  m.slip_fraction = 0.0;
+  m.bridging_length = 0.0;
+  m.turnarounds = {300.0, 0.25, 75.0, 0.25, 1.5};
+  m.turnaround_ends[0] = {100.0, 0.0625, 0.0, 0.0, 0.0};
+  m.turnaround_ends[1] = {200.0, 0.25, 75.0, 0.375, 1.5, 120.0};
+  const ExportResult r;
+  const std::string json = report_json(plan, r);
+  for (const char* key :
+       {"\"max_slippage\": 0.125,", "\"slip_fraction\": 0,", "\"bridging_length_mm\": 0,",
+        "\"turnaround_length_mm\": 300,", "\"turnaround_max_slippage\": 0.25,",
+        "\"turnaround_slip_length_mm\": 75,", "\"turnaround_slip_fraction\": 0.25,",
+        "\"turnaround_bridging_length_mm\": 1.5"}) {
+    EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
+  }
+  const std::size_t ends = json.find("\"turnarounds\": [");
+  ASSERT_NE(ends, std::string::npos) << json;
+  const std::size_t start = json.find("\"end\": \"start\"", ends);
+  const std::size_t end = json.find("\"end\": \"end\"", ends);
+  ASSERT_NE(start, std::string::npos) << json;
+  ASSERT_NE(end, std::string::npos) << json;
+  EXPECT_NE(json.find("\"along\": \"loop\"", start), std::string::npos);
+  EXPECT_EQ(json.substr(start, end - start).find("station_mm"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"along\": \"station\"", end), std::string::npos) << json;
+  EXPECT_NE(json.find("\"station_mm\": 120", end), std::string::npos) << json;
+  EXPECT_NE(json.find("\"slip_fraction\": 0.375", end), std::string::npos) << json;
+
+  const std::string md = report_markdown(plan, r);
+  for (const char* row :
+       {"| max slippage | 0.1250 (friction 0.200) |",
+        "| turnaround max slippage | 0.2500 (friction 0.200) |",
+        "| turnaround above mu | 75.000 mm (0.2500 of 300.000 mm) |",
+        "| turnaround bridging length | 1.500 mm |", "## Turnarounds",
+        "| start | loop | 100.000 | 0.0625 | 0.000 | 0.0000 | 0.000 |",
+        "| end | station 120.000 mm | 200.000 | 0.2500 | 75.000 | 0.3750 | 1.500 |"}) {
+    EXPECT_NE(md.find(row), std::string::npos) << row << "\n" << md;
+  }
+  const std::string summary = summary_text(plan, r);
+  EXPECT_NE(summary.find("  max slippage     0.1250\n"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("  turnarounds      max slippage 0.2500, 75.0 mm above mu (25.00%), "
+                         "bridging 1.5 mm\n"),
+            std::string::npos)
+      << summary;
+}
+
 TEST(ExportPlan, TwoExportsAreByteIdentical) {
   const WindingPlan plan = sample_plan();
   const Mesh mesh = sample_mesh();
