@@ -21,10 +21,11 @@ const char* const kHelicesHelp =
     "helices, refinement under the density rho = (g / mean g)^-beta, continuous circuits with\n"
     "turnarounds on the openings or the stations. Prints one line per pass (length, winding\n"
     "angle at its two ends, max slippage, refinement) and the plan metrics (spacing, coverage,\n"
-    "pattern, stability, warnings). On a shape of revolution it also prints the geodesic turn\n"
-    "limit N_max (Clairaut: r sin a = c <= the smallest radius; the most turns a geodesic can\n"
-    "make between the ends of the passes) and, with beta = 0 and turns > N_max, warns and\n"
-    "suggests turns <= N_max rounded down to hundredths.\n\n"
+    "pattern, stability of the passes and, apart from them, of the turnarounds at each end,\n"
+    "warnings). On a shape of revolution it also prints the geodesic turn limit N_max\n"
+    "(Clairaut: r sin a = c <= the smallest radius; the most turns a geodesic can make between\n"
+    "the ends of the passes) and, with beta = 0 and turns > N_max, warns and suggests\n"
+    "turns <= N_max rounded down to hundredths.\n\n"
     "  --json          print the report as JSON on stdout\n"
     "  -o, --out DIR   also write fibre_path.csv, paths.ply, mesh.ply and report.json/md there\n";
 
@@ -96,6 +97,27 @@ int run_helices(const std::vector<std::string>& argv) {
     j.field("friction", m.friction);
     j.field("slip_fraction", m.slip_fraction);
     j.field("bridging_length", m.bridging_length);
+    // The turnarounds (dwell arcs), apart from the passes' figures above; lengths in mm.
+    j.field("turnaround_length", m.turnarounds.length);
+    j.field("turnaround_max_slippage", m.turnarounds.max_slippage);
+    j.field("turnaround_slip_length", m.turnarounds.slip_length);
+    j.field("turnaround_slip_fraction", m.turnarounds.slip_fraction);
+    j.field("turnaround_bridging_length", m.turnarounds.bridging_length);
+    j.key("turnarounds").begin_array();
+    for (int e = 0; e < 2; ++e) {
+      const TurnaroundStability& t = m.turnaround_ends[e];
+      j.begin_object();
+      j.field("end", e == 0 ? "start" : "end");
+      j.field("along", t.at_station() ? "station" : "loop");
+      if (t.at_station()) j.field("station", t.station);
+      j.field("length", t.length);
+      j.field("max_slippage", t.max_slippage);
+      j.field("slip_length", t.slip_length);
+      j.field("slip_fraction", t.slip_fraction);
+      j.field("bridging_length", t.bridging_length);
+      j.end_object();
+    }
+    j.end_array();
     j.key("warnings").begin_array();
     for (const std::string& w : m.warnings) j.value(w);
     j.end_array();
@@ -138,7 +160,23 @@ int run_helices(const std::vector<std::string>& argv) {
   s << "  coverage: " << m.circuits_for_coverage << " circuits needed, cover factor "
     << m.cover_factor << "; pattern " << m.pattern << "\n";
   s << "  stability: max |k_g/k_n| " << m.max_slippage << " vs mu " << m.friction << ", "
-    << 100.0 * m.slip_fraction << "% above, bridging " << m.bridging_length << " mm\n";
+    << 100.0 * m.slip_fraction << "% above, bridging " << m.bridging_length << " mm (passes)\n";
+  s << "  turnarounds: max |k_g/k_n| " << m.turnarounds.max_slippage << " vs mu " << m.friction
+    << ", " << m.turnarounds.slip_length << " mm (" << 100.0 * m.turnarounds.slip_fraction
+    << "%) of " << m.turnarounds.length << " mm above, bridging " << m.turnarounds.bridging_length
+    << " mm\n";
+  for (int e = 0; e < 2; ++e) {
+    const TurnaroundStability& t = m.turnaround_ends[e];
+    s << "    " << (e == 0 ? "start" : "end  ") << " ";
+    if (t.at_station()) {
+      s << "station " << t.station << " mm";
+    } else {
+      s << "loop";
+    }
+    s << ": max |k_g/k_n| " << t.max_slippage << ", " << t.slip_length << " mm ("
+      << 100.0 * t.slip_fraction << "%) of " << t.length << " mm above, bridging "
+      << t.bridging_length << " mm\n";
+  }
   for (const std::string& w : m.warnings) s << "  warning: " << w << "\n";
   s << "  time:";
   for (const StageTiming& t : m.timings) s << " " << t.stage << " " << t.seconds << " s";
