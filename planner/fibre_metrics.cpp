@@ -472,7 +472,8 @@ PlanMetrics compute_plan_metrics(const Mesh& m, const HelixPlan& plan,
           "slip off the turnaround (a circle about the axis is a geodesic only where the radius " +
           "does not change along the axis" +
           (t.at_station() ? ": move the station onto a cylindrical part)"
-                          : ": dwell on a station on a cylindrical part instead)"));
+                          : ": a boss or pin ring must hold the fibre there, or turn around on a "
+                            "station on a cylindrical part)"));
     }
     if (t.bridging_length > 0.0) {
       pm.warnings.push_back("turnaround bridging: " + fmt(t.bridging_length, 1) +
