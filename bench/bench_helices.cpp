@@ -89,10 +89,14 @@ int main(int argc, char** argv) {
       std::printf(
           "%-16s N=%g K=%d beta=%.1f | spacing mean %.2f mm, CV(norm) %.3f | coverage "
           "needs %d, cover %.3f | max |kg/kn| %.3f (mu %.2f), above mu %.1f%%, "
-          "bridging %.1f mm | passes not converged %d | %.2f s\n",
+          "bridging %.1f mm | turnarounds max |kg/kn| %.3f (start %.3f, end %.3f), above mu "
+          "%.1f%%, bridging %.1f mm | passes not converged %d | %.2f s\n",
           name.c_str(), job.winding.turns, m.circuits, job.winding.beta, m.spacing_mean,
           m.spacing_cv, m.circuits_for_coverage, m.cover_factor, m.max_slippage, m.friction,
-          100.0 * m.slip_fraction, m.bridging_length, r.helices.summary.not_converged, total);
+          100.0 * m.slip_fraction, m.bridging_length, m.turnarounds.max_slippage,
+          m.turnaround_ends[0].max_slippage, m.turnaround_ends[1].max_slippage,
+          100.0 * m.turnarounds.slip_fraction, m.turnarounds.bridging_length,
+          r.helices.summary.not_converged, total);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_helices: %s\n", e.what());
