@@ -134,6 +134,23 @@ TEST(ParametricMandrel, IsotensoidMeridianSolvesItsEquation) {
   EXPECT_NEAR(m.back().y(), h_coarse, 1e-9 * h_coarse);
 }
 
+TEST(ParametricMandrel, IsotensoidHeightHoldsAtAMillionSamples) {
+  // The radicand vanishes at the neck: evaluated directly it loses every digit within 1e-8 of
+  // it, and from about 3e5 samples on the dome height came out near 1e136 mm.
+  DomeParams d;
+  d.type = DomeType::Isotensoid;
+  d.polar_opening = 30;
+  const double h = dome_meridian(d, 100, 501).back().y();
+  EXPECT_GT(h, 50.0);
+  EXPECT_LT(h, 100.0);
+  for (int n : {300001, 1000001}) {
+    const std::vector<Vec2> m = dome_meridian(d, 100, n);
+    EXPECT_NEAR(m.back().y(), h, 1e-12 * h) << n << " samples";
+    for (std::size_t i = 1; i < m.size(); ++i)
+      ASSERT_GE(m[i].y(), m[i - 1].y()) << "height not monotone at sample " << i << " of " << n;
+  }
+}
+
 TEST(ParametricMandrel, IsotensoidVesselAreaMatchesItsMeridian) {
   VesselParams v;
   v.dome_start.type = v.dome_end.type = DomeType::Isotensoid;
