@@ -1382,9 +1382,14 @@ void Refiner::loop_rounds() {
     // Two straightenings, held at crossing 0 and at the crossing half way round.
     for (int half = 0; half < 2; ++half) {
       pick_anchor();
+      // A strip that winds round a vertex unfolds onto itself, and the funnel's answer is then
+      // not a path of the strip: a straightening that lengthens the loop is undone.
+      const std::vector<double> kept = lambda_;
+      const double len0 = length();
       loop_anchor_ = true;
       funnel_straighten(1, k_, -1, -1);
       loop_anchor_ = false;
+      if (length() > len0) lambda_ = kept;
       rotate_closed(k_ / 2);
     }
     pick_anchor();
