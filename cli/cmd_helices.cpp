@@ -7,6 +7,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "export/export_plan.h"
+#include "export/report.h"
 #include "geometry/json.h"
 #include "planner/job.h"
 #include "planner/pipeline.h"
@@ -103,21 +104,8 @@ int run_helices(const std::vector<std::string>& argv) {
     j.field("turnaround_slip_length", m.turnarounds.slip_length);
     j.field("turnaround_slip_fraction", m.turnarounds.slip_fraction);
     j.field("turnaround_bridging_length", m.turnarounds.bridging_length);
-    j.key("turnarounds").begin_array();
-    for (int e = 0; e < 2; ++e) {
-      const TurnaroundStability& t = m.turnaround_ends[e];
-      j.begin_object();
-      j.field("end", e == 0 ? "start" : "end");
-      j.field("along", t.at_station() ? "station" : "loop");
-      if (t.at_station()) j.field("station", t.station);
-      j.field("length", t.length);
-      j.field("max_slippage", t.max_slippage);
-      j.field("slip_length", t.slip_length);
-      j.field("slip_fraction", t.slip_fraction);
-      j.field("bridging_length", t.bridging_length);
-      j.end_object();
-    }
-    j.end_array();
+    j.key("turnarounds");
+    turnarounds_json(j, m, false);
     j.key("warnings").begin_array();
     for (const std::string& w : m.warnings) j.value(w);
     j.end_array();

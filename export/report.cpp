@@ -73,6 +73,25 @@ std::string feed_name(const Motion& m) {
 
 }  // namespace
 
+void turnarounds_json(JsonWriter& j, const PlanMetrics& m, bool mm_keys) {
+  const std::string mm = mm_keys ? "_mm" : "";
+  j.begin_array();
+  for (int e = 0; e < 2; ++e) {
+    const TurnaroundStability& t = m.turnaround_ends[e];
+    j.begin_object();
+    j.field("end", kEndName[e]);
+    j.field("along", t.at_station() ? "station" : "loop");
+    if (t.at_station()) j.field("station" + mm, t.station);
+    j.field("length" + mm, t.length);
+    j.field("max_slippage", t.max_slippage);
+    j.field("slip_length" + mm, t.slip_length);
+    j.field("slip_fraction", t.slip_fraction);
+    j.field("bridging_length" + mm, t.bridging_length);
+    j.end_object();
+  }
+  j.end_array();
+}
+
 std::string report_json(const WindingPlan& plan, const ExportResult& r) {
   const PlanMetrics& m = plan.metrics;
   const Motion& mo = r.motion;
@@ -106,21 +125,8 @@ std::string report_json(const WindingPlan& plan, const ExportResult& r) {
     j.field("geodesic_min_radius_mm", m.geodesic_min_radius);
   }
   j.end_object();
-  j.key("turnarounds").begin_array();
-  for (int e = 0; e < 2; ++e) {
-    const TurnaroundStability& t = m.turnaround_ends[e];
-    j.begin_object();
-    j.field("end", kEndName[e]);
-    j.field("along", t.at_station() ? "station" : "loop");
-    if (t.at_station()) j.field("station_mm", t.station);
-    j.field("length_mm", t.length);
-    j.field("max_slippage", t.max_slippage);
-    j.field("slip_length_mm", t.slip_length);
-    j.field("slip_fraction", t.slip_fraction);
-    j.field("bridging_length_mm", t.bridging_length);
-    j.end_object();
-  }
-  j.end_array();
+  j.key("turnarounds");
+  turnarounds_json(j, m, true);
   j.key("machine").begin_object();
   j.field("kind", r.machine.kind);
   j.field("dialect", r.machine.gcode.dialect);

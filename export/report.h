@@ -11,6 +11,7 @@
 #include <string>
 
 #include "export/export_plan.h"
+#include "geometry/json.h"
 #include "planner/plan.h"
 
 namespace windplan {
@@ -19,5 +20,11 @@ std::string report_json(const WindingPlan& plan, const ExportResult& result);
 std::string report_markdown(const WindingPlan& plan, const ExportResult& result);
 /// The summary printed on stdout by `windplan`.
 std::string summary_text(const WindingPlan& plan, const ExportResult& result);
+
+/// The turnaround figures of both ends as a JSON array of two objects (start, end): along loop or
+/// station, station, length, max_slippage, slip_length, slip_fraction, bridging_length. With
+/// `mm_keys` the keys of lengths carry their unit (`length_mm`, ...), as everywhere in
+/// report.json; `windplan helices --json` writes them without (its other keys have none).
+void turnarounds_json(JsonWriter& j, const PlanMetrics& m, bool mm_keys);
 
 }  // namespace windplan
