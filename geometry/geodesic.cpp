@@ -1027,12 +1027,12 @@ void Refiner::funnel_straighten(int lo, int hi, int start_vertex, int end_vertex
       if (ids[q] == v) return pos[q];
     return Vec2(NAN, NAN);
   };
-  // Start point in f0's placement: the path's start, or a vertex of f0.
   // A loop's anchor: crossing 0, on an edge of the faces before portal 1 and after k-1.
   auto anchor = [&]() -> Vec2 {
     const int ha = path_.halfedges[0];
     return (1.0 - lambda_[0]) * local(mesh_.from(ha)) + lambda_[0] * local(mesh_.to(ha));
   };
+  // Start point in f0's placement: the path's start, a vertex of f0, or the loop's anchor.
   Vec2 s2 = Vec2::Zero();
   if (start_vertex >= 0) {
     s2 = local(start_vertex);
