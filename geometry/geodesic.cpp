@@ -187,6 +187,7 @@ class Refiner {
     k_ = path_.num_crossings();
     a_.resize(k_);
     d_.resize(k_);
+    across_.resize(k_);
     if (static_cast<int>(fixed_.size()) != k_) fixed_.assign(k_, 0);
     fill_strip(0, k_);
     const int nres = path_.closed ? k_ : k_ + 2;
@@ -198,7 +199,23 @@ class Refiner {
       const int h = path_.halfedges[i];
       a_[i] = mesh_.position(mesh_.from(h));
       d_[i] = mesh_.position(mesh_.to(h)) - a_[i];
+      across_[i] = across(h);
     }
+  }
+  // The face after a crossing, for the funnel's unfolding: its far corner d (across the
+  // crossed edge) and across_coefficients, and the edge's twin (computed once per crossing
+  // instead of once per crossing and funnel round).
+  struct Across {
+    int twin = -1, d = -1;
+    Vec2 uw = Vec2::Zero();
+  };
+  Across across(int h) const {
+    Across x;
+    x.twin = mesh_.twin(h);
+    x.d = mesh_.to(mesh_.next(x.twin));
+    x.uw = across_coefficients(mesh_.position(mesh_.from(h)), mesh_.position(mesh_.to(h)),
+                               mesh_.position(x.d));
+    return x;
   }
   Vec3 point(int i, const std::vector<double>& l) const { return a_[i] + l[i] * d_[i]; }
   // Constraint residual point q: the crossings, then (open paths) the start and the end.
@@ -301,6 +318,7 @@ class Refiner {
   double scale_ = 1.0;
   Vec3 ps_ = Vec3::Zero(), pt_ = Vec3::Zero();
   std::vector<Vec3> a_, d_;
+  std::vector<Across> across_;
   std::vector<double>& lambda_ = path_.lambdas;
   std::vector<double> z_, mu_;
   std::vector<char> fixed_;
@@ -334,6 +352,7 @@ class Refiner {
   std::vector<int> splice_h_;
   std::vector<double> splice_l_;
   std::vector<Vec3> splice_a_, splice_d_;
+  std::vector<Across> splice_x_;
   std::vector<int> scan_run_;
   std::vector<double> fan_phi_;  // fan_lift's spoke angles
   double cone_angle(int v) {
@@ -705,6 +724,8 @@ void Refiner::replace_run(int i, int j, const std::vector<int>& hs, const std::v
   d_.erase(d_.begin() + i, d_.begin() + j + 1);
   a_.insert(a_.begin() + i, hs.size(), Vec3::Zero());
   d_.insert(d_.begin() + i, hs.size(), Vec3::Zero());
+  across_.erase(across_.begin() + i, across_.begin() + j + 1);
+  across_.insert(across_.begin() + i, hs.size(), Across());
   k_ = path_.num_crossings();
   fill_strip(i, i + static_cast<int>(hs.size()));
 }
@@ -1000,7 +1021,8 @@ void Refiner::funnel_straighten(int lo, int hi, int start_vertex, int end_vertex
   if ((path_.closed && !loop_anchor_) || lo >= hi) return;
   const int n = hi - lo;  // portals lo..hi-1
   // Unfold the window's strip: portal t runs from R[t] (from(h)) to L[t] (to(h)); the face after
-  // it is placed from the portal by place_across (member buffers: this runs every round).
+  // it is placed from the portal by place_across with the crossing's cached coefficients
+  // (member buffers: this runs every round).
   std::vector<Vec2>& L = unfold_L_;
   std::vector<Vec2>& R = unfold_R_;
   std::vector<int>& Lv = unfold_Lv_;
@@ -1049,12 +1071,11 @@ void Refiner::funnel_straighten(int lo, int hi, int start_vertex, int end_vertex
   R[0] = local(Rv[0]);
   L[0] = local(Lv[0]);
   for (int t = 0; t < n; ++t) {
-    const int h = path_.halfedges[lo + t];
-    const int a = Rv[t], b = Lv[t];  // from(h), to(h): to(h) is on the left of the travel
-    const int tw = mesh_.twin(h);
-    const int d = mesh_.to(mesh_.next(tw));
-    const Vec2 pd =
-        place_across(mesh_.position(a), mesh_.position(b), mesh_.position(d), R[t], L[t]);
+    // Portal t is h = halfedges[lo + t] from a = from(h) to b = to(h), b on the left of the travel.
+    const int a = Rv[t], b = Lv[t];
+    const Across& x = across_[lo + t];
+    const int tw = x.twin, d = x.d;
+    const Vec2 pd = place_across(R[t], L[t], x.uw);
     if (t + 1 < n) {
       const int hn = path_.halfedges[lo + t + 1];
       if (hn == mesh_.next(tw)) {  // a -> d
@@ -1275,40 +1296,43 @@ void Refiner::funnel_rounds() {
     std::vector<double>& nl = splice_l_;
     std::vector<Vec3>& na = splice_a_;
     std::vector<Vec3>& nd = splice_d_;
+    std::vector<Across>& nx = splice_x_;
     nh.clear();
     nl.clear();
     na.clear();
     nd.clear();
+    nx.clear();
     std::vector<std::pair<int, int>> spliced;
     // A crossing followed by its own twin (the strip enters a face and leaves it through the
     // same edge) is a fold: both are dropped (the funnel would only pin the path to a corner).
+    auto pop = [&]() {
+      nh.pop_back();
+      nl.pop_back();
+      na.pop_back();
+      nd.pop_back();
+      nx.pop_back();
+    };
     auto push = [&](int h, double l, const Vec3& a, const Vec3& d) {
       if (!nh.empty() && nh.back() == mesh_.twin(h)) {
-        nh.pop_back();
-        nl.pop_back();
-        na.pop_back();
-        nd.pop_back();
+        pop();
         return;
       }
       nh.push_back(h);
       nl.push_back(l);
       na.push_back(a);
       nd.push_back(d);
+      nx.push_back(across(h));
     };
     // Kept crossings lo..hi-1: a fold can only form where the range meets what came before;
     // the rest is copied as a block.
     auto keep = [&](int lo, int hi) {
-      for (; lo < hi && !nh.empty() && nh.back() == mesh_.twin(path_.halfedges[lo]); ++lo) {
-        nh.pop_back();
-        nl.pop_back();
-        na.pop_back();
-        nd.pop_back();
-      }
+      for (; lo < hi && !nh.empty() && nh.back() == across_[lo].twin; ++lo) pop();
       if (lo >= hi) return;
       nh.insert(nh.end(), path_.halfedges.begin() + lo, path_.halfedges.begin() + hi);
       nl.insert(nl.end(), lambda_.begin() + lo, lambda_.begin() + hi);
       na.insert(na.end(), a_.begin() + lo, a_.begin() + hi);
       nd.insert(nd.end(), d_.begin() + lo, d_.begin() + hi);
+      nx.insert(nx.end(), across_.begin() + lo, across_.begin() + hi);
     };
     const int first_face = mesh_.face(path_.halfedges[0]);
     int next = 0;
@@ -1333,6 +1357,7 @@ void Refiner::funnel_rounds() {
     lambda_.swap(nl);
     a_.swap(na);
     d_.swap(nd);
+    across_.swap(nx);
     k_ = static_cast<int>(path_.halfedges.size());
     fixed_.assign(k_, 0);
     mu_.assign(k_ + 2, 0.0);  // open paths only here: the crossings and the two endpoints

@@ -22,16 +22,19 @@ inline Vec2 place_third(const Vec2& a, const Vec2& b, double la, double lb, bool
   return a + x * u + (left ? y : -y) * n;
 }
 
-/// Places d, the far corner of the triangle across edge a -> b (placed at a2 -> b2), on the
-/// right of a2 -> b2: d2 = a2 + u e2 + w perp(e2) with e2 = b2 - a2, u and w read off the 3D
-/// triangle (one square root, no lengths of the placed edge: cheaper than place_third).
-inline Vec2 place_across(const Vec3& a, const Vec3& b, const Vec3& d, const Vec2& a2,
-                         const Vec2& b2) {
+/// The far corner d of the triangle across edge a -> b (d on its right, as in the face of the
+/// edge's twin) in the edge's frame: d = a + u (b - a) + w perp(b - a), perp(x, y) = (y, -x);
+/// returns (u, w). Dimensionless, so they place d from any placement of the edge.
+inline Vec2 across_coefficients(const Vec3& a, const Vec3& b, const Vec3& d) {
   const Vec3 e = b - a, f = d - a;
   const double inv = 1.0 / e.squaredNorm();
-  const double u = e.dot(f) * inv, w = e.cross(f).norm() * inv;
+  return Vec2(e.dot(f) * inv, e.cross(f).norm() * inv);
+}
+
+/// Places d from the placed edge a2 -> b2 and its across_coefficients (u, w): no square root.
+inline Vec2 place_across(const Vec2& a2, const Vec2& b2, const Vec2& uw) {
   const Vec2 e2 = b2 - a2;
-  return a2 + u * e2 + w * Vec2(e2.y(), -e2.x());
+  return a2 + uw.x() * e2 + uw.y() * Vec2(e2.y(), -e2.x());
 }
 
 }  // namespace windplan
