@@ -31,25 +31,6 @@ inline TriangleSoup grid(int nx, int ny, double h = 1.0) {
   return s;
 }
 
-/// An open cylinder (a tube without caps) of radius r and length len along z, with n vertices
-/// around and m rings of quads along the axis (m + 1 vertex rings), each quad split in two.
-/// Outward normals. Two boundary loops, genus 0, an annulus.
-inline TriangleSoup open_cylinder(double r, double len, int n, int m) {
-  TriangleSoup s;
-  for (int j = 0; j <= m; ++j)
-    for (int i = 0; i < n; ++i) {
-      const double t = 2.0 * M_PI * i / n;
-      s.points.emplace_back(r * std::cos(t), r * std::sin(t), len * j / m);
-    }
-  auto id = [n](int i, int j) { return j * n + (i % n); };
-  for (int j = 0; j < m; ++j)
-    for (int i = 0; i < n; ++i) {
-      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return s;
-}
-
 /// A torus (major radius R, minor radius r) with n by m quads: closed, genus 1, outward normals.
 inline TriangleSoup torus(double R, double r, int n, int m) {
   TriangleSoup s;
@@ -92,8 +73,9 @@ inline TriangleSoup uv_sphere(double r, int n, int m) {
 }
 
 /// A surface of revolution about z: rings j = 0..m at z_j = z0 + (z1 - z0) j / m of radius
-/// r(z_j), n vertices per ring at angles 2 pi i / n (the same on every ring), quads split like
-/// open_cylinder; vertex (i, j) has index j n + i. An annulus with outward normals.
+/// r(z_j), n vertices per ring at angles 2 pi i / n (the same on every ring), each quad split
+/// along its diagonal (i, j)-(i + 1, j + 1); vertex (i, j) has index j n + i. An annulus with
+/// outward normals.
 inline TriangleSoup revolution(const std::function<double(double)>& r, double z0, double z1, int n,
                                int m) {
   TriangleSoup s;
@@ -111,6 +93,13 @@ inline TriangleSoup revolution(const std::function<double(double)>& r, double z0
       s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
   return s;
+}
+
+/// An open cylinder (a tube without caps) of radius r and length len along z, with n vertices
+/// around and m rings of quads along the axis (m + 1 vertex rings), each quad split in two.
+/// Outward normals. Two boundary loops, genus 0, an annulus.
+inline TriangleSoup open_cylinder(double r, double len, int n, int m) {
+  return revolution([r](double) { return r; }, 0.0, len, n, m);
 }
 
 }  // namespace windplan::test
