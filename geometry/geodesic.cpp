@@ -1313,7 +1313,8 @@ void Refiner::funnel_rounds() {
       nx.pop_back();
     };
     auto push = [&](int h, double l, const Vec3& a, const Vec3& d) {
-      if (!nh.empty() && nh.back() == mesh_.twin(h)) {
+      const Across x = across(h);
+      if (!nh.empty() && nh.back() == x.twin) {
         pop();
         return;
       }
@@ -1321,7 +1322,7 @@ void Refiner::funnel_rounds() {
       nl.push_back(l);
       na.push_back(a);
       nd.push_back(d);
-      nx.push_back(across(h));
+      nx.push_back(x);
     };
     // Kept crossings lo..hi-1: a fold can only form where the range meets what came before;
     // the rest is copied as a block.
