@@ -1,6 +1,8 @@
 #include "planner/config_node.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "geometry/atomic_file.h"
 
@@ -25,6 +27,68 @@ bool decode_scalar(const YAML::Node& n, T* out) {
     if (!std::isfinite(*out)) return false;
   }
   return true;
+}
+
+// Levenshtein distance, for "is 'lenght' a misspelling of 'length'?".
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+const char* node_kind(const YAML::Node& n) {
+  if (n.IsSequence()) return "a list";
+  if (n.IsMap()) return "a map";
+  if (n.IsNull()) return "empty";
+  return "not a plain name";
+}
+
+// yaml-cpp keeps the first of two equal keys without a word, and accepts any node as a key; both
+// are errors here, checked once over the whole document so that no later reader meets them.
+void check_keys(const YAML::Node& n, const std::string& file, const std::string& path,
+                int depth) {
+  constexpr int kMaxDepth = 64;
+  if (depth > kMaxDepth) {
+    throw ConfigError(file + ":" + std::to_string(n.Mark().line + 1) +
+                      ": the YAML is nested more than " + std::to_string(kMaxDepth) +
+                      " levels deep (a job file has at most 5)");
+  }
+  if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      check_keys(n[i], file, path + "[" + std::to_string(i) + "]", depth + 1);
+    }
+    return;
+  }
+  if (!n.IsMap()) return;
+  std::vector<std::pair<std::string, int>> seen;  // key, line
+  for (auto it = n.begin(); it != n.end(); ++it) {
+    const int line = it->first.Mark().line + 1;
+    if (!it->first.IsScalar()) {
+      throw ConfigError(file + ":" + std::to_string(line) + ": a key " +
+                        (path.empty() ? std::string() : "in '" + path + "' ") + "is " +
+                        node_kind(it->first) + "; keys must be plain names (key: value)");
+    }
+    const std::string k = it->first.Scalar();
+    const std::string full = path.empty() ? k : path + "." + k;
+    for (const auto& [prev, prev_line] : seen) {
+      if (prev == k) {
+        throw ConfigError(file + ":" + std::to_string(line) + ": duplicate key '" + full +
+                          "' (first given on line " + std::to_string(prev_line) +
+                          "); keep only one");
+      }
+    }
+    seen.emplace_back(k, line);
+    check_keys(it->second, file, full, depth + 1);
+  }
 }
 
 }  // namespace
@@ -52,6 +116,7 @@ ConfigNode ConfigNode::load_string(const std::string& text, const std::string& f
   }
   if (!root.IsDefined() || root.IsNull()) throw ConfigError(file + ": the job file is empty");
   if (!root.IsMap()) throw ConfigError(file + ": the job file must be a YAML map of sections");
+  check_keys(root, file, "", 0);
   return ConfigNode(root, file, "");
 }
 
@@ -67,7 +132,7 @@ std::string ConfigNode::where(const std::string& key) const {
   YAML::Mark m = node_.Mark();
   if (!key.empty() && present()) {
     for (auto it = node_.begin(); it != node_.end(); ++it) {
-      if (it->first.as<std::string>() == key) {
+      if (it->first.IsScalar() && it->first.Scalar() == key) {
         m = it->first.Mark();
         break;
       }
@@ -127,7 +192,22 @@ template <class T>
 void ConfigNode::require(const std::string& key, T* out) {
   if (!has(key)) {
     used_.insert(key);
-    fail_here("missing required key '" + key_path(key) + "'");
+    // A key nobody has read that is spelt like the missing one is most likely the user's typo:
+    // name both, so that the fix is one edit.
+    std::string typo;
+    if (present()) {
+      for (auto it = node_.begin(); it != node_.end(); ++it) {
+        if (!it->first.IsScalar()) continue;
+        const std::string& k = it->first.Scalar();
+        if (used_.count(k) || edit_distance(k, key) > std::max<std::size_t>(2, key.size() / 3)) {
+          continue;
+        }
+        typo = "; unknown key '" + key_path(k) + "' on line " +
+               std::to_string(it->first.Mark().line + 1) + " looks like a misspelling of it";
+        break;
+      }
+    }
+    fail_here("missing required key '" + key_path(key) + "'" + typo);
   }
   get(key, out);
 }
@@ -188,7 +268,7 @@ std::vector<ConfigNode> ConfigNode::list(const std::string& key) {
 void ConfigNode::finish() const {
   if (!present()) return;
   for (auto it = node_.begin(); it != node_.end(); ++it) {
-    const std::string k = it->first.as<std::string>();
+    const std::string k = it->first.Scalar();
     if (!used_.count(k)) {
       std::string allowed;
       for (const std::string& u : used_) allowed += (allowed.empty() ? "" : ", ") + u;
