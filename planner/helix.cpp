@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -10,6 +11,7 @@
 
 #include "geometry/errors.h"
 #include "planner/cutlines.h"
+#include "planner/job_limits.h"
 
 namespace windplan {
 
@@ -605,7 +607,10 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
     // core's default cap (50 + 10 k).
     const SurfacePath init = p->hand < 0 ? reversed(m, p->initial) : p->initial;
     GeodesicOptions go = gopt;
-    if (go.max_reroutes == 0) go.max_reroutes = 1000 + 20 * init.num_crossings();
+    if (go.max_reroutes == 0) {  // (in 64 bits: 20 k overflowed int for 1e8 crossings)
+      go.max_reroutes = static_cast<int>(
+          std::min<long long>(INT_MAX, 1000 + 20LL * init.num_crossings()));
+    }
     GeodesicResult r = refine_path(m, init, metric, go);
     // A guard: a path with non-finite crossings would put NaN points into every output. The
     // funnel rounds once produced one (a broken strip spliced with stale indices, the shipped
@@ -686,7 +691,17 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
     ca = std::clamp(ca, 0.0, 1.0);
     plan.summary.auto_radius = rmax;
     plan.summary.auto_angle_deg = std::acos(ca) * 180.0 / M_PI;
-    K = std::max(1, static_cast<int>(std::ceil(kTwoPi * rmax * ca / options.band_width - 1e-9)));
+    // Checked before the conversion to int (band_width: 1e-9 overflowed it to 1 circuit).
+    const double k_auto = std::ceil(kTwoPi * rmax * ca / options.band_width - 1e-9);
+    const int k_max = JobLimits{}.max_circuits;
+    if (!(k_auto <= k_max)) {
+      std::ostringstream s;
+      s << "winding.band_width = " << options.band_width << " mm gives " << k_auto
+        << " circuits (circuits: auto, largest radius " << rmax << " mm), above the bound "
+        << k_max << "; use a wider band or give winding.circuits";
+      throw ConfigError(s.str());
+    }
+    K = std::max(1, static_cast<int>(k_auto));
   }
   plan.summary.circuits = K;
   plan.summary.pattern_step = 1;

@@ -6,8 +6,30 @@
 #include "geometry/atomic_file.h"
 #include "geometry/errors.h"
 #include "planner/config_node.h"
+#include "planner/job_limits.h"
 
 namespace windplan {
+
+bool is_valid_job_name(const std::string& name, std::string* why) {
+  auto fail = [&](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (name.empty()) return fail("must not be empty");
+  if (name.size() > 128) return fail("is longer than 128 characters");
+  if (name == "." || name == "..") return fail("'" + name + "' is not a name");
+  if (name.find("..") != std::string::npos) return fail("must not contain '..'");
+  for (const char c : name) {
+    if (c == '/' || c == '\\') {
+      return fail("must not contain '/' or '\\' (it becomes a folder name: out/<name>)");
+    }
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      return fail("must not contain control characters");
+    }
+  }
+  if (name[0] == '.') return fail("must not start with '.'");
+  return true;
+}
 
 double to_millimetres(LengthUnit u) {
   switch (u) {
@@ -65,7 +87,13 @@ void decode_mandrel(ConfigNode n, const std::filesystem::path& base, MandrelOpti
   n.get_choice("source", {"mesh", "cad", "pipe", "cone", "vessel", "bent_tube"}, &m->source);
   std::string file;
   if (m->source == "mesh" || m->source == "cad") n.require("file", &file);
-  if (!file.empty()) m->file = (base / file).lexically_normal();
+  if (!file.empty()) {
+    m->file = (base / file).lexically_normal();
+    std::error_code ec;
+    if (std::filesystem::is_directory(m->file, ec)) {
+      n.fail("file", "'" + m->file.string() + "' is a directory; give a mesh or CAD file");
+    }
+  }
   std::string units;
   if (n.get_choice("units", {"mm", "m", "in"}, &units)) m->units = parse_length_unit(units);
   n.get("repair", &m->repair);
@@ -345,7 +373,13 @@ Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   Job job;
   job.path = std::filesystem::absolute(file).lexically_normal();
   job.name = file.stem().string();
-  root.get("name", &job.name);
+  if (root.get("name", &job.name)) {
+    std::string why;
+    if (!is_valid_job_name(job.name, &why)) root.fail("name", why);
+  } else if (std::string why; !is_valid_job_name(job.name, &why)) {
+    throw ConfigError(file.string() + ": the job name taken from the file name is not usable: " +
+                      why + "; set 'name:'");
+  }
   const std::filesystem::path base = job.path.parent_path();
   decode_mandrel(root.section("mandrel"), base, &job.mandrel);
   decode_machine(root.section("machine"), &job.machine);
@@ -354,6 +388,7 @@ Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   decode_girth(root.section("girth"), &job.girth);
   decode_cutlines(root, base, &job.cutlines);
   root.finish();
+  check_job_limits(job, root);
   return job;
 }
 

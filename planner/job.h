@@ -68,6 +68,10 @@ struct Job {
   std::vector<CutLineOptions> cutlines;  ///< `cutlines:` (planar trim lines, planner/cutlines.h)
 };
 
+/// A job name becomes a folder name (out/<name>): it must not be empty, absolute, contain '/',
+/// '\\', '..' or control characters, or start with '.'. Sets *why when it is not valid.
+bool is_valid_job_name(const std::string& name, std::string* why);
+
 /// Loads and validates a job file.
 /// \throw IoError if the file is missing; ConfigError for malformed YAML, unknown or mistyped keys
 ///        and invalid values, naming file, line and key.

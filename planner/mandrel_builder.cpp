@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "geometry/cad_import.h"
@@ -10,6 +11,7 @@
 #include "geometry/parametric_mandrel.h"
 #include "geometry/remesh.h"
 #include "geometry/tessellate.h"
+#include "planner/job_limits.h"
 #include "planner/mandrel_mesh.h"
 
 namespace windplan {
@@ -17,6 +19,9 @@ namespace windplan {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Relative change of the mandrel's area by remeshing above which a warning is given.
+constexpr double kRemeshAreaTolerance = 0.01;
 
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -87,6 +92,8 @@ Mandrel build_mandrel(const MandrelOptions& m) {
   if (m.source == "mesh") {
     std::vector<std::string> changes;
     out.mesh = load_mandrel_mesh(m, nullptr, &changes);
+    check_mandrel_extent({out.mesh.bounding_box().diagonal_length(), 0.0, 0.0, 0.0},
+                         "mandrel (" + m.file.string() + ")");
     for (const std::string& c : changes) out.warnings.push_back("repaired: " + c);
   } else if (parametric || m.source == "cad") {
     if (m.source == "cad") {
@@ -97,6 +104,13 @@ Mandrel build_mandrel(const MandrelOptions& m) {
       out.warnings.insert(out.warnings.end(), imp.warnings.begin(), imp.warnings.end());
       out.shape = imp.shape;
       selected = imp.selected;
+      // The model's size is known only now: refuse deflections it cannot be meshed with.
+      MandrelSize size;
+      size.area = cad_shape_info(out.shape).area;
+      size.radius = std::sqrt(size.area / (4.0 * M_PI));  // of a sphere of that area
+      size.size = 2.0 * size.radius;
+      check_mandrel_extent(size, "mandrel (" + m.file.string() + ")");
+      check_tessellation_size(size, m.tessellation);
     } else {
       out.shape = mandrel_shape(m);
     }
@@ -158,6 +172,10 @@ Mandrel build_mandrel(const MandrelOptions& m) {
     }
   }
   if (m.remesh > 0.0) {
+    MandrelSize size;
+    size.size = out.mesh.bounding_box().diagonal_length();
+    size.area = out.mesh.total_area();
+    check_remesh_size(size, m.remesh);
     RemeshOptions ro;
     ro.target_edge_length = m.remesh;
     RemeshResult r = remesh_isotropic(out.mesh, patch, ro);
@@ -165,6 +183,18 @@ Mandrel build_mandrel(const MandrelOptions& m) {
     patch = std::move(r.face_patch);
     out.remesh_ms = r.time_ms;
     out.health = check_mesh(TriangleSoup{out.mesh.points(), out.mesh.triangles()});
+    // A remeshing length too coarse for the curvature cuts the surface short (remesh: 1e6 once
+    // kept 6 % of the area): say by how much.
+    const double change = out.mesh.total_area() / size.area - 1.0;
+    if (std::fabs(change) > kRemeshAreaTolerance) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "remesh = %g mm changed the mandrel's area by %+.1f %% (%.4g -> %.4g mm^2; "
+                    "more than %.0f %%): use a smaller mandrel.remesh",
+                    m.remesh, 100.0 * change, size.area, out.mesh.total_area(),
+                    100.0 * kRemeshAreaTolerance);
+      out.warnings.push_back(buf);
+    }
   }
   std::vector<char> keep(out.mesh.num_faces());
   for (int f = 0; f < out.mesh.num_faces(); ++f) keep[f] = patch_wound[patch[f]];
