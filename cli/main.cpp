@@ -1,6 +1,7 @@
 // windplan: the command-line tool. Exit codes: 0 ok, 1 bad input (a one-line message naming the
 // file, key or element), 2 usage error, 3 internal error. No stack traces for user errors.
 #include <cstring>
+#include <string>
 #include <iostream>
 
 #include "cli/commands.h"
@@ -8,6 +9,39 @@
 #include "windplan_version.h"
 
 namespace {
+
+// A message may quote the user's file (a malformed OFF line, a YAML scalar): control bytes and
+// bytes that are not UTF-8 are shown as \xNN, so that binary garbage never reaches the terminal
+// raw (escape sequences can rewrite it).
+std::string printable(const std::string& s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c == '\t' || (c >= 0x20 && c < 0x7f)) {
+      out += static_cast<char>(c);
+      ++i;
+      continue;
+    }
+    // A well-formed UTF-8 sequence of 2-4 bytes (no overlong 2-byte forms) passes as is.
+    const int n = c >= 0xc2 && c <= 0xdf   ? 2
+                  : c >= 0xe0 && c <= 0xef ? 3
+                  : c >= 0xf0 && c <= 0xf4 ? 4
+                                           : 0;
+    bool ok = n > 0 && i + n <= s.size();
+    for (int k = 1; ok && k < n; ++k) ok = (static_cast<unsigned char>(s[i + k]) & 0xc0) == 0x80;
+    if (ok) {
+      out.append(s, i, n);
+      i += n;
+    } else {
+      static const char* digits = "0123456789abcdef";
+      out += "\\x";
+      out += digits[c >> 4];
+      out += digits[c & 15];
+      ++i;
+    }
+  }
+  return out;
+}
 
 void print_help() {
   std::cout << "windplan " << WINDPLAN_VERSION
@@ -52,20 +86,20 @@ int main(int argc, char** argv) {
     try {
       return c.run(rest);
     } catch (const windplan::UsageError& e) {
-      std::cerr << "windplan " << c.name << ": " << e.what() << "\n"
+      std::cerr << "windplan " << c.name << ": " << printable(e.what()) << "\n"
                 << "run 'windplan " << c.name << " --help' for usage\n";
       return 2;
     } catch (const windplan::InputError& e) {
-      std::cerr << "windplan " << c.name << ": error: " << e.what() << "\n";
+      std::cerr << "windplan " << c.name << ": error: " << printable(e.what()) << "\n";
       return 1;
     } catch (const std::bad_alloc&) {
       std::cerr << "windplan " << c.name << ": error: out of memory\n";
       return 1;
     } catch (const std::exception& e) {
-      std::cerr << "windplan " << c.name << ": internal error: " << e.what() << "\n";
+      std::cerr << "windplan " << c.name << ": internal error: " << printable(e.what()) << "\n";
       return 3;
     }
   }
-  std::cerr << "windplan: unknown command '" << args[0] << "' (see windplan --help)\n";
+  std::cerr << "windplan: unknown command '" << printable(args[0]) << "' (see windplan --help)\n";
   return 2;
 }
