@@ -8,9 +8,12 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "export/export_plan.h"
+#include "export/manifest.h"
+#include "export/output_set.h"
 #include "export/report.h"
 #include "planner/job.h"
 #include "planner/pipeline.h"
+#include "windplan_version.h"
 
 namespace windplan::cli {
 
@@ -21,6 +24,10 @@ const char* const kRunHelp =
     "payout.csv, axes.csv, G-code, report.json/md, mesh.ply, paths.ply, development.svg, as\n"
     "switched by output:) into the output directory. Progress goes to stderr, one line per\n"
     "stage; the summary to stdout. Two runs of the same job write byte-identical files.\n\n"
+    "The output folder always holds one job's complete set: the files are written into a\n"
+    "staging folder beside it and swapped in whole, with manifest.json (job, input hashes,\n"
+    "version, every file's size and SHA-256). A second run into a folder that a running job\n"
+    "holds is refused; a folder holding files windplan did not write is never replaced.\n\n"
     "  --out DIR   output directory (default: output.directory of the job, else\n"
     "              out/<job name>/ relative to the current directory)\n";
 
@@ -39,6 +46,20 @@ int run_run(const std::vector<std::string>& argv) {
     dir = std::filesystem::path("out") / job.name;
   }
 
+  // The folder is locked before planning, so that a second run is refused at once; the inputs
+  // are hashed now, as read (an edit during the run does not change the manifest).
+  OutputSet set(dir);
+  Manifest manifest;
+  manifest.job = job.name;
+  manifest.version = WINDPLAN_VERSION;
+  manifest.inputs.push_back(manifest_entry(job.path, "job", true));
+  if (!job.mandrel.file.empty()) {
+    manifest.inputs.push_back(manifest_entry(job.mandrel.file, "mandrel", true));
+  }
+  for (const CutLineOptions& c : job.cutlines) {
+    if (!c.init.empty()) manifest.inputs.push_back(manifest_entry(c.init, "cutline " + c.name, true));
+  }
+
   PipelineOptions po;
   po.on_stage = [](const StageTiming& t) {
     char buf[160];
@@ -51,7 +72,10 @@ int run_run(const std::vector<std::string>& argv) {
   }
 
   const auto t0 = std::chrono::steady_clock::now();
-  const ExportResult ex = export_plan(r.plan, r.mandrel.mesh, job.machine, job.output, dir);
+  ExportResult ex = export_plan(r.plan, r.mandrel.mesh, job.machine, job.output, set.staging());
+  set.commit(manifest, ex.files);
+  ex.directory = set.directory();
+  ex.files.push_back("manifest.json");
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.plan.metrics.timings.push_back({"export", secs});
   {

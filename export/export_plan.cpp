@@ -3,6 +3,7 @@
 #include "export/cutlines_csv.h"
 
 #include "export/gcode.h"
+#include "export/output_set.h"
 #include "export/ply_polylines.h"
 #include "export/report.h"
 #include "export/svg.h"
@@ -108,7 +109,9 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
 
   if (output.csv) {
     write_csv_file(dir / "fibre_path.csv", fibre_path_table(plan));
+    output_test_pause("fibre_path.csv");
     write_csv_file(dir / "payout.csv", payout_table(r.motion));
+    output_test_pause("payout.csv");
     write_csv_file(dir / "axes.csv", axes_table(r.motion));
     if (robot) write_csv_file(dir / "eye_pose.csv", eye_pose_table(r.motion));
     if (cutlines) write_cutlines_csv(dir / "cutlines.csv", plan.cutlines);
@@ -123,6 +126,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   if (output.svg) write_text_atomically(dir / "development.svg", development_svg(plan));
   if (output.report) {
     write_text_atomically(dir / "report.json", report_json(plan, r));
+    output_test_pause("report.json");
     write_text_atomically(dir / "report.md", report_markdown(plan, r));
   }
   return r;
