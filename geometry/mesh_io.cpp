@@ -858,12 +858,10 @@ const std::vector<std::string>& readable_mesh_extensions() {
   return e;
 }
 
-const std::vector<std::string>& writable_mesh_extensions() {
-  static const std::vector<std::string> e = {".obj", ".ply"};
-  return e;
-}
+namespace {
 
-TriangleSoup read_mesh(const std::filesystem::path& path, const MeshReadOptions& options) {
+// Options and extension of a read; IoError/ConfigError as documented for read_mesh.
+void check_mesh_format(const std::filesystem::path& path, const MeshReadOptions& options) {
   std::string why;
   if (!options.is_valid(&why)) throw ConfigError("mesh read options: " + why);
   const std::string ext = lower(path.extension().string());
@@ -872,7 +870,28 @@ TriangleSoup read_mesh(const std::filesystem::path& path, const MeshReadOptions&
     fail(path, "unknown mesh format '" + (ext.empty() ? std::string("(no extension)") : ext) +
                    "' (supported: " + join(known) + ")");
   }
-  const std::string data = read_whole_file(path);
+}
+
+}  // namespace
+
+const std::vector<std::string>& writable_mesh_extensions() {
+  static const std::vector<std::string> e = {".obj", ".ply"};
+  return e;
+}
+
+TriangleSoup read_mesh(const std::filesystem::path& path, const MeshReadOptions& options) {
+  std::error_code ec;
+  // (Before the extension: a folder named "tube" is not an "unknown mesh format".)
+  if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not a mesh file");
+  check_mesh_format(path, options);
+  return read_mesh_data(read_whole_file(path), path, options);
+}
+
+TriangleSoup read_mesh_data(const std::string& data, const std::filesystem::path& path,
+                            const MeshReadOptions& options) {
+  check_mesh_format(path, options);
+  const std::string ext = lower(path.extension().string());
+  if (data.empty()) fail(path, "empty file");
   TriangleSoup soup;
   if (ext == ".obj")
     soup = read_obj(path, data);

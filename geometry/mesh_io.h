@@ -46,6 +46,11 @@ const std::vector<std::string>& writable_mesh_extensions();
 /// \throw IoError naming the file (and line or element) on any problem, see the file comment.
 TriangleSoup read_mesh(const std::filesystem::path& path, const MeshReadOptions& options = {});
 
+/// Same from the file's bytes already in memory (fuzzing, tests); `path` names it in messages and
+/// its extension chooses the format.
+TriangleSoup read_mesh_data(const std::string& data, const std::filesystem::path& path,
+                            const MeshReadOptions& options = {});
+
 /// Writes a mesh as OBJ or PLY (by extension) through write_file_atomically.
 /// \throw IoError for an unknown extension or when the file cannot be written.
 void write_mesh(const std::filesystem::path& path, const TriangleSoup& soup,
