@@ -30,7 +30,7 @@ struct JobLimits {
   double max_length = 1e5;         ///< mm: the largest length or coordinate (100 m)
   int max_meridians = 10000;       ///< winding.meridians (count)
   int max_circuits = 10000;        ///< winding.circuits, given or auto (count)
-  double max_turns = 1000.0;       ///< winding.turns (turns)
+  double max_turns = 100.0;        ///< winding.turns (turns; 100 on a pipe: hoop winding)
   int max_girth_samples = 2000;    ///< girth.samples (count)
   int max_girth_rings = 1000;      ///< girth.rings (count)
   int max_segments = 1000;         ///< bent_tube.segments (count)

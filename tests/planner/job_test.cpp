@@ -70,3 +70,38 @@ TEST(Job, MissingJobFileIsAnIoError) {
 
 }  // namespace
 }  // namespace windplan
+
+namespace windplan {
+namespace {
+
+// Issue 18: `name: "../../escape"` or an absolute name wrote 9 files outside out/.
+TEST(Job, NameIsCheckedBeforeItBecomesAFolderName) {
+  const std::string pipe = "mandrel: {source: pipe, pipe: {radius: 50, length: 500}}\n";
+  for (const char* bad : {"\"../../escape\"", "/tmp/abs", "a/b", "\"a\\\\b\"", "..", "\".hidden\"",
+                          "\"\"", "\"x\\ty\""}) {
+    const std::string e = error_of(pipe + "name: " + bad + "\n");
+    EXPECT_NE(e.find("/jobs/test.yaml:2: key 'name'"), std::string::npos) << bad << " -> " << e;
+  }
+  EXPECT_EQ(load_job_from_string(pipe + "name: tank-7 rev.B\n", "/jobs/test.yaml").name,
+            "tank-7 rev.B");
+}
+
+TEST(Job, MandrelFileThatIsAFolderSaysSo) {
+  // Once "unknown mesh format" (a folder has no extension).
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "windplan_job_dir_mesh";
+  std::filesystem::create_directories(dir / "tube");
+  const std::string e = [&] {
+    try {
+      load_job_from_string("mandrel: {source: mesh, file: tube}\n", dir / "j.yaml");
+    } catch (const ConfigError& x) {
+      return std::string(x.what());
+    }
+    return std::string();
+  }();
+  std::filesystem::remove_all(dir);
+  EXPECT_NE(e.find("key 'mandrel.file'"), std::string::npos) << e;
+  EXPECT_NE(e.find("is a directory"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace windplan

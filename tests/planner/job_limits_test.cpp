@@ -1,0 +1,111 @@
+// planner/job_limits.h: absurd sizes are refused when the job is loaded, before anything is
+// allocated, each naming the key, the value and the bound (issue 18: each of these once ran for
+// minutes, took gigabytes, hung in OCCT, or planned nonsense and exited 0).
+#include "planner/job_limits.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "geometry/errors.h"
+#include "planner/job.h"
+#include "tests/test_data.h"
+
+namespace windplan {
+namespace {
+
+std::string load_error(const std::string& yaml) {
+  try {
+    load_job_from_string(yaml, "/jobs/j.yaml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const std::string kPipe = "mandrel: {source: pipe, pipe: {radius: 50, length: 500}}\n";
+std::string pipe_with(const std::string& mandrel_keys) {
+  return "mandrel: {source: pipe, " + mandrel_keys + ", pipe: {radius: 50, length: 500}}\n";
+}
+
+struct Case {
+  std::string yaml, key, value, bound;
+};
+
+TEST(JobLimits, EveryAbsurdSizeIsRefusedNamingKeyValueAndBound) {
+  const std::vector<Case> cases = {
+      {kPipe + "winding: {meridians: 1000000000}\n", "winding.meridians", "1e+09", "1e+04"},
+      {kPipe + "winding: {circuits: 1000000000}\n", "winding.circuits", "1e+09", "1e+04"},
+      {kPipe + "winding: {turns: 1e6}\n", "winding.turns", "1e+06", "100"},
+      {kPipe + "winding: {band_width: 1e-9}\n", "winding.band_width", "1e-09", "0.001 mm"},
+      {kPipe + "winding: {band_width: 1e9}\n", "winding.band_width", "1e+09", "1e+05 mm"},
+      {kPipe + "girth: {samples: 100000000}\n", "girth.samples", "1e+08", "2e+03"},
+      {pipe_with("linear_deflection: 1e-6"), "mandrel.linear_deflection", "1e-06", "0.001 mm"},
+      {pipe_with("linear_deflection: 0.001"), "mandrel.linear_deflection", "0.001", "0.0051 mm"},
+      {pipe_with("angular_deflection: 0.001"), "mandrel.angular_deflection", "0.001", "2e+06"},
+      {pipe_with("remesh: 0.01"), "mandrel.remesh", "0.01", "2e+06"},
+      {pipe_with("remesh: 1e6"), "mandrel.remesh", "1e+06", "1e+05 mm"},
+      {pipe_with("remesh: 100"), "mandrel.remesh", "100", "51 mm"},
+      {"mandrel: {source: pipe, pipe: {radius: 1e300, length: 500}}\n", "mandrel.pipe.radius",
+       "1e+300", "1e+05 mm"},
+      {"mandrel: {source: pipe, pipe: {radius: 50, length: 1e300}}\n", "mandrel.pipe.length",
+       "1e+300", "1e+05 mm"},
+      {"mandrel: {source: cone, cone: {radius_start: 1e-7, radius_end: 40, length: 400}}\n",
+       "mandrel.cone.radius_start", "1e-07", "0.001 mm"},
+      {"mandrel: {source: bent_tube, bent_tube: {radius: 25, segments: [1e300, 200], bends: "
+       "[{angle: 90, radius: 100}]}}\n",
+       "mandrel.bent_tube.segments", "1e+300", "1e+05 mm"},
+      {kPipe + "winding: {turns: 90, circuits: 1000}\n", "winding.turns", "90", "plan points"},
+      {kPipe + "machine: {chord_tolerance: 1e-12}\n", "machine.chord_tolerance", "1e-12", "0.001"},
+  };
+  for (const Case& c : cases) {
+    const std::string e = load_error(c.yaml);
+    EXPECT_NE(e.find(c.key), std::string::npos) << c.yaml << " -> " << e;
+    EXPECT_NE(e.find(c.value), std::string::npos) << c.yaml << " -> " << e;
+    EXPECT_NE(e.find(c.bound), std::string::npos) << c.yaml << " -> " << e;
+    EXPECT_NE(e.find("/jobs/j.yaml"), std::string::npos) << e;
+  }
+}
+
+TEST(JobLimits, MessageGivesTheLineOfTheKey) {
+  const std::string e = load_error(kPipe + "winding:\n  turns: 2\n  meridians: 1000000\n");
+  EXPECT_EQ(e.rfind("/jobs/j.yaml:4: key 'winding.meridians' = 1e+06", 0), 0u) << e;
+}
+
+TEST(JobLimits, ShippedConfigsAreWithinEveryBound) {
+  for (const auto& e : std::filesystem::directory_iterator(test::source_dir() / "configs")) {
+    if (e.path().extension() != ".yaml") continue;
+    EXPECT_NO_THROW(load_job(e.path())) << e.path();
+  }
+}
+
+TEST(JobLimits, TriangleEstimateIsTheClosedFormOfTheChordDeviation) {
+  // Edge l = sqrt(8 R d) when it is the binding one; A / (0.433 l^2) triangles.
+  TessellateOptions t;
+  t.linear_deflection = 0.5;
+  t.angular_deflection = 90.0;
+  const double r = 100.0, l2 = 8.0 * r * t.linear_deflection;
+  EXPECT_NEAR(estimate_tessellation_triangles(1e5, r, t), 1e5 / (0.433 * l2), 1e-9);
+  t.angular_deflection = 1.0;  // now R t = 1.745 mm < 20 mm
+  const double la = r * M_PI / 180.0;
+  EXPECT_NEAR(estimate_tessellation_triangles(1e5, r, t), 1e5 / (0.433 * la * la), 1e-6);
+}
+
+TEST(JobLimits, MeshAndCadMandrelsAreCheckedOnceTheirSizeIsKnown) {
+  MandrelSize s;
+  s.size = 1e7;  // a 10 km mesh: the units are wrong
+  try {
+    check_mandrel_extent(s, "mandrel (tube.obj)");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("check mandrel.units"), std::string::npos) << e.what();
+  }
+  s.size = 500.0;
+  s.area = 1.5e5;
+  EXPECT_THROW(check_remesh_size(s, 0.01), ConfigError);
+  EXPECT_THROW(check_remesh_size(s, 60.0), ConfigError);
+  EXPECT_NO_THROW(check_remesh_size(s, 6.0));
+}
+
+}  // namespace
+}  // namespace windplan
