@@ -13,7 +13,7 @@ namespace {
 
 std::string num(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v + 0.0);
+  std::snprintf(buf, sizeof buf, "%.4g", v + 0.0);
   return buf;
 }
 
