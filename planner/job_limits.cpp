@@ -13,7 +13,11 @@ namespace {
 
 std::string num(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v + 0.0);
+  if (v == std::floor(v) && std::fabs(v) < 1e7) {
+    std::snprintf(buf, sizeof buf, "%.0f", v + 0.0);  // whole numbers as such: 10000, not 1e+04
+  } else {
+    std::snprintf(buf, sizeof buf, "%.4g", v + 0.0);
+  }
   return buf;
 }
 

@@ -36,25 +36,25 @@ TEST(JobLimits, EveryAbsurdSizeIsRefusedNamingKeyValueAndBound) {
   const std::vector<Case> cases = {
       {kPipe + "winding: {meridians: 1000000000}\n", "winding.meridians", "1e+09", "10000"},
       {kPipe + "winding: {circuits: 1000000000}\n", "winding.circuits", "1e+09", "10000"},
-      {kPipe + "winding: {turns: 1e6}\n", "winding.turns", "1e+06", "100"},
+      {kPipe + "winding: {turns: 1e6}\n", "winding.turns", "1000000", "100"},
       {kPipe + "winding: {band_width: 1e-9}\n", "winding.band_width", "1e-09", "0.001 mm"},
-      {kPipe + "winding: {band_width: 1e9}\n", "winding.band_width", "1e+09", "1e+05 mm"},
+      {kPipe + "winding: {band_width: 1e9}\n", "winding.band_width", "1e+09", "100000 mm"},
       {kPipe + "girth: {samples: 100000000}\n", "girth.samples", "1e+08", "2000"},
       {pipe_with("linear_deflection: 1e-6"), "mandrel.linear_deflection", "1e-06", "0.001 mm"},
       {pipe_with("linear_deflection: 0.001"), "mandrel.linear_deflection", "0.001", "0.005099 mm"},
-      {pipe_with("angular_deflection: 0.001"), "mandrel.angular_deflection", "0.001", "2e+06"},
-      {pipe_with("remesh: 0.01"), "mandrel.remesh", "0.01", "2e+06"},
-      {pipe_with("remesh: 1e6"), "mandrel.remesh", "1e+06", "1e+05 mm"},
+      {pipe_with("angular_deflection: 0.001"), "mandrel.angular_deflection", "0.001", "2000000"},
+      {pipe_with("remesh: 0.01"), "mandrel.remesh", "0.01", "2000000"},
+      {pipe_with("remesh: 1e6"), "mandrel.remesh", "1000000", "100000 mm"},
       {pipe_with("remesh: 100"), "mandrel.remesh", "100", "50.99 mm"},
       {"mandrel: {source: pipe, pipe: {radius: 1e300, length: 500}}\n", "mandrel.pipe.radius",
-       "1e+300", "1e+05 mm"},
+       "1e+300", "100000 mm"},
       {"mandrel: {source: pipe, pipe: {radius: 50, length: 1e300}}\n", "mandrel.pipe.length",
-       "1e+300", "1e+05 mm"},
+       "1e+300", "100000 mm"},
       {"mandrel: {source: cone, cone: {radius_start: 1e-7, radius_end: 40, length: 400}}\n",
        "mandrel.cone.radius_start", "1e-07", "0.001 mm"},
       {"mandrel: {source: bent_tube, bent_tube: {radius: 25, segments: [1e300, 200], bends: "
        "[{angle: 90, radius: 100}]}}\n",
-       "mandrel.bent_tube.segments", "1e+300", "1e+05 mm"},
+       "mandrel.bent_tube.segments", "1e+300", "100000 mm"},
       {kPipe + "winding: {turns: 90, circuits: 1000}\n", "winding.turns", "90", "plan points"},
       {kPipe + "machine: {chord_tolerance: 1e-12}\n", "machine.chord_tolerance", "1e-12", "0.001"},
   };
@@ -69,7 +69,7 @@ TEST(JobLimits, EveryAbsurdSizeIsRefusedNamingKeyValueAndBound) {
 
 TEST(JobLimits, MessageGivesTheLineOfTheKey) {
   const std::string e = load_error(kPipe + "winding:\n  turns: 2\n  meridians: 1000000\n");
-  EXPECT_EQ(e.rfind("/jobs/j.yaml:4: key 'winding.meridians' = 1e+06", 0), 0u) << e;
+  EXPECT_EQ(e.rfind("/jobs/j.yaml:4: key 'winding.meridians' = 1000000", 0), 0u) << e;
 }
 
 TEST(JobLimits, ShippedConfigsAreWithinEveryBound) {
