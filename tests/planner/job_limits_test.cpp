@@ -9,19 +9,12 @@
 
 #include "geometry/errors.h"
 #include "planner/job.h"
+#include "tests/planner/job_error.h"
 #include "tests/test_data.h"
 
 namespace windplan {
 namespace {
 
-std::string load_error(const std::string& yaml) {
-  try {
-    load_job_from_string(yaml, "/jobs/j.yaml");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 const std::string kPipe = "mandrel: {source: pipe, pipe: {radius: 50, length: 500}}\n";
 std::string pipe_with(const std::string& mandrel_keys) {
@@ -59,7 +52,7 @@ TEST(JobLimits, EveryAbsurdSizeIsRefusedNamingKeyValueAndBound) {
       {kPipe + "machine: {chord_tolerance: 1e-12}\n", "machine.chord_tolerance", "1e-12", "0.001"},
   };
   for (const Case& c : cases) {
-    const std::string e = load_error(c.yaml);
+    const std::string e = test::job_load_error(c.yaml);
     EXPECT_NE(e.find(c.key), std::string::npos) << c.yaml << " -> " << e;
     EXPECT_NE(e.find(c.value), std::string::npos) << c.yaml << " -> " << e;
     EXPECT_NE(e.find(c.bound), std::string::npos) << c.yaml << " -> " << e;
@@ -68,7 +61,7 @@ TEST(JobLimits, EveryAbsurdSizeIsRefusedNamingKeyValueAndBound) {
 }
 
 TEST(JobLimits, MessageGivesTheLineOfTheKey) {
-  const std::string e = load_error(kPipe + "winding:\n  turns: 2\n  meridians: 1000000\n");
+  const std::string e = test::job_load_error(kPipe + "winding:\n  turns: 2\n  meridians: 1000000\n");
   EXPECT_EQ(e.rfind("/jobs/j.yaml:4: key 'winding.meridians' = 1000000", 0), 0u) << e;
 }
 
