@@ -195,6 +195,38 @@ void check_mandrel_extent(const MandrelSize& s, const std::string& what,
   }
 }
 
+double estimate_plan_points(const WindingOptions& w, double radius, double axial, double edge) {
+  const double circumference = 2.0 * M_PI * radius;
+  const double k = w.circuits > 0 ? w.circuits : std::ceil(circumference / w.band_width);
+  return 2.0 * k * 2.0 * (w.turns * circumference + axial) / std::max(edge, 1e-300);
+}
+
+void check_plan_size(const WindingOptions& w, double radius, double axial, double edge,
+                     const JobLimits& limits) {
+  const double points = estimate_plan_points(w, radius, axial, edge);
+  if (points > limits.max_plan_points) {
+    throw ConfigError("keys 'winding.turns' = " + num(w.turns) + ", 'winding.circuits' = " +
+                      (w.circuits > 0 ? num(w.circuits) : std::string("auto")) + ": about " +
+                      num(points) + " plan points on this mandrel (largest radius " + num(radius) +
+                      " mm, mean edge " + num(edge) + " mm), above the bound " +
+                      num(limits.max_plan_points) +
+                      "; use fewer turns or circuits, or a coarser mesh");
+  }
+}
+
+void check_plan_size(const WindingOptions& w, const Mandrel& mandrel, const JobLimits& limits) {
+  const Mesh& m = mandrel.winding.mesh;
+  if (m.num_faces() == 0) return;
+  double radius = 0.0, lo = INFINITY, hi = -INFINITY;
+  for (const Vec3& p : m.points()) {
+    radius = std::max(radius, mandrel.axis.radius(p));
+    lo = std::min(lo, mandrel.axis.axial(p));
+    hi = std::max(hi, mandrel.axis.axial(p));
+  }
+  const double edge = std::sqrt(m.total_area() / (kTriangleArea * m.num_faces()));
+  check_plan_size(w, radius, hi - lo, edge, limits);
+}
+
 void check_job_limits(const Job& job, const ConfigNode& root, const JobLimits& l) {
   const Checker c(root, l);
   const MandrelOptions& m = job.mandrel;
@@ -272,11 +304,10 @@ void check_job_limits(const Job& job, const ConfigNode& root, const JobLimits& l
                num(circumference) + " mm (circuits: auto), above the bound " +
                num(l.max_circuits));
   }
-  const double k = w.circuits > 0 ? w.circuits : std::ceil(k_auto);
   const double edge = m.remesh > 0.0 ? m.remesh : tessellation_edge(s.radius, m.tessellation);
-  // A pass crosses about (its length / edge) edges, twice that with the triangles' diagonals.
-  const double points = 2.0 * k * 2.0 * (w.turns * circumference + s.axial) / edge;
+  const double points = estimate_plan_points(w, s.radius, s.axial, edge);
   if (points > l.max_plan_points) {
+    const double k = w.circuits > 0 ? w.circuits : std::ceil(k_auto);
     c.fail("winding.turns", w.turns, "",
            "with " + num(k) + " circuits gives about " + num(points) +
                " plan points on this mandrel, above the bound " + num(l.max_plan_points) +

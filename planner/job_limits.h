@@ -22,6 +22,7 @@
 #include "geometry/tessellate.h"
 #include "planner/config_node.h"
 #include "planner/job.h"
+#include "planner/mandrel_builder.h"
 
 namespace windplan {
 
@@ -74,5 +75,20 @@ void check_mandrel_extent(const MandrelSize& s, const std::string& what,
 /// For every mandrel before remeshing: the remeshing length against its size, and the estimated
 /// triangles. \throw ConfigError naming mandrel.remesh.
 void check_remesh_size(const MandrelSize& s, double remesh, const JobLimits& limits = JobLimits());
+
+/// Estimated plan points of the winding (2 K passes of (N 2 pi R + L) / l edge crossings, twice
+/// that with the triangles' diagonals; K auto = 2 pi R / band width) on a mandrel whose wound
+/// mesh has largest radius R, axial length L and mean edge length l (mm).
+double estimate_plan_points(const WindingOptions& w, double radius, double axial, double edge);
+
+/// For mesh and CAD mandrels once built (the pipeline, before planning): the estimated plan
+/// points against the bound. \throw ConfigError naming winding.turns and circuits.
+void check_plan_size(const WindingOptions& w, double radius, double axial, double edge,
+                     const JobLimits& limits = JobLimits());
+
+/// The same for a built mandrel (the pipeline, before planning; mesh and CAD mandrels are known
+/// only now): R, L and l from its winding surface.
+void check_plan_size(const WindingOptions& w, const Mandrel& mandrel,
+                     const JobLimits& limits = JobLimits());
 
 }  // namespace windplan

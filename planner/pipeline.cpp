@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "planner/cutlines.h"
+#include "planner/job_limits.h"
 
 namespace windplan {
 
@@ -71,6 +72,7 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
 
   Stage mandrel("mandrel", &timings, options);
   r.mandrel = build_mandrel(job);
+  check_plan_size(job.winding, r.mandrel);  // (mesh and CAD mandrels: their size is known now)
   mandrel.done();
   const Mandrel& md = r.mandrel;
   const WindingSurface& ws = md.winding;

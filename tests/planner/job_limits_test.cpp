@@ -100,5 +100,27 @@ TEST(JobLimits, MeshAndCadMandrelsAreCheckedOnceTheirSizeIsKnown) {
   EXPECT_NO_THROW(check_remesh_size(s, 6.0));
 }
 
+TEST(JobLimits, PlanPointEstimateAndItsBoundOnABuiltMandrel) {
+  WindingOptions w;
+  w.turns = 2.0;
+  w.circuits = 3;
+  // 2 K passes, each crossing 2 (N 2 pi R + L) / l edges.
+  EXPECT_NEAR(estimate_plan_points(w, 10.0, 100.0, 2.0),
+              2.0 * 3.0 * 2.0 * (2.0 * 2.0 * M_PI * 10.0 + 100.0) / 2.0, 1e-9);
+  w.circuits = 0;  // auto: ceil(2 pi R / band width) = ceil(62.8 / 10) = 7
+  EXPECT_NEAR(estimate_plan_points(w, 10.0, 100.0, 2.0),
+              2.0 * 7.0 * 2.0 * (2.0 * 2.0 * M_PI * 10.0 + 100.0) / 2.0, 1e-9);
+  w.turns = 100.0;
+  w.circuits = 10000;
+  try {
+    check_plan_size(w, 50.0, 200.0, 8.0);
+    FAIL();
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("'winding.turns' = 100, 'winding.circuits' = 10000"), std::string::npos) << m;
+    EXPECT_NE(m.find("above the bound 5000000"), std::string::npos) << m;
+  }
+}
+
 }  // namespace
 }  // namespace windplan
