@@ -203,6 +203,13 @@ double estimate_plan_points(const WindingOptions& w, double radius, double axial
 
 void check_plan_size(const WindingOptions& w, double radius, double axial, double edge,
                      const JobLimits& limits) {
+  const double circumference = 2.0 * M_PI * radius;
+  if (w.circuits == 0 && circumference / w.band_width > limits.max_circuits) {
+    throw ConfigError("key 'winding.band_width' = " + num(w.band_width) + " mm gives about " +
+                      num(circumference / w.band_width) + " circuits on a circumference of " +
+                      num(circumference) + " mm (circuits: auto), above the bound " +
+                      num(limits.max_circuits) + "; use a wider band or give winding.circuits");
+  }
   const double points = estimate_plan_points(w, radius, axial, edge);
   if (points > limits.max_plan_points) {
     throw ConfigError("keys 'winding.turns' = " + num(w.turns) + ", 'winding.circuits' = " +
