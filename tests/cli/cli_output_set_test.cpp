@@ -266,5 +266,19 @@ TEST_F(CliOutputSet, AutoCircuitsOverflowOnAMeshMandrelIsRefused) {
   EXPECT_NE(r.err.find("above the bound 10000"), std::string::npos) << r.err;
 }
 
+TEST_F(CliOutputSet, CadMandrelDeflectionsAreCheckedOnceTheModelIsRead) {
+  // The STEP vessel is 303.5 mm across: 0.002 mm is below 1e-5 of it (OCCT took gigabytes).
+  const fs::path job = dir_ / "cad.yaml";
+  std::ofstream(job) << "mandrel: {source: cad, file: "
+                     << (test::source_dir() / "configs/mandrels/vessel.step").string()
+                     << ", linear_deflection: 0.002}\n";
+  const test::RunResult r = run({"run", job.string(), "--out", (dir_ / "o").string()});
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("key 'mandrel.linear_deflection' = 0.002 mm is below the bound"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "o"));
+}
+
 }  // namespace
 }  // namespace windplan
