@@ -87,7 +87,7 @@ TEST(CgalMesh, SharedMeshesRoundTripAndCgalAgreesOnAreaAndVolume) {
 }
 
 TEST(CgalMesh, CopyAndMove) {
-  CgalMesh a(Mesh(test::octahedron()));
+  CgalMesh a{Mesh(test::octahedron())};  // (braces: clang reads the parentheses as a declaration)
   CgalMesh b = a;
   CgalMesh c = std::move(a);
   EXPECT_EQ(b.num_faces(), 8);
