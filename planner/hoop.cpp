@@ -122,27 +122,50 @@ HoopLayer plan_hoop_layer(const RadiusProfile& profile, const SpindleAxis& axis,
                      " mm along the axis at mu = " + num(o.mu) + ") do not fit in the range");
   }
 
-  // Developed centre line: passes with x linear in phi (constant pitch), reversal arcs of
-  // constant geodesic curvature.
+  // Developed centre line: tie-on turn, passes with x linear in phi (constant pitch) joined by
+  // reversal arcs of constant geodesic curvature, tie-off turn.
   std::vector<Developed> dev;
   std::vector<CircuitSegment> segments;
-  // The loose ends (where the layer starts and where it stops) run one pitch past the apex line,
-  // so that the first and last turns cover the range end at every angle (header comment).
-  const double loose0 = std::max(L.x0 + 0.5 * B - p, lo + 0.5 * B);
-  const double loose1 = std::min(L.x1 - 0.5 * B + p, hi - 0.5 * B);
-  double phi = 0.0, x = loose0;
-  dev.push_back({phi, x, hoop_angle(x)});
-  for (int k = 0; k < o.passes; ++k) {
-    const int dir = k % 2 == 0 ? +1 : -1;
-    const double apex = dir > 0 ? xa1 : xa0;
-    const bool last = k + 1 == o.passes;
-    const double stop = last ? (dir > 0 ? loose1 : loose0) : apex - dir * rise(apex);
-    // The pass.
+  double phi = 0.0, x = L.x0 + 0.5 * B;
+  dev.push_back({phi, x, 0.5 * M_PI});
+  auto close_segment = [&](CircuitSegment::Kind kind, int first) {
+    segments.push_back({kind, first, static_cast<int>(dev.size()) - 1});
+  };
+  // One turn along the parallel at x (a geodesic on a cylinder).
+  auto circle = [&]() {
+    const int first = static_cast<int>(dev.size()) - 1;
+    const double r = profile.at(x);
+    const int n = std::max(16, static_cast<int>(std::ceil(2.0 * M_PI * r / o.point_spacing)));
+    const double phis = phi;
+    for (int i = 1; i <= n; ++i) {
+      phi = phis + 2.0 * M_PI * i / n;
+      dev.push_back({phi, x, 0.5 * M_PI});
+    }
+    close_segment(CircuitSegment::Kind::Pass, first);
+  };
+  // An arc of |k_g| = 1 / rho(x) turning theta from theta0 to theta1 (radians).
+  auto arc = [&](double theta0, double theta1) {
+    const int first = static_cast<int>(dev.size()) - 1;
+    const double rho = arc_radius(x), r = profile.at(x);
+    const double kappa = theta1 > theta0 ? 1.0 / rho : -1.0 / rho;
+    const double length = std::abs(theta1 - theta0) * rho;
+    const int m = std::max(16, static_cast<int>(std::ceil(length / o.point_spacing)));
+    const double xs = x, phis = phi;
+    for (int i = 1; i <= m; ++i) {
+      const double th = theta0 + kappa * length * i / m;
+      x = xs + (std::sin(th) - std::sin(theta0)) / kappa;
+      phi = phis - (std::cos(th) - std::cos(theta0)) / kappa / r;
+      dev.push_back({phi, x, th});
+    }
+    close_segment(CircuitSegment::Kind::Turnaround, first);
+  };
+  // The helix from x to `stop` (axial direction dir).
+  auto pass = [&](double stop, int dir) {
+    const int first = static_cast<int>(dev.size()) - 1;
     const double turns = std::abs(stop - x) / p;
     const double rmax = std::max(profile.at(x), profile.at(stop));
     const int n =
         std::max(2, static_cast<int>(std::ceil(2.0 * M_PI * turns * rmax / o.point_spacing)));
-    const int first = static_cast<int>(dev.size()) - 1;
     const double x_start = x, phi_start = phi;
     for (int i = 1; i <= n; ++i) {
       const double u = static_cast<double>(i) / n;
@@ -151,23 +174,25 @@ HoopLayer plan_hoop_layer(const RadiusProfile& profile, const SpindleAxis& axis,
       const double a = hoop_angle(x);
       dev.push_back({phi, x, dir > 0 ? a : M_PI - a});
     }
-    segments.push_back({CircuitSegment::Kind::Pass, first, static_cast<int>(dev.size()) - 1});
-    if (last) break;
-    // The reversal arc at `apex`: theta from a to pi - a (dir +1) or back (dir -1).
-    const double a = hoop_angle(apex), rho = arc_radius(apex), r = profile.at(apex);
-    const double theta0 = dir > 0 ? a : M_PI - a, kappa = dir > 0 ? 1.0 / rho : -1.0 / rho;
-    const double arc = rho * (M_PI - 2.0 * a);
-    const int m = std::max(16, static_cast<int>(std::ceil(arc / o.point_spacing)));
-    const int arc_first = static_cast<int>(dev.size()) - 1;
-    const double xs = x, phis = phi;
-    for (int i = 1; i <= m; ++i) {
-      const double sigma = arc * i / m, th = theta0 + kappa * sigma;
-      x = xs + (std::sin(th) - std::sin(theta0)) / kappa;
-      phi = phis - (std::cos(th) - std::cos(theta0)) / kappa / r;
-      dev.push_back({phi, x, th});
+    close_segment(CircuitSegment::Kind::Pass, first);
+  };
+  // Tie-on: a full turn with the band's edge on x0, then half a reversal arc onto the helix.
+  circle();
+  arc(0.5 * M_PI, hoop_angle(x));
+  for (int k = 0; k < o.passes; ++k) {
+    const int dir = k % 2 == 0 ? +1 : -1;
+    const double a_end = hoop_angle(dir > 0 ? xa1 : xa0);
+    if (k + 1 == o.passes) {
+      // Tie-off: half an arc off the helix and a full turn with the band's edge on the range end.
+      const double end = dir > 0 ? L.x1 - 0.5 * B : L.x0 + 0.5 * B;
+      pass(end - dir * rise(end), dir);
+      arc(dir > 0 ? a_end : M_PI - a_end, 0.5 * M_PI);
+      circle();
+      break;
     }
-    segments.push_back(
-        {CircuitSegment::Kind::Turnaround, arc_first, static_cast<int>(dev.size()) - 1});
+    const double apex = dir > 0 ? xa1 : xa0;
+    pass(apex - dir * rise(apex), dir);
+    arc(dir > 0 ? a_end : M_PI - a_end, dir > 0 ? M_PI - a_end : a_end);
   }
 
   // On the mandrel: position, outward normal from the profile's slope.
@@ -214,8 +239,8 @@ HoopLayer plan_hoop_layer(const RadiusProfile& profile, const SpindleAxis& axis,
   // The hoop angle measured at the point of the first pass nearest the middle of the range.
   {
     const double mid = 0.5 * (L.x0 + L.x1);
-    int best = 0;
-    for (int i = segments[0].first; i <= segments[0].last; ++i) {
+    int best = segments[2].first;
+    for (int i = segments[2].first; i <= segments[2].last; ++i) {
       if (std::abs(dev[i].x - mid) < std::abs(dev[best].x - mid)) best = i;
     }
     L.angle = c.points[best].winding_angle;

@@ -13,17 +13,20 @@
 // a margin below the friction coefficient). The arc of radius rho = r / (f mu sin^2 a) turns by
 // 180 deg - 2a, rises rho (1 - sin a) along the axis and runs 2 rho cos a around.
 //
+// The layer starts with a tie-on turn: one full turn along the parallel x0 + B/2 (the band's
+// edge on the range end; a geodesic on a cylinder) and half a reversal arc (theta from 90 deg to
+// a) onto the first pass; it ends the same way (half an arc and a full turn at x1 - B/2 or
+// x0 + B/2). So the circuit's segments are: turn (Pass), arc (Turnaround), then passes and
+// reversal arcs alternating, then arc (Turnaround), turn (Pass).
+//
 // Coverage: the apex of a reversal (the band centre at its extreme axial position) is placed at
 // x1 - B/2 + p/2 (x0 + B/2 - p/2 at the start): at every angle one of the two passes meeting
 // there is within p/2 of the apex, so its band reaches the range end; the band overhangs the
-// range by up to p/2 at the apex itself. The loose ends of the layer (where it starts, and where
-// its last pass stops) have no partner pass, so they run one pitch past the apex line (the band
-// centre to x0 + B/2 - p, or x1 - B/2 + p): the first and last turns alone cover the range end
-// at every angle, overhanging it by up to one pitch where the layer starts and stops. When that
-// would leave the profile (a pipe wound to its ends) the apex is pulled in to B/2 inside the
-// profile's end, and the measured coverage says what is left bare. Coverage is measured on
-// `meridians` lines of constant phi: the union of the axial intervals x +- B / (2 sin theta) of the
-// bands crossing them, over the range. Units: mm, degrees in the result.
+// range by up to p/2 at the apex itself. When that would leave the profile (a pipe wound to its
+// ends) the apex is pulled in to B/2 inside the profile's end, and the measured coverage says
+// what is left bare. The tie turns cover their range end at every angle. Coverage is measured on
+// `meridians` lines of constant phi: the union of the axial intervals x +- B / (2 sin theta) of
+// the bands crossing them, over the range. Units: mm, degrees in the result.
 #include <cmath>
 #include <string>
 #include <vector>

@@ -47,10 +47,11 @@ TEST(Hoop, PitchAndAngleOnACylinder) {
   EXPECT_NEAR(L.angle, std::atan(2.0 * M_PI * R / p) * 180.0 / M_PI, 1e-3);
   ASSERT_EQ(L.circuits.size(), 1u);
   const Circuit& c = L.circuits[0];
-  ASSERT_EQ(c.segments.size(), 3u);  // pass, reversal, pass
-  EXPECT_EQ(c.segments[1].kind, CircuitSegment::Kind::Turnaround);
-  EXPECT_NEAR(measured_pitch(c, c.segments[0]), p, 1e-9);
+  // Tie-on turn, arc, pass, reversal, pass, arc, tie-off turn.
+  ASSERT_EQ(c.segments.size(), 7u);
+  for (int i : {1, 3, 5}) EXPECT_EQ(c.segments[i].kind, CircuitSegment::Kind::Turnaround);
   EXPECT_NEAR(measured_pitch(c, c.segments[2]), p, 1e-9);
+  EXPECT_NEAR(measured_pitch(c, c.segments[4]), p, 1e-9);
   // Every point lies on the cylinder, its normal radial.
   for (const FibrePoint& fp : c.points) {
     EXPECT_NEAR(std::hypot(fp.position.x(), fp.position.y()), R, 1e-9);
@@ -61,19 +62,19 @@ TEST(Hoop, PitchAndAngleOnACylinder) {
   EXPECT_LE(L.reversal_slippage, o.mu);
   EXPECT_GT(L.reversal_slippage, 0.5 * o.reversal_friction * o.mu);  // the arc does bend
   EXPECT_TRUE(L.warnings.empty());
-  // Its extreme axial positions: the reversal apex x1 - B/2 + p/2, and the loose ends one pitch
-  // past the apex line at the start, x0 + B/2 - p.
+  // Its extreme axial positions: the reversal apex x1 - B/2 + p/2, and the tie turns at
+  // x0 + B/2.
   double zmin = 1e9, zmax = -1e9;
   for (const FibrePoint& fp : c.points) {
     zmin = std::min(zmin, fp.position.z());
     zmax = std::max(zmax, fp.position.z());
   }
   EXPECT_NEAR(zmax, 280.0 - 5.0 + 4.0, 1e-6);
-  EXPECT_NEAR(zmin, 20.0 + 5.0 - 8.0, 1e-9);
-  // The band centre line: 2 passes of (279 - 17) / p turns of a helix of pitch p (the reversal
-  // arc stands in for a piece of about its own length).
+  EXPECT_NEAR(zmin, 20.0 + 5.0, 1e-9);
+  // The band centre line: two tie turns of 2 pi R and 2 passes of (279 - 25) / p turns of a
+  // helix of pitch p (the arcs stand in for pieces of about their own length).
   const double turn = std::hypot(2.0 * M_PI * R, p);
-  EXPECT_NEAR(L.length, 2.0 * (279.0 - 17.0) / p * turn, 1e-3 * L.length);
+  EXPECT_NEAR(L.length, 2.0 * 2.0 * M_PI * R + 2.0 * (279.0 - 25.0) / p * turn, 1e-3 * L.length);
 }
 
 TEST(Hoop, ReversalArcKeepsTheSlippageBelowMu) {
@@ -83,7 +84,7 @@ TEST(Hoop, ReversalArcKeepsTheSlippageBelowMu) {
     o.passes = 4;
     const HoopLayer L = plan_hoop_layer(cylinder(60.0, 0.0, 200.0), SpindleAxis{}, o);
     EXPECT_LE(L.reversal_slippage, mu) << mu;
-    EXPECT_EQ(L.circuits[0].segments.size(), 7u);
+    EXPECT_EQ(L.circuits[0].segments.size(), 11u);
     // The passes themselves are geodesic helices on the cylinder: no slippage.
     for (const CircuitSegment& sg : L.circuits[0].segments) {
       if (sg.kind != CircuitSegment::Kind::Pass) continue;
