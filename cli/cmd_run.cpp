@@ -8,8 +8,10 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "export/export_plan.h"
+#include "export/layup_export.h"
 #include "export/report.h"
 #include "planner/job.h"
+#include "planner/layup.h"
 #include "planner/pipeline.h"
 
 namespace windplan::cli {
@@ -20,7 +22,9 @@ const char* const kRunHelp =
     "and circuits, computes the machine motion and writes every output file (fibre_path.csv,\n"
     "payout.csv, axes.csv, G-code, report.json/md, mesh.ply, paths.ply, development.svg, as\n"
     "switched by output:) into the output directory. Progress goes to stderr, one line per\n"
-    "stage; the summary to stdout. Two runs of the same job write byte-identical files.\n\n"
+    "stage; the summary to stdout. Two runs of the same job write byte-identical files.\n"
+    "A job with layers: winds every layer in order on the surface built by the ones under it\n"
+    "into one program, and writes laminate.csv/.vtu and layer_profiles.csv/.svg besides.\n\n"
     "  --out DIR   output directory (default: output.directory of the job, else\n"
     "              out/<job name>/ relative to the current directory)\n";
 
@@ -45,22 +49,37 @@ int run_run(const std::vector<std::string>& argv) {
     std::snprintf(buf, sizeof buf, "windplan run: %-8s done in %.2f s", t.stage.c_str(), t.seconds);
     std::cerr << buf << "\n";
   };
-  PipelineResult r = plan_job(job, po);
-  for (const std::string& w : r.plan.metrics.warnings) {
+  // A job with `layers:` is a layup (planner/layup.h): every layer in order, one program.
+  PipelineResult r;
+  LayupResult layup;
+  const bool layered = !job.layers.empty();
+  if (layered) {
+    layup = plan_layup(job, po);
+  } else {
+    r = plan_job(job, po);
+  }
+  WindingPlan& plan = layered ? layup.plan : r.plan;
+  for (const std::string& w : plan.metrics.warnings) {
     std::cerr << "windplan run: warning: " << w << "\n";
   }
 
   const auto t0 = std::chrono::steady_clock::now();
-  const ExportResult ex = export_plan(r.plan, r.mandrel.mesh, job.machine, job.output, dir);
+  std::vector<std::string> laminate_files;
+  if (layered) {
+    laminate_files = layup_file_names(layup, job.output);
+    write_layup_files(layup, job.output, dir);
+  }
+  const ExportResult ex = export_plan(plan, layered ? layup.mandrel.mesh : r.mandrel.mesh,
+                                      job.machine, job.output, dir, laminate_files);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.plan.metrics.timings.push_back({"export", secs});
+  plan.metrics.timings.push_back({"export", secs});
   {
     char buf[160];
     std::snprintf(buf, sizeof buf, "windplan run: %-8s done in %.2f s (%zu files in %s)", "export",
                   secs, ex.files.size(), dir.string().c_str());
     std::cerr << buf << "\n";
   }
-  std::cout << summary_text(r.plan, ex);
+  std::cout << summary_text(plan, ex);
   return 0;
 }
 

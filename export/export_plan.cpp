@@ -85,7 +85,8 @@ CsvTable eye_pose_table(const Motion& motion) {
 
 ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
                          const MachineOptions& machine, const OutputOptions& output,
-                         const std::filesystem::path& dir) {
+                         const std::filesystem::path& dir,
+                         const std::vector<std::string>& also_written) {
   ExportResult r;
   r.directory = dir;
   r.machine = machine;
@@ -104,6 +105,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   if (output.gcode && !robot) r.files.push_back(gcode_name);
   if (output.ply) r.files.insert(r.files.end(), {"mesh.ply", "paths.ply"});
   if (output.svg) r.files.push_back("development.svg");
+  r.files.insert(r.files.end(), also_written.begin(), also_written.end());
   if (output.report) r.files.insert(r.files.end(), {"report.json", "report.md"});
 
   if (output.csv) {

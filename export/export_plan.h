@@ -38,10 +38,13 @@ struct ExportResult {
 };
 
 /// Computes the motion and writes the files.
+/// \param also_written files another writer puts into `dir` (a layup's laminate files,
+///        export/layup_export.h): listed in ExportResult::files and the reports, before them
 /// \throw InputError (bad envelope, axis limits; see compute_motion), IoError (cannot write).
 ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
                          const MachineOptions& machine, const OutputOptions& output,
-                         const std::filesystem::path& dir);
+                         const std::filesystem::path& dir,
+                         const std::vector<std::string>& also_written = {});
 
 /// Where a job's files go: output.directory when set (already resolved against the job file's
 /// directory by the job loader), else "<job name>.out" beside the job file.

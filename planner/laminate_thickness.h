@@ -74,6 +74,16 @@ struct LayerThickness {
   double max() const;
 };
 
+/// A laminate on a shape of revolution: the mandrel's meridian and, per layer, its thickness and
+/// the outer surface after it (each surface has the points of the one under it, offset one for
+/// one, so point i of every surface comes from point i of the mandrel's meridian).
+struct LaminateProfiles {
+  MeridianPolyline mandrel;                ///< the mandrel's meridian
+  std::vector<std::string> names;          ///< per layer, innermost first
+  std::vector<LayerThickness> thickness;   ///< per layer, at the points of the surface under it
+  std::vector<MeridianPolyline> surfaces;  ///< per layer: the outer surface after it
+};
+
 /// Equation (1) at radius r: 2 K B t / (2 pi sqrt(r^2 - c^2)); 0 for r <= c.
 double helical_thickness_unbounded(double r, double c, double circuits, double band_width,
                                    double band_thickness);
