@@ -60,7 +60,11 @@ void for_pass_points(const std::vector<Circuit>& circuits, F f) {
   for (const Circuit& c : circuits) {
     for (const CircuitSegment& sg : c.segments) {
       if (sg.kind != CircuitSegment::Kind::Pass) continue;
-      for (int i = sg.first; i <= sg.last; ++i) f(c.points[i]);
+      // A point shared with a neighbouring turnaround carries that arc's figures: left out.
+      const int n = static_cast<int>(c.points.size());
+      for (int i = sg.first + (sg.first > 0); i <= sg.last - (sg.last + 1 < n); ++i) {
+        f(c.points[i]);
+      }
     }
   }
 }
