@@ -17,7 +17,7 @@ std::string fmt(const char* f, double v) {
 
 struct Totals {
   double band = 0.0, fibre = 0.0, fibre_mass = 0.0, resin_mass = 0.0, time = 0.0;
-  double thickness_cylinder = 0.0;
+  double thickness_cylinder = std::nan("");  // NaN: no layer has a cylinder figure
 };
 
 Totals totals(const WindingPlan& plan, const std::vector<double>& times) {
@@ -29,7 +29,10 @@ Totals totals(const WindingPlan& plan, const std::vector<double>& times) {
     t.fibre_mass += L.fibre_mass;
     t.resin_mass += L.resin_mass;
     t.time += times[l];
-    if (!std::isnan(L.thickness_cylinder)) t.thickness_cylinder += L.thickness_cylinder;
+    if (!std::isnan(L.thickness_cylinder)) {
+      t.thickness_cylinder =
+          (std::isnan(t.thickness_cylinder) ? 0.0 : t.thickness_cylinder) + L.thickness_cylinder;
+    }
   }
   return t;
 }

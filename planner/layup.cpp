@@ -77,6 +77,40 @@ int nearest_axial(const MeridianPolyline& m, double x) {
   return best;
 }
 
+// The thickness a layer leaves on each face of `mesh` from the band centre line length in each
+// face: the band volume t B L_f spread over the faces within B/2 (centroid to centroid, reached
+// across edges) in proportion to their area, so that faces smaller than the band do not take all
+// of it; the total volume is kept.
+std::vector<double> band_spread_thickness(const Mesh& mesh, const std::vector<double>& length,
+                                          double band_width, double band_thickness) {
+  const int nf = mesh.num_faces();
+  std::vector<double> volume(nf, 0.0);
+  std::vector<int> stamp(nf, -1), around;
+  for (int f = 0; f < nf; ++f) {
+    if (!(length[f] > 0.0)) continue;
+    const Vec3 c = mesh.face_centroid(f);
+    around.assign(1, f);
+    stamp[f] = f;
+    double area = 0.0;
+    for (std::size_t i = 0; i < around.size(); ++i) {
+      const int g = around[i];
+      area += mesh.face_area(g);
+      for (int k = 0; k < 3; ++k) {
+        const int h = mesh.twin(mesh.face_halfedge(g) + k);
+        const int n = mesh.face(h);
+        if (n < 0 || stamp[n] == f) continue;
+        stamp[n] = f;
+        if ((mesh.face_centroid(n) - c).norm() <= 0.5 * band_width) around.push_back(n);
+      }
+    }
+    const double v = band_thickness * band_width * length[f];
+    for (int g : around) volume[g] += v * mesh.face_area(g) / area;
+  }
+  std::vector<double> t(nf, 0.0);
+  for (int f = 0; f < nf; ++f) t[f] = volume[f] / mesh.face_area(f);
+  return t;
+}
+
 }  // namespace
 
 Mesh revolve_meridian(const MeridianPolyline& m, const SpindleAxis& axis, double edge) {
@@ -298,12 +332,8 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
           }
         }
       }
-      out.face_thickness.resize(cur.num_faces());
-      S.thickness_max = 0.0;
-      for (int f = 0; f < cur.num_faces(); ++f) {
-        out.face_thickness[f] = t_band * S.band_width * length[f] / cur.face_area(f);
-        S.thickness_max = std::max(S.thickness_max, out.face_thickness[f]);
-      }
+      out.face_thickness = band_spread_thickness(cur, length, S.band_width, t_band);
+      S.thickness_max = *std::max_element(out.face_thickness.begin(), out.face_thickness.end());
       std::vector<double> sum(cur.num_vertices(), 0.0), area(cur.num_vertices(), 0.0);
       for (int f = 0; f < cur.num_faces(); ++f) {
         for (int v : cur.triangle(f)) {

@@ -15,9 +15,10 @@
 // The current meridian is then offset by the layer's thickness (offset_meridian: a thickness
 // that would close a polar opening is an InputError naming the layer).
 // Other mandrels (helical layers only): a layer's thickness on each face of the current surface
-// is measured from its paths, t_f = t B L_f / A_f (L_f the band centre line in the face, A_f its
-// area: the bands' volume spread over the face), and the next surface is the current one with
-// every vertex moved along its normal by the area-weighted mean thickness of its faces.
+// is measured from its paths: the band volume t B L_f of the band centre line in a face (length
+// L_f) is spread over the faces within B/2 of it in proportion to their area, and the next surface
+// is the current one with every vertex moved along its normal by the area-weighted mean thickness
+// of its faces.
 //
 // The plan (WindingPlan) holds every layer's circuits in winding order, numbered on through the
 // layers, and WindingPlan::layers their figures (planner/layer_summary.h). Its metrics are the

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "geometry/closest_point.h"
 #include "geometry/errors.h"
 #include "planner/job.h"
 
@@ -121,6 +122,59 @@ TEST(Layup, RevolvedMeridianIsAnAnnulusOnTheMeridian) {
   for (int f = 0; f < mesh.num_faces(); ++f) {
     const Vec3 c = mesh.face_centroid(f);
     EXPECT_GT(mesh.face_normal(f).dot(Vec3(c.x(), c.y(), 0.0)), 0.0);
+  }
+}
+
+Job bent_tube_job(const std::string& layers) {
+  return load_job_from_string(
+      "mandrel:\n  source: bent_tube\n"
+      "  bent_tube: {radius: 25, segments: [200, 200], bends: [{angle: 90, radius: 100}]}\n"
+      "material: {tows: 2}\nwinding: {turns: 6, circuits: 4, band_width: 8}\n"
+      "girth: {samples: 8}\n" +
+          layers,
+      "/jobs/bent_layup.yaml");
+}
+
+TEST(Layup, OffRevolutionTheMeshIsMovedByTheMeasuredThickness) {
+  const LayupResult r =
+      plan_layup(bent_tube_job("layers:\n  - kind: helical\n  - kind: helical\n"));
+  ASSERT_FALSE(r.revolution);
+  ASSERT_EQ(r.layers.size(), 2u);
+  const Mesh& m = r.mandrel.winding.mesh;
+  for (const LayupLayer& L : r.layers) {
+    // The band volume t B L is spread over the faces: it is all there.
+    double volume = 0.0;
+    for (int f = 0; f < m.num_faces(); ++f) volume += L.face_thickness[f] * m.face_area(f);
+    const double expect = L.summary.band_thickness * L.summary.band_width * L.summary.band_length;
+    EXPECT_NEAR(volume, expect, 0.02 * expect) << L.summary.name;
+    EXPECT_TRUE(std::isnan(L.summary.thickness_cylinder));
+    EXPECT_GT(L.summary.thickness_max, 0.0);
+  }
+  // The second layer lies outside the mandrel: its points are farther from the tube's
+  // centreline than the radius, by about the first layer's thickness there.
+  const ClosestPointQuery q(m);
+  double above = 0.0;
+  int n = 0;
+  for (const Circuit& c : r.layers[1].circuits) {
+    for (const FibrePoint& p : c.points) {
+      above += q.closest(p.position).distance;
+      ++n;
+    }
+  }
+  double volume = 0.0;
+  for (int f = 0; f < m.num_faces(); ++f) volume += r.layers[0].face_thickness[f] * m.face_area(f);
+  const double mean = volume / m.total_area();
+  EXPECT_GT(above / n, 0.5 * mean);
+  EXPECT_LT(above / n, 2.0 * mean);
+}
+
+TEST(Layup, HoopOffRevolutionIsRejected) {
+  try {
+    plan_layup(bent_tube_job("layers:\n  - kind: helical\n  - kind: hoop\n"));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("layers[1]: a hoop layer needs"), std::string::npos)
+        << e.what();
   }
 }
 
