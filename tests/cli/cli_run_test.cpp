@@ -158,6 +158,23 @@ TEST_F(CliRun, BadWindingInputIsExitOneWithTheKey) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("turns"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("bad.yaml"), std::string::npos) << r.err;
+  // Patterns and turnarounds on a vessel (issue 12): one line naming the key, exit 1.
+  for (const auto& [winding, key] :
+       {std::pair<std::string, std::string>{"turnaround: 10", "winding.turnaround = 10.00 mm"},
+        {"turnaround: 150", "winding.turnaround = 150.00 mm"},
+        {"pattern: {circuits: 12, skip: 4}", "coprime"},
+        {"pattern: {circuits: 7, skip: 3}\n  turnaround_window: 0", "winding.pattern: K=7, p=3"}}) {
+    std::ofstream(job) << "mandrel:\n  source: vessel\n  vessel:\n    radius: 100\n"
+                          "    length: 300\n    dome: {type: hemispherical, polar_opening: 30}\n"
+                          "winding:\n  band_width: 16\n  " << winding << "\n";
+    const Proc v = run({"run", job.string(), "--out", (dir_ / "o").string()});
+    EXPECT_EQ(v.code, 1) << winding;
+    EXPECT_NE(v.err.find(key), std::string::npos) << v.err;
+    std::istringstream lines(v.err);  // one error line (besides the stage progress lines)
+    int errors = 0;
+    for (std::string l; std::getline(lines, l);) errors += l.find("error:") != std::string::npos;
+    EXPECT_EQ(errors, 1) << v.err;
+  }
   const Proc u = run({"run"});
   EXPECT_EQ(u.code, 2) << u.err;
   const Proc h = run({"helices"});
