@@ -127,7 +127,7 @@ int run_patterns(const std::vector<std::string>& argv) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     std::snprintf(buf, sizeof buf,
-                  "%s %4d %4d  %10.3f  %14.3f  %9.3f  %10.4f  %5.3f  %7.2f  %7.2f  %11.2f  %5d  "
+                  "%s %4d %4d  %10.3f  %14.3f  %9.3f  %10.4f  %5.3f  %7.2f  %7.2f  %11.2f %9.2f  %5d  "
                   "%5.2f\n",
                   i == 0 ? "*" : " ", r.k.circuits, r.k.skip, r.k.angle_deg, r.k.c, r.k.moved,
                   r.k.turns_per_pass, r.k.cover_factor, 100.0 * r.cov.bare_fraction,

@@ -124,6 +124,36 @@ TEST_F(CliRun, ConeBeyondTheTurnLimitIsWarnedWithASuggestion) {
   EXPECT_NE(r.out.find("use turns <= 2.68, beta > 0"), std::string::npos) << r.out;
 }
 
+// windplan patterns: the table's first row is what `pattern: auto` winds, every row measured
+// on its own laid bands; off a shape of revolution it is refused.
+TEST_F(CliRun, PatternsTableStartsWithWhatAutoWinds) {
+  const fs::path job = dir_ / "hemi.yaml";
+  std::ofstream(job) << "name: hemi\nmandrel:\n  source: vessel\n  vessel:\n    radius: 100\n"
+                        "    length: 300\n    dome: {type: hemispherical, polar_opening: 30}\n"
+                        "winding:\n  band_width: 16\n";
+  const Proc t = run({"patterns", job.string(), "--json", "--top", "4"});
+  ASSERT_EQ(t.code, 0) << t.err;
+  const YAML::Node table = YAML::Load(t.out);
+  ASSERT_GE(table["patterns"].size(), 2u);
+  ASSERT_LE(table["patterns"].size(), 4u);
+  const YAML::Node first = table["patterns"][0];
+  const Proc h = run({"helices", job.string(), "--json"});
+  ASSERT_EQ(h.code, 0) << h.err;
+  const YAML::Node plan = YAML::Load(h.out);
+  EXPECT_EQ(plan["metrics"]["pattern_info"]["circuits"].as<int>(), first["circuits"].as<int>());
+  EXPECT_EQ(plan["metrics"]["pattern_info"]["skip"].as<int>(), first["skip"].as<int>());
+  EXPECT_NEAR(plan["metrics"]["pattern_info"]["turnaround_radius"].as<double>(),
+              first["turnaround_radius"].as<double>(), 1e-9);
+  EXPECT_EQ(plan["metrics"]["coverage"]["bare_fraction"].as<double>(), first["bare_fraction"].as<double>());
+  for (const YAML::Node& row : table["patterns"]) {
+    EXPECT_GE(row["turnaround_radius"].as<double>(), table["window_lo"].as<double>());
+    EXPECT_LE(row["turnaround_radius"].as<double>(), table["window_hi"].as<double>());
+  }
+  const Proc bent = run({"patterns", config("bent_tube.yaml").string()});
+  EXPECT_EQ(bent.code, 1);
+  EXPECT_NE(bent.err.find("not a shape of revolution"), std::string::npos) << bent.err;
+}
+
 TEST_F(CliRun, EveryShippedConfigRunsEndToEnd) {
   int n = 0;
   for (const auto& e : fs::directory_iterator(test::source_dir() / "configs")) {
