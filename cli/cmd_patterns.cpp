@@ -69,7 +69,7 @@ int run_patterns(const std::vector<std::string>& argv) {
   co.band_width = wo.band_width;
   co.stations = wo.coverage_stations;
   for (const PatternCandidate& k : all) {
-    const ClairautPass pass = clairaut_pass(meridian, k.c, {std::clamp(0.125 * wo.band_width, 0.25, 2.0)});
+    const ClairautPass pass = clairaut_pass(meridian, k.c, {fibre_step(wo)});
     const std::vector<Circuit> circuits =
         revolution_circuits(md.winding.mesh, {}, md.axis, pass, k, wo);
     rows.push_back({k, measure_coverage(md.winding.mesh, md.axis, circuits, co)});
