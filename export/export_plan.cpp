@@ -6,6 +6,7 @@
 #include "export/ply_polylines.h"
 #include "export/report.h"
 #include "export/svg.h"
+#include "export/viewer.h"
 #include "geometry/atomic_file.h"
 #include "geometry/errors.h"
 #include "geometry/mesh_io.h"
@@ -104,6 +105,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   if (output.gcode && !robot) r.files.push_back(gcode_name);
   if (output.ply) r.files.insert(r.files.end(), {"mesh.ply", "paths.ply"});
   if (output.svg) r.files.push_back("development.svg");
+  if (output.viewer) r.files.push_back("viewer.html");
   if (output.report) r.files.insert(r.files.end(), {"report.json", "report.md"});
 
   if (output.csv) {
@@ -121,6 +123,9 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     write_text_atomically(dir / "paths.ply", paths_ply(plan));
   }
   if (output.svg) write_text_atomically(dir / "development.svg", development_svg(plan));
+  if (output.viewer) {
+    write_text_atomically(dir / "viewer.html", viewer_page(plan, mandrel_mesh, r.motion).html);
+  }
   if (output.report) {
     write_text_atomically(dir / "report.json", report_json(plan, r));
     write_text_atomically(dir / "report.md", report_markdown(plan, r));

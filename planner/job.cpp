@@ -245,6 +245,7 @@ void decode_output(ConfigNode n, const std::filesystem::path& base, OutputOption
   n.get("report", &o->report);
   n.get("ply", &o->ply);
   n.get("svg", &o->svg);
+  n.get("viewer", &o->viewer);
   n.get("timings", &o->timings);
   n.finish();
   n.check(*o);
