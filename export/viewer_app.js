@@ -383,11 +383,29 @@
 
   // ---- camera and orbit control (three r111 in Debian has no examples/js OrbitControls) ----
   var orbit = { az: 0, el: 0, dist: 1, target: bs.center.clone() };
+  // The default view: from azimuth -35 deg, elevation 25 deg, framed on the mandrel's extent as
+  // seen from there (tighter than its bounding sphere for long or bent shapes).
   function resetView() {
     orbit.az = (params.view !== undefined ? parseFloat(params.view) : -35) * Math.PI / 180;
     orbit.el = 25 * Math.PI / 180;
-    orbit.dist = size / Math.sin(camera.fov * Math.PI / 360) * 1.05;
-    orbit.target.copy(bs.center);
+    var ce = Math.cos(orbit.el);
+    var fwd = new THREE.Vector3(-ce * Math.sin(orbit.az), -Math.sin(orbit.el), -ce * Math.cos(orbit.az));
+    var right = new THREE.Vector3().crossVectors(fwd, new THREE.Vector3(0, 1, 0)).normalize();
+    var up = new THREE.Vector3().crossVectors(right, fwd);
+    var mp = mg.attributes.position.array, nv = mp.length / 3, step = Math.max(1, Math.floor(nv / 4000));
+    var lo = [1e300, 1e300, 1e300], hi = [-1e300, -1e300, -1e300], q = new THREE.Vector3();
+    for (var i = 0; i < nv; i += step) {
+      q.set(mp[3 * i], mp[3 * i + 1], mp[3 * i + 2]).sub(bs.center);
+      var c = [q.dot(right), q.dot(up), q.dot(fwd)];
+      for (var k = 0; k < 3; ++k) { lo[k] = Math.min(lo[k], c[k]); hi[k] = Math.max(hi[k], c[k]); }
+    }
+    if (!(hi[0] > lo[0])) { lo = [-size, -size, -size]; hi = [size, size, size]; }
+    orbit.target.copy(bs.center)
+        .addScaledVector(right, (lo[0] + hi[0]) / 2).addScaledVector(up, (lo[1] + hi[1]) / 2)
+        .addScaledVector(fwd, (lo[2] + hi[2]) / 2);
+    var tv = Math.tan(camera.fov * Math.PI / 360), th = tv * camera.aspect;
+    var half = Math.max((hi[0] - lo[0]) / 2 / th, (hi[1] - lo[1]) / 2 / tv);
+    orbit.dist = 1.08 * half + (hi[2] - lo[2]) / 2;
   }
   function placeCamera() {
     var ce = Math.cos(orbit.el);
@@ -484,10 +502,10 @@
     setTime: function (f) { tFrac = f; slider.value = Math.round(f * 1000); update(); },
     setMode: function (m) { mode = m; modeSel.value = m; recolour(); update(); }
   };
-  resetView();
-  recolour();
   var wv0 = view.clientWidth || 800, hv0 = view.clientHeight || 600;
   renderer.setSize(wv0, hv0);
   camera.aspect = wv0 / hv0;
+  resetView();
+  recolour();
   update();
 })();
