@@ -1,12 +1,16 @@
 // windplan run <job.yaml> [--out DIR]
 // The whole pipeline: mandrel -> mesh -> girth -> helices -> toolpath -> exports, one progress
-// line per stage on stderr, every file into the output directory, the summary on stdout.
+// line per stage on stderr (on a terminal also a live line for the stage under way; cli/progress.h),
+// every file into the output directory, the summary on stdout.
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/progress.h"
 #include "export/export_plan.h"
 #include "export/report.h"
 #include "planner/job.h"
@@ -18,9 +22,10 @@ const char* const kRunHelp =
     "usage: windplan run <job.yaml> [--out DIR]\n\n"
     "Runs a job end to end: builds the mandrel, its girth field and density, plans the helices\n"
     "and circuits, computes the machine motion and writes every output file (fibre_path.csv,\n"
-    "payout.csv, axes.csv, G-code, report.json/md, mesh.ply, paths.ply, development.svg, as\n"
-    "switched by output:) into the output directory. Progress goes to stderr, one line per\n"
-    "stage; the summary to stdout. Two runs of the same job write byte-identical files.\n\n"
+    "payout.csv, axes.csv, G-code, report.json/md, mesh.ply, paths.ply, development.svg,\n"
+    "axes.svg, viewer.html, as switched by output:) into the output directory. Progress goes to\n"
+    "stderr, one line per stage (on a terminal also a live line for the stage under way); the\n"
+    "summary to stdout. Two runs of the same job write byte-identical files.\n\n"
     "  --out DIR   output directory (default: output.directory of the job, else\n"
     "              out/<job name>/ relative to the current directory)\n";
 
@@ -39,27 +44,29 @@ int run_run(const std::vector<std::string>& argv) {
     dir = std::filesystem::path("out") / job.name;
   }
 
+  StageProgress progress(std::cerr, ::isatty(STDERR_FILENO) == 1, "windplan run");
   PipelineOptions po;
-  po.on_stage = [](const StageTiming& t) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "windplan run: %-8s done in %.2f s", t.stage.c_str(), t.seconds);
-    std::cerr << buf << "\n";
-  };
+  po.on_stage_start = [&](const std::string& stage) { progress.start(stage); };
+  po.on_stage = [&](const StageTiming& t) { progress.finish(t.stage, t.seconds); };
   PipelineResult r = plan_job(job, po);
   for (const std::string& w : r.plan.metrics.warnings) {
     std::cerr << "windplan run: warning: " << w << "\n";
   }
 
   const auto t0 = std::chrono::steady_clock::now();
-  const ExportResult ex = export_plan(r.plan, r.mandrel.mesh, job.machine, job.output, dir);
+  progress.start("export");
+  ExportContext context;
+  context.wound_region = &r.mandrel.winding.mesh;
+  context.wound_face_map = &r.mandrel.winding.face_map;
+  context.on_file = [&](const std::string& file, int done, int total) {
+    progress.count(done, total, file);
+  };
+  const ExportResult ex =
+      export_plan(r.plan, r.mandrel.mesh, job.machine, job.output, dir, context);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.plan.metrics.timings.push_back({"export", secs});
-  {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "windplan run: %-8s done in %.2f s (%zu files in %s)", "export",
-                  secs, ex.files.size(), dir.string().c_str());
-    std::cerr << buf << "\n";
-  }
+  progress.finish("export", secs,
+                  " (" + std::to_string(ex.files.size()) + " files in " + dir.string() + ")");
   std::cout << summary_text(r.plan, ex);
   return 0;
 }
