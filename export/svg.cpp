@@ -257,7 +257,8 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
   o << "</g>\n<g id=\"cutlines\" clip-path=\"url(#plot)\">\n";
   for (std::size_t k = 0; k < cuts.size(); ++k) {
     if (cuts[k].pts.size() < 2) continue;
-    o << "<g class=\"cutline\" data-name=\"" << xml_escape(plan.cutlines[k].name) << "\">\n";
+    o << "<g class=\"cutline\" id=\"cutline-" << k << "\" data-name=\""
+      << xml_escape(plan.cutlines[k].name) << "\">\n";
     use("cut-" + std::to_string(k), cuts[k].lo, cuts[k].hi,
         "fill=\"none\" stroke=\"black\" stroke-width=\"1.5\" stroke-dasharray=\"8 4\"");
     o << "</g>\n";

@@ -104,7 +104,8 @@
 
   // ---- colours ----
   function hsl(h, s, l) { return new THREE.Color().setHSL(h, s, l); }
-  function circuitColour(k) { return hsl(((k * 137.50776405) % 360) / 360, 0.75, 0.42);  // as export/svg_util.h }
+  // The colour of circuit k as in development.svg (export/svg_util.h circuit_colour).
+  function circuitColour(k) { return hsl(((k * 137.50776405) % 360) / 360, 0.75, 0.42); }
   var layerPalette = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b',
                       '#e377c2', '#17becf', '#bcbd22', '#7f7f7f'];
   function layerColour(l) { return new THREE.Color(layerPalette[((l % 10) + 10) % 10]); }

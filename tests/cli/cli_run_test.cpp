@@ -82,10 +82,12 @@ TEST_F(CliRun, VesselRunsAndTwoRunsAreByteIdentical) {
     EXPECT_TRUE(read_all(e.path()) == read_all(other)) << e.path().filename() << " differs";
   }
   for (const char* f : {"fibre_path.csv", "payout.csv", "axes.csv", "toolpath.ngc", "report.json",
-                        "report.md", "mesh.ply", "paths.ply", "development.svg"}) {
+                        "report.md", "mesh.ply", "paths.ply", "development.svg", "axes.svg",
+                        "viewer.html"}) {
     EXPECT_TRUE(fs::exists(a / f)) << f;
   }
-  EXPECT_GE(files, 9);
+  EXPECT_GE(files, 11);
+  EXPECT_LT(fs::file_size(a / "viewer.html"), 5000000u);
   // report.json is JSON (YAML reads it) with the plan's circuits.
   const YAML::Node rep = YAML::LoadFile((a / "report.json").string());
   EXPECT_TRUE(rep.IsMap());

@@ -141,9 +141,35 @@ class ViewerBrowser : public ::testing::Test {
     EXPECT_EQ(s.console.find("WebGL: INVALID"), std::string::npos) << s.console;
   }
 
+  // PNG renders of the job's plots (rsvg-convert, README set-up) for a person to look at; each
+  // must read back as a PNG of the SVG's size with some colour in it.
+  void render_plots(const fs::path& out, const std::string& name) {
+    if (std::system("command -v rsvg-convert >/dev/null 2>&1") != 0) {
+      std::printf("rsvg-convert is not installed: no PNG renders\n");
+      return;
+    }
+    for (const char* plot : {"development", "axes"}) {
+      const fs::path png = fs::path(WINDPLAN_SCREENSHOTS) / (name + "_" + plot + ".png");
+      const std::string cmd = "rsvg-convert " + sh((out / (std::string(plot) + ".svg")).string()) +
+                              " -o " + sh(png.string());
+      EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+      test::RgbaImage im;
+      std::string why;
+      ASSERT_TRUE(test::read_png(png.string(), &im, &why)) << why;
+      long coloured = 0;
+      for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < im.width; ++x) {
+          const std::uint8_t* p = im.at(x, y);
+          coloured += std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) > 60;
+        }
+      EXPECT_GT(coloured, 2000) << png;
+    }
+  }
+
   // The checks shared by the jobs: first and last moments, and one other colour mode.
   void check_job(const std::string& config, const std::string& name) {
     const fs::path page = run_job(config);
+    render_plots(page.parent_path(), name);
     ASSERT_TRUE(fs::exists(page));
     EXPECT_LT(fs::file_size(page), 5000000u);
     const Shot early = shoot(page, "t=0.02", name + "_t0.02");
