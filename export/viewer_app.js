@@ -168,8 +168,10 @@
   var size = bs.radius;
 
   // Bands: per point two vertices at +-w/2 across the fibre in the tangent plane, lifted along the
-  // normal (later circuits a little higher, as they lie on top); per segment two triangles. One
-  // geometry per layer; the time slider sets each geometry's draw range.
+  // normal; per segment two triangles. One geometry per layer; the time slider sets each geometry's
+  // draw range. Bands overlap in a plane strip's sag (w^2/8R: 0.3 mm for the vessel) rather than
+  // by their lift, so depth cannot order them: they are tested against the mandrel's depth but do
+  // not write their own, and are drawn in winding order (later circuits on top, as wound).
   var w = D.band_width > 0 ? D.band_width : size / 100;
   var lift = 0.0015 * size;
   function ribbon(pts, nrms, count, width, h) {  // returns Float32Array of 2*count vertices
@@ -196,7 +198,7 @@
     var pointOf = new Int32Array(nv), circOf = new Int32Array(nv), v = 0;
     cs.forEach(function (k) {
       var c = circuits[k];
-      var h = lift * (1 + 1.5 * k / Math.max(1, circuits.length));
+      var h = lift;
       var r = ribbon(P.subarray(3 * c.first, 3 * (c.first + c.count)),
                      N.subarray(3 * c.first, 3 * (c.first + c.count)), c.count, w, h);
       pos.set(r, 6 * v);
@@ -217,7 +219,8 @@
     g.setIndex(new THREE.BufferAttribute(new Uint32Array(idx), 1));
     g.computeVertexNormals();
     var m = new THREE.Mesh(g, new THREE.MeshLambertMaterial({
-      vertexColors: THREE.VertexColors, side: THREE.DoubleSide }));
+      vertexColors: THREE.VertexColors, side: THREE.DoubleSide, depthWrite: false }));
+    m.renderOrder = 1 + lid;
     root.add(m);
     return { id: lid, mesh: m, geom: g, pointOf: pointOf, circOf: circOf, segEnd: segEnd,
              visible: true };
@@ -242,7 +245,9 @@
     for (var i = 0; i < n; ++i) path.push(new THREE.Vector3(pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]));
     var curve = new THREE.CatmullRomCurve3(path, false, 'centripetal');
     var tube = new THREE.TubeBufferGeometry(curve, Math.min(2000, 4 * n), Math.max(0.6, w / 8), 6, false);
-    cutGroup.add(new THREE.Mesh(tube, new THREE.MeshLambertMaterial({ color: 0x111111 })));
+    var cm = new THREE.Mesh(tube, new THREE.MeshLambertMaterial({ color: 0x111111 }));
+    cm.renderOrder = 1000;  // after the bands (which write no depth)
+    cutGroup.add(cm);
   });
 
   // Eye: its whole path (faint), the path so far, the eye and the free fibre.
@@ -268,6 +273,7 @@
   fg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6), 3));
   var freeFibre = new THREE.Line(fg, new THREE.LineBasicMaterial({ color: 0xd00000 }));
   eyeAll.visible = false;
+  [eyeAll, eyeSoFar, eyeBall, freeFibre].forEach(function (o) { o.renderOrder = 1001; });
   [eyeAll, eyeSoFar, eyeBall, freeFibre].forEach(function (o) { root.add(o); });
 
   // ---- colour mode and legend ----
