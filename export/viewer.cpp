@@ -396,9 +396,18 @@ ViewerPage viewer_page(const WindingPlan& plan, const Mesh& mandrel, const Motio
     }
     data = page_data(plan, motion, frame, mesh, k, ks, note);
     if (static_cast<double>(data.json.size()) <= budget) break;
+    // Thin what takes room: the points (32 bytes each) and the states (56) whichever is over a
+    // quarter of the budget (base64: 4/3).
     const double over = static_cast<double>(data.json.size()) / budget;
-    k = std::max(k + 1, static_cast<int>(std::ceil(k * over)));
-    ks = std::max(ks + 1, static_cast<int>(std::ceil(ks * over)));
+    const int k0 = k, ks0 = ks;
+    if (b64_size(32.0 * data.points) > 0.25 * budget)
+      k = std::max(k + 1, static_cast<int>(std::ceil(k * over)));
+    if (b64_size(56.0 * data.states) > 0.25 * budget)
+      ks = std::max(ks + 1, static_cast<int>(std::ceil(ks * over)));
+    if (k == k0 && ks == ks0) {  // neither dominates: thin both
+      k += 1;
+      ks += 1;
+    }
   }
   page.note = note;
   page.points_kept = data.points;
