@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/cli/cli_runner.h"
 #include "tests/export/png_image.h"
 
 namespace windplan {
@@ -25,18 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_all(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string sh(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
+std::string read_all(const fs::path& p) { return test::slurp(p); }
+std::string sh(const std::string& s) { return test::shell_quote(s); }
 
 constexpr int kWidth = 1280, kHeight = 800;
 constexpr int kPanel = 340;  // px: the panel on the right (viewer_app.js / viewer.cpp style)
