@@ -196,6 +196,13 @@
     circuits.forEach(function (c, k) { if (c.layer === lid) { cs.push(k); nv += c.count; } });
     var pos = new Float32Array(6 * nv), col = new Float32Array(6 * nv), idx = [], segEnd = [];
     var pointOf = new Int32Array(nv), circOf = new Int32Array(nv), v = 0;
+    var nrm = new Float32Array(6 * nv);
+    function tri(i0, i1, i2, q) {
+      var ax = pos[3 * i1] - pos[3 * i0], ay = pos[3 * i1 + 1] - pos[3 * i0 + 1], az = pos[3 * i1 + 2] - pos[3 * i0 + 2];
+      var bx = pos[3 * i2] - pos[3 * i0], by = pos[3 * i2 + 1] - pos[3 * i0 + 1], bz = pos[3 * i2 + 2] - pos[3 * i0 + 2];
+      var d = (ay * bz - az * by) * N[q] + (az * bx - ax * bz) * N[q + 1] + (ax * by - ay * bx) * N[q + 2];
+      if (d >= 0) idx.push(i0, i1, i2); else idx.push(i0, i2, i1);
+    }
     cs.forEach(function (k) {
       var c = circuits[k];
       var h = lift;
@@ -205,9 +212,14 @@
       for (var i = 0; i < c.count; ++i) {
         pointOf[v + i] = c.first + i;
         circOf[v + i] = k;
+        var q = 3 * (c.first + i);
+        nrm.set([N[q], N[q + 1], N[q + 2], N[q], N[q + 1], N[q + 2]], 6 * (v + i));
         if (i > 0) {
           var a = 2 * (v + i - 1), b = a + 2;
-          idx.push(a, a + 1, b, a + 1, b + 1, b);
+          // Both triangles facing out (along the point's normal): where the fibre turns sharply
+          // the tangent estimate can flip the strip, and a back face would be lit from inside.
+          tri(a, a + 1, b, q);
+          tri(a + 1, b + 1, b, q);
           segEnd.push(c.first + i);
         }
       }
@@ -216,8 +228,8 @@
     var g = new THREE.BufferGeometry();
     g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
     g.setAttribute('color', new THREE.BufferAttribute(col, 3));
+    g.setAttribute('normal', new THREE.BufferAttribute(nrm, 3));
     g.setIndex(new THREE.BufferAttribute(new Uint32Array(idx), 1));
-    g.computeVertexNormals();
     var m = new THREE.Mesh(g, new THREE.MeshLambertMaterial({
       vertexColors: THREE.VertexColors, side: THREE.DoubleSide, depthWrite: false }));
     m.renderOrder = 1 + lid;
@@ -272,6 +284,15 @@
   var fg = new THREE.BufferGeometry();
   fg.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6), 3));
   var freeFibre = new THREE.Line(fg, new THREE.LineBasicMaterial({ color: 0xd00000 }));
+  // In the machine frame the eye moves in the plane through the axis (X along it, Y across):
+  // its path there is (X, Y, 0), drawn outside the turning group.
+  var machinePath = new Float32Array(3 * NS);
+  for (var i = 0; i < NS; ++i) { machinePath[3 * i] = S[SS * i + 2]; machinePath[3 * i + 1] = S[SS * i + 3]; }
+  var mpg = new THREE.BufferGeometry();
+  mpg.setAttribute('position', new THREE.BufferAttribute(machinePath, 3));
+  var eyeMachine = new THREE.Line(mpg, new THREE.LineBasicMaterial({ color: 0x6f87a3 }));
+  eyeMachine.renderOrder = 1001;
+  scene.add(eyeMachine);
   eyeAll.visible = false;
   [eyeAll, eyeSoFar, eyeBall, freeFibre].forEach(function (o) { o.renderOrder = 1001; });
   [eyeAll, eyeSoFar, eyeBall, freeFibre].forEach(function (o) { root.add(o); });
@@ -359,8 +380,10 @@
     });
     mandrel.visible = cbMandrel.checked;
     cutGroup.visible = cbCut.checked;
-    eyeSoFar.visible = cbEye.checked;
-    eyeAll.visible = cbEyeAll.checked;
+    var machineFrame = frameSel.value === 'machine';
+    eyeSoFar.visible = cbEye.checked && !machineFrame;
+    eyeAll.visible = cbEyeAll.checked && !machineFrame;
+    eyeMachine.visible = (cbEye.checked || cbEyeAll.checked) && machineFrame;
     if (stateNow >= 0) {
       var o = SS * stateNow;
       eyeBall.position.set(S[o + 6], S[o + 7], S[o + 8]);
@@ -370,6 +393,7 @@
       fg.attributes.position.needsUpdate = true;
       fg.computeBoundingSphere();
       epg2.setDrawRange(0, stateNow + 1);
+      mpg.setDrawRange(0, cbEyeAll.checked ? NS : stateNow + 1);
       root.rotation.x = frameSel.value === 'machine' ? S[o + 1] * Math.PI / 180 : 0;
       axesBox.innerHTML = '';
       var rows = [['t', S[o].toFixed(2) + ' s of ' + D.wind_time.toFixed(1) + ' s'],

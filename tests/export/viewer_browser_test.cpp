@@ -122,6 +122,12 @@ class ViewerBrowser : public ::testing::Test {
     return s;
   }
 
+  // The band segments drawn, from the page's frame line.
+  static long segments(const Shot& s) {
+    const auto p = s.console.find("segments=");
+    return p == std::string::npos ? -1 : std::stol(s.console.substr(p + 9));
+  }
+
   static void expect_clean(const Shot& s, const std::string& frame_line) {
     EXPECT_NE(s.console.find("windplan-viewer: frame " + frame_line), std::string::npos)
         << "no frame logged; console:\n"
@@ -170,6 +176,13 @@ class ViewerBrowser : public ::testing::Test {
     expect_clean(full, "t=1.000");
     expect_clean(slip, "t=1.000 segments=");
     EXPECT_NE(slip.console.find("mode=slippage"), std::string::npos) << slip.console;
+    const Shot machine = shoot(page, "t=0.5&frame=machine", name + "_machine_frame");
+    expect_clean(machine, "t=0.500");
+    EXPECT_NE(machine.console.find("frame=machine"), std::string::npos) << machine.console;
+    // The slider draws the winding in order: more band segments later.
+    EXPECT_GT(segments(early), 0);
+    EXPECT_LT(segments(early), segments(machine));
+    EXPECT_LT(segments(machine), segments(full));
     const Counts ce = classify(early.image), cf = classify(full.image);
     std::printf("%s: view %ld px; t=0.02: background %ld, mandrel grey %ld, band colour %ld; "
                 "t=1: background %ld, grey %ld, colour %ld; %ld px differ\n",
