@@ -1,7 +1,7 @@
 // windplan run <job.yaml> [--out DIR]
 // The whole pipeline: mandrel -> mesh -> girth -> helices -> toolpath -> exports, one progress
-// line per stage on stderr (on a terminal also a live line for the stage under way; cli/progress.h),
-// every file into the output directory, the summary on stdout.
+// line per stage on stderr (on a terminal also a live line for the stage under way;
+// cli/progress.h), every file into the output directory, the summary on stdout.
 #include <unistd.h>
 
 #include <chrono>

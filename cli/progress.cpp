@@ -22,8 +22,8 @@ StageProgress::~StageProgress() {
 }
 
 std::string StageProgress::live_line(const std::string& prefix, int stage_number,
-                                     const std::string& stage, double seconds, int done,
-                                     int total, const std::string& what) {
+                                     const std::string& stage, double seconds, int done, int total,
+                                     const std::string& what) {
   char head[160];
   std::snprintf(head, sizeof head, "%s: [stage %d] %-8s ", prefix.c_str(), stage_number,
                 stage.c_str());
@@ -44,8 +44,7 @@ std::string StageProgress::live_line(const std::string& prefix, int stage_number
 
 void StageProgress::draw_locked() {
   if (!tty_ || !active_) return;
-  const double secs =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
   err_ << "\r\033[K" << live_line(prefix_, stage_number_, stage_, secs, done_, total_, what_)
        << std::flush;
 }

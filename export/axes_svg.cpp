@@ -62,10 +62,10 @@ std::string axes_svg(const Motion& motion, const std::string& job_name,
     auto py = [&](double v) { return top + ph - (v - lo) / (hi - lo) * ph; };
     o << "<g class=\"panel\" data-axis=\"" << ax.name << "\" font-family=\"sans-serif\" "
       << "font-size=\"10\" fill=\"#333\">\n"
-      << "<rect x=\"" << f2(ml) << "\" y=\"" << f2(top) << "\" width=\"" << f2(pw)
-      << "\" height=\"" << f2(ph) << "\" fill=\"none\" stroke=\"#333\" stroke-width=\"0.8\"/>\n"
-      << "<text x=\"12\" y=\"" << f2(top + ph / 2 + 4) << "\" font-size=\"13\">" << ax.name
-      << " [" << xml_escape(ax.unit) << "]</text>\n";
+      << "<rect x=\"" << f2(ml) << "\" y=\"" << f2(top) << "\" width=\"" << f2(pw) << "\" height=\""
+      << f2(ph) << "\" fill=\"none\" stroke=\"#333\" stroke-width=\"0.8\"/>\n"
+      << "<text x=\"12\" y=\"" << f2(top + ph / 2 + 4) << "\" font-size=\"13\">" << ax.name << " ["
+      << xml_escape(ax.unit) << "]</text>\n";
     const double step = nice_step(hi - lo, 4);
     for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) {
       char buf[48];

@@ -144,9 +144,9 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   }
   if (output.svg) {
     const Mesh& region = context.wound_region ? *context.wound_region : mandrel_mesh;
-    write_text_atomically(dir / "development.svg",
-                          development_svg(plan, Unrolling::make(plan, region,
-                                                                context.wound_face_map)));
+    write_text_atomically(
+        dir / "development.svg",
+        development_svg(plan, Unrolling::make(plan, region, context.wound_face_map)));
     wrote("development.svg");
     write_text_atomically(dir / "axes.svg", axes_svg(r.motion, plan.job_name));
     wrote("axes.svg");

@@ -14,10 +14,9 @@ namespace windplan {
 
 namespace {
 
-constexpr double kLayerPalette[][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44},
-                                       {214, 39, 40},  {148, 103, 189}, {140, 86, 75},
-                                       {227, 119, 194}, {23, 190, 207}, {188, 189, 34},
-                                       {127, 127, 127}};
+constexpr double kLayerPalette[][3] = {
+    {31, 119, 180}, {255, 127, 14},  {44, 160, 44},  {214, 39, 40},  {148, 103, 189},
+    {140, 86, 75},  {227, 119, 194}, {23, 190, 207}, {188, 189, 34}, {127, 127, 127}};
 
 std::string layer_colour(int l) {
   const auto& c = kLayerPalette[((l % 10) + 10) % 10];
@@ -139,9 +138,9 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
     << "<rect x=\"0\" y=\"0\" width=\"" << opts.width << "\" height=\"" << opts.height
     << "\" fill=\"white\"/>\n"
     << "<text x=\"" << ml << "\" y=\"20\" font-family=\"sans-serif\" font-size=\"15\">"
-    << xml_escape(plan.job_name) << ": " << plan.circuits.size() << " circuits, band "
-    << f2(w) << " mm, cover factor " << f2(plan.metrics.cover_factor) << ", "
-    << plan.cutlines.size() << " cut-lines"
+    << xml_escape(plan.job_name) << ": " << plan.circuits.size() << " circuits, band " << f2(w)
+    << " mm, cover factor " << f2(plan.metrics.cover_factor) << ", " << plan.cutlines.size()
+    << " cut-lines"
     << (axis_kind ? " (unrolled about the spindle axis)"
                   : " (unrolled in the tube's own coordinates)")
     << "</text>\n";
@@ -171,8 +170,7 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
       << "</text>\n";
   }
   o << "<text x=\"" << f2(ml + pw / 2) << "\" y=\"" << f2(opts.height - 14)
-    << "\" text-anchor=\"middle\" font-size=\"13\">" << xml_escape(un.along_title())
-    << "</text>\n"
+    << "\" text-anchor=\"middle\" font-size=\"13\">" << xml_escape(un.along_title()) << "</text>\n"
     << "<text x=\"18\" y=\"" << f2(mt + ph / 2) << "\" text-anchor=\"middle\" font-size=\"13\" "
     << "transform=\"rotate(-90 18 " << f2(mt + ph / 2) << ")\">" << xml_escape(un.around_title())
     << "</text>\n</g>\n";
@@ -225,8 +223,8 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
         << plan.circuits[k].index << "\" data-layer=\"" << layers[k] << "\" points=\""
         << points_attr(b.left.pts, b.right.pts, keep) << "\"/>\n";
     }
-    o << "<polyline id=\"path-" << k << "\" points=\""
-      << points_attr(b.centre.pts, {}, keep) << "\"/>\n";
+    o << "<polyline id=\"path-" << k << "\" points=\"" << points_attr(b.centre.pts, {}, keep)
+      << "\"/>\n";
   }
   for (std::size_t k = 0; k < cuts.size(); ++k) {
     if (cuts[k].pts.size() < 2) continue;
@@ -351,8 +349,8 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
     for (std::size_t k = 0; k < plan.circuits.size(); ++k) {
       swatch(lx + 74.0 * static_cast<double>(k / std::max<std::size_t>(1, rows)),
              ly + 13.0 * static_cast<double>(k % std::max<std::size_t>(1, rows)),
-             circuit_colour(static_cast<int>(k)), 1.0,
-             std::to_string(plan.circuits[k].index), "legend-circuit");
+             circuit_colour(static_cast<int>(k)), 1.0, std::to_string(plan.circuits[k].index),
+             "legend-circuit");
     }
     ly += 13.0 * static_cast<double>(rows);
   } else {

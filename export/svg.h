@@ -26,8 +26,8 @@
 namespace windplan {
 
 struct SvgOptions {
-  int width = 1200;          ///< px
-  int height = 680;          ///< px
+  int width = 1200;            ///< px
+  int height = 680;            ///< px
   double band_opacity = 0.45;  ///< fill opacity of one band (0..1)
 };
 

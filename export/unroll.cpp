@@ -50,8 +50,8 @@ Unrolling Unrolling::make(const WindingPlan& plan, const Mesh& mandrel,
     }
     u.kind_ = Kind::Conformal;
   } catch (const InputError& e) {
-    u.fallback_reason = std::string("no conformal coordinates (") + e.what() +
-                        "): unrolled about the spindle axis";
+    u.fallback_reason =
+        std::string("no conformal coordinates (") + e.what() + "): unrolled about the spindle axis";
   }
   return u;
 }
@@ -92,15 +92,15 @@ double Unrolling::face_distance(const Vec3& p, int f, Vec3* bary) const {
   Vec3 c = bary->cwiseMax(0.0);
   c /= c.sum();
   const auto& t = mesh_.triangle(f);
-  const Vec3 q = c[0] * mesh_.position(t[0]) + c[1] * mesh_.position(t[1]) +
-                 c[2] * mesh_.position(t[2]);
+  const Vec3 q =
+      c[0] * mesh_.position(t[0]) + c[1] * mesh_.position(t[1]) + c[2] * mesh_.position(t[2]);
   return (q - p).norm();
 }
 
 int Unrolling::locate(const Vec3& p, int hint, Vec3* bary) const {
-  const int face = hint_face_.empty() ? hint
+  const int face = hint_face_.empty()                                        ? hint
                    : hint >= 0 && hint < static_cast<int>(hint_face_.size()) ? hint_face_[hint]
-                                                                               : -1;
+                                                                             : -1;
   if (face >= 0 && face < mesh_.num_faces() && barycentric(p, face, bary) &&
       bary->minCoeff() > -1e-3) {
     const auto& t = mesh_.triangle(face);

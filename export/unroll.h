@@ -30,7 +30,8 @@ class Unrolling {
   /// Chooses the kind as described above (the conformal one needs an annulus mesh; without it, or
   /// when the harmonic solve throws, the axis one with `fallback_reason` set).
   /// `face_map` (optional): per face of `mandrel`, the face of the mesh that FibrePoint::face
-  /// indexes (WindingSurface::face_map when `mandrel` is the wound region cut out of the full mesh).
+  /// indexes (WindingSurface::face_map when `mandrel` is the wound region cut out of the full
+  /// mesh).
   static Unrolling make(const WindingPlan& plan, const Mesh& mandrel,
                         const std::vector<int>* face_map = nullptr);
 
@@ -51,7 +52,7 @@ class Unrolling {
  private:
   Kind kind_ = Kind::Axis;
   AxisFrame frame_;
-  Mesh mesh_;  ///< a copy (conformal kind only)
+  Mesh mesh_;                   ///< a copy (conformal kind only)
   std::vector<int> hint_face_;  ///< FibrePoint::face -> face of mesh_ (-1: none); empty: identity
   HarmonicCoordinates hc_;
   double length_ = 0.0;

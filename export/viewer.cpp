@@ -164,8 +164,8 @@ void headline_json(JsonWriter& j, const WindingPlan& plan, const Motion& motion)
   }
   row("bridging", fmt("%.1f mm", m.bridging_length));
   if (std::isfinite(m.geodesic_turn_limit)) {
-    row("geodesic limit", fmt("%.2f turns per pass", m.geodesic_turn_limit) +
-                              fmt(" (N = %.2f)", m.turns_per_pass));
+    row("geodesic limit",
+        fmt("%.2f turns per pass", m.geodesic_turn_limit) + fmt(" (N = %.2f)", m.turns_per_pass));
   }
   j.end_array();
   j.key("warnings").begin_array();
@@ -185,7 +185,9 @@ PageData page_data(const WindingPlan& plan, const Motion& motion, const AxisFram
     const Vec3 q = p - frame.origin;
     return Vec3(q.dot(frame.d), q.dot(frame.u), q.dot(frame.v));
   };
-  auto local_dir = [&](const Vec3& n) { return Vec3(n.dot(frame.d), n.dot(frame.u), n.dot(frame.v)); };
+  auto local_dir = [&](const Vec3& n) {
+    return Vec3(n.dot(frame.d), n.dot(frame.u), n.dot(frame.v));
+  };
   PageData out;
   JsonWriter j(0, 9);
   j.begin_object();
@@ -249,10 +251,9 @@ PageData page_data(const WindingPlan& plan, const Motion& motion, const AxisFram
     if (s.ordinal >= 0 && s.ordinal < static_cast<int>(kept_index.size()) && s.index >= 0 &&
         s.index < static_cast<int>(kept_index[s.ordinal].size()))
       gi = kept_index[s.ordinal][s.index];
-    st.insert(st.end(), {float(s.t_s), float(s.a_deg), float(s.x_mm), float(s.y_mm),
-                         float(s.b_deg), float(s.feed), float(e.x()), float(e.y()), float(e.z()),
-                         float(p.x()), float(p.y()), float(p.z()), float(s.free_length),
-                         float(gi)});
+    st.insert(st.end(), {float(s.t_s), float(s.a_deg), float(s.x_mm), float(s.y_mm), float(s.b_deg),
+                         float(s.feed), float(e.x()), float(e.y()), float(e.z()), float(p.x()),
+                         float(p.y()), float(p.z()), float(s.free_length), float(gi)});
     ++out.states;
   }
   j.field("state_stride", 14);
@@ -362,8 +363,8 @@ ViewerPage viewer_page(const WindingPlan& plan, const Mesh& mandrel, const Motio
 
   // Decimate until the page fits: the mandrel first when it alone takes over 40% of the budget
   // (vertex clustering, the cell growing by 1.5), then the points and states by a growing stride.
-  const std::size_t fixed = std::strlen(embedded::three_js()) +
-                            std::strlen(embedded::viewer_app_js()) + 20000;
+  const std::size_t fixed =
+      std::strlen(embedded::three_js()) + std::strlen(embedded::viewer_app_js()) + 20000;
   const double budget = static_cast<double>(opts.max_bytes) - static_cast<double>(fixed);
   auto b64_size = [](double bytes) { return bytes * 4.0 / 3.0; };
   PageMesh mesh = cluster_mesh(mandrel, frame, 0.0);

@@ -22,9 +22,8 @@ TEST(AxesSvg, FivePanelsWithTheirEnvelopes) {
   root->find_all([](const test::XmlElement& e) { return e.attr("class") == "panel"; }, &panels);
   ASSERT_EQ(panels.size(), 5u);
   const char* names[] = {"A", "X", "Y", "B", "F"};
-  double MachineState::*fields[] = {&MachineState::a_deg, &MachineState::x_mm,
-                                    &MachineState::y_mm, &MachineState::b_deg,
-                                    &MachineState::feed};
+  double MachineState::*fields[] = {&MachineState::a_deg, &MachineState::x_mm, &MachineState::y_mm,
+                                    &MachineState::b_deg, &MachineState::feed};
   for (int k = 0; k < 5; ++k) {
     EXPECT_EQ(panels[k]->attr("data-axis"), names[k]);
     const auto lines = panels[k]->by_name("polyline");
@@ -45,7 +44,7 @@ TEST(AxesSvg, FivePanelsWithTheirEnvelopes) {
     }
     const bool constant = !(hi - lo > 1e-9 * std::max(1.0, std::fabs(hi)));
     const double v0 = lo, v1 = hi;  // the values' range
-    if (constant) {  // a constant axis: a +-1 band about it, the line in the middle
+    if (constant) {                 // a constant axis: a +-1 band about it, the line in the middle
       lo -= 1;
       hi += 1;
     }

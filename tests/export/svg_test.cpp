@@ -42,7 +42,8 @@ Scale scale_of(const test::XmlElement& svg) {
     if (t->attr("text-anchor") == "middle" && !t->attr("transform").size() &&
         t->text.find('[') == std::string::npos)
       along.push_back({std::stod(t->text), std::stod(t->attr("x"))});
-    if (t->attr("text-anchor") == "end") around.push_back({std::stod(t->text), std::stod(t->attr("y")) - 4});
+    if (t->attr("text-anchor") == "end")
+      around.push_back({std::stod(t->text), std::stod(t->attr("y")) - 4});
   }
   Scale s;
   EXPECT_GE(along.size(), 2u);
@@ -50,7 +51,8 @@ Scale scale_of(const test::XmlElement& svg) {
   if (along.size() < 2 || around.size() < 2) return s;
   s.sx = (along.back().second - along.front().second) / (along.back().first - along.front().first);
   s.x0 = along.front().second - s.sx * along.front().first;
-  s.sy = (around.back().second - around.front().second) / (around.back().first - around.front().first);
+  s.sy =
+      (around.back().second - around.front().second) / (around.back().first - around.front().first);
   s.y0 = around.front().second - s.sy * around.front().first;
   return s;
 }
@@ -87,9 +89,11 @@ TEST(DevelopmentSvg, WellFormedWithLegendAndOneBandPerCircuit) {
     EXPECT_EQ(bands[k]->attr("data-circuit"), std::to_string(k));
     // Placed (by <use>) with a translucent fill of the circuit's colour.
     std::vector<const test::XmlElement*> uses;
-    root->find_all([&](const test::XmlElement& e) {
-      return e.name == "use" && e.attr("xlink:href") == "#band-" + std::to_string(k);
-    }, &uses);
+    root->find_all(
+        [&](const test::XmlElement& e) {
+          return e.name == "use" && e.attr("xlink:href") == "#band-" + std::to_string(k);
+        },
+        &uses);
     ASSERT_FALSE(uses.empty());
     EXPECT_EQ(uses[0]->attr("fill"), circuit_colour(k));
     EXPECT_EQ(uses[0]->attr("fill-opacity"), "0.45");
@@ -134,8 +138,10 @@ TEST(DevelopmentSvg, MarkerLabelsDoNotOverlap) {
   const auto texts = labels->by_name("text");
   ASSERT_EQ(texts.size(), 4u);
   double frame_top = 1e9;
-  for (const test::XmlElement* r : root->children.size() ? root->by_name("rect") : decltype(root->by_name("rect")){})
-    if (r->attr("fill") == "none" && r->attr("stroke") == "#333") frame_top = std::stod(r->attr("y"));
+  for (const test::XmlElement* r :
+       root->children.size() ? root->by_name("rect") : decltype(root->by_name("rect")){})
+    if (r->attr("fill") == "none" && r->attr("stroke") == "#333")
+      frame_top = std::stod(r->attr("y"));
   struct Box {
     double x0, x1, y;
   };

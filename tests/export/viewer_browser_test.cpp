@@ -184,10 +184,11 @@ class ViewerBrowser : public ::testing::Test {
     EXPECT_LT(segments(early), segments(machine));
     EXPECT_LT(segments(machine), segments(full));
     const Counts ce = classify(early.image), cf = classify(full.image);
-    std::printf("%s: view %ld px; t=0.02: background %ld, mandrel grey %ld, band colour %ld; "
-                "t=1: background %ld, grey %ld, colour %ld; %ld px differ\n",
-                name.c_str(), ce.view, ce.background, ce.grey, ce.colour, cf.background, cf.grey,
-                cf.colour, differing_pixels(early.image, full.image));
+    std::printf(
+        "%s: view %ld px; t=0.02: background %ld, mandrel grey %ld, band colour %ld; "
+        "t=1: background %ld, grey %ld, colour %ld; %ld px differ\n",
+        name.c_str(), ce.view, ce.background, ce.grey, ce.colour, cf.background, cf.grey, cf.colour,
+        differing_pixels(early.image, full.image));
     // The mandrel is drawn: near the start most of it is bare.
     EXPECT_GT(ce.grey, ce.view / 20);
     // The bands are drawn at the end, over a good part of the mandrel's grey.

@@ -59,9 +59,12 @@ class XmlReader {
   [[noreturn]] void fail(const std::string& what) const {
     throw std::runtime_error("xml: " + what + " at offset " + std::to_string(i_));
   }
-  bool starts(const char* p) const { return s_.compare(i_, std::char_traits<char>::length(p), p) == 0; }
+  bool starts(const char* p) const {
+    return s_.compare(i_, std::char_traits<char>::length(p), p) == 0;
+  }
   void ws() {
-    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\n' || s_[i_] == '\t' || s_[i_] == '\r')) ++i_;
+    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\n' || s_[i_] == '\t' || s_[i_] == '\r'))
+      ++i_;
   }
   void skip_misc() {
     for (;;) {
@@ -98,13 +101,20 @@ class XmlReader {
       const auto e = t.find(';', k);
       if (e == std::string::npos) fail("unterminated entity");
       const std::string ent = t.substr(k + 1, e - k - 1);
-      if (ent == "amp") o += '&';
-      else if (ent == "lt") o += '<';
-      else if (ent == "gt") o += '>';
-      else if (ent == "quot") o += '"';
-      else if (ent == "apos") o += '\'';
-      else if (!ent.empty() && ent[0] == '#') o += '?';
-      else fail("unknown entity &" + ent + ";");
+      if (ent == "amp")
+        o += '&';
+      else if (ent == "lt")
+        o += '<';
+      else if (ent == "gt")
+        o += '>';
+      else if (ent == "quot")
+        o += '"';
+      else if (ent == "apos")
+        o += '\'';
+      else if (!ent.empty() && ent[0] == '#')
+        o += '?';
+      else
+        fail("unknown entity &" + ent + ";");
       k = e;
     }
     return o;
