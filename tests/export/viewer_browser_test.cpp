@@ -18,7 +18,11 @@
 
 #include <gtest/gtest.h>
 
+#include "export/viewer.h"
+#include "geometry/atomic_file.h"
 #include "tests/cli/cli_runner.h"
+#include "tests/export/plan_fixtures.h"
+#include "tests/mesh_fixtures.h"
 #include "tests/export/png_image.h"
 
 namespace windplan {
@@ -207,6 +211,29 @@ class ViewerBrowser : public ::testing::Test {
 TEST_F(ViewerBrowser, Vessel) { check_job("vessel.yaml", "vessel"); }
 
 TEST_F(ViewerBrowser, BentTube) { check_job("bent_tube.yaml", "bent_tube"); }
+
+// A plan too large for the page: thinned, with the note in the panel, and still drawn.
+TEST_F(ViewerBrowser, DecimatedPageStillDraws) {
+  WindingPlan plan = test::helix_plan(50, 40, 6, 60000, 4);
+  plan.job_name = "large helix plan";
+  plan.metrics.band_width = 8;
+  const Mesh mesh(test::open_cylinder(50, 2250, 48, 120));  // the helix rises 2246 mm
+  const Motion motion = compute_motion(plan, MachineOptions{});
+  ViewerOptions o;
+  o.max_bytes = 2500000;
+  const ViewerPage page = viewer_page(plan, mesh, motion, o);
+  ASSERT_FALSE(page.note.empty());
+  EXPECT_LT(page.points_kept, page.points);
+  const fs::path file = dir_ / "viewer.html";
+  write_text_atomically(file, page.html);
+  EXPECT_LE(fs::file_size(file), o.max_bytes);
+  const Shot s = shoot(file, "t=1", "decimated_t1");
+  expect_clean(s, "t=1.000");
+  const Counts c = classify(s.image);
+  std::printf("decimated: %d of %d points, page %zu bytes; colour %ld px, grey %ld px\n",
+              page.points_kept, page.points, page.html.size(), c.colour, c.grey);
+  EXPECT_GT(c.colour, c.view / 50);
+}
 
 }  // namespace
 }  // namespace windplan
