@@ -434,9 +434,16 @@
     orbit.target.copy(bs.center)
         .addScaledVector(right, (lo[0] + hi[0]) / 2).addScaledVector(up, (lo[1] + hi[1]) / 2)
         .addScaledVector(fwd, (lo[2] + hi[2]) / 2);
+    // Perspective fit: a point at lateral offsets (x, y) from the target and depth f beyond it
+    // stays in view when dist >= max(|x| / tan(hfov/2), |y| / tan(vfov/2)) - f.
     var tv = Math.tan(camera.fov * Math.PI / 360), th = tv * camera.aspect;
-    var half = Math.max((hi[0] - lo[0]) / 2 / th, (hi[1] - lo[1]) / 2 / tv);
-    orbit.dist = 1.08 * half + (hi[2] - lo[2]) / 2;
+    var cx = (lo[0] + hi[0]) / 2, cy = (lo[1] + hi[1]) / 2, cf = (lo[2] + hi[2]) / 2, need = 0;
+    for (var i = 0; i < nv; i += step) {
+      q.set(mp[3 * i], mp[3 * i + 1], mp[3 * i + 2]).sub(bs.center);
+      var x = q.dot(right) - cx, y = q.dot(up) - cy, f = q.dot(fwd) - cf;
+      need = Math.max(need, Math.max(Math.abs(x) / th, Math.abs(y) / tv) - f);
+    }
+    orbit.dist = 1.06 * (need > 0 ? need : size / tv);
   }
   function placeCamera() {
     var ce = Math.cos(orbit.el);
@@ -461,10 +468,12 @@
                   ' mode=' + mode + ' frame=' + frameSel.value);
     }
   }
+  var userMoved = false;  // the default view is refitted on resize until the user moves it
   function resize() {
     var wv = view.clientWidth || 800, hv = view.clientHeight || 600;
     renderer.setSize(wv, hv);
     camera.aspect = wv / hv;
+    if (!userMoved) resetView();
     render();
   }
   var drag = null;
@@ -476,6 +485,7 @@
   window.addEventListener('mouseup', function () { drag = null; });
   window.addEventListener('mousemove', function (e) {
     if (!drag) return;
+    userMoved = true;
     var dx = e.clientX - drag.x, dy = e.clientY - drag.y;
     drag.x = e.clientX; drag.y = e.clientY;
     if (drag.pan) {
@@ -491,10 +501,11 @@
   });
   canvas.addEventListener('wheel', function (e) {
     e.preventDefault();
+    userMoved = true;
     orbit.dist *= Math.pow(1.0015, e.deltaY);
     render();
   }, { passive: false });
-  canvas.addEventListener('dblclick', function () { resetView(); render(); });
+  canvas.addEventListener('dblclick', function () { userMoved = false; resetView(); render(); });
 
   // ---- wiring ----
   slider.addEventListener('input', function () { tFrac = slider.value / 1000; update(); });
