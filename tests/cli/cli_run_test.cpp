@@ -91,36 +91,40 @@ TEST_F(CliRun, VesselRunsAndTwoRunsAreByteIdentical) {
   // report.json is JSON (YAML reads it) with the plan's circuits.
   const YAML::Node rep = YAML::LoadFile((a / "report.json").string());
   EXPECT_TRUE(rep.IsMap());
-  // The shipped vessel (isotensoid domes, 30 mm openings) allows about 0.6 turns per geodesic
-  // pass between the openings (planner/clairaut.h): its N = 0.59 stays below the reported limit,
-  // so there is no turn-limit warning.
+  // The shipped vessel (isotensoid domes, 30 mm openings): geodesic passes that turn around on
+  // the domes (issue 12), so they make more turns than the 0.6 that would reach the openings;
+  // no bare band anywhere, no warning, and the summary says so.
   const double limit = rep["summary"]["geodesic_turn_limit"].as<double>();
   EXPECT_GT(limit, 0.5);
   EXPECT_LT(limit, 0.8);
-  EXPECT_EQ(rep["summary"]["turns_per_pass"].as<double>(), 0.59);
-  EXPECT_LT(0.59, limit);
-  EXPECT_EQ(r1.err.find("turns a geodesic can make"), std::string::npos) << r1.err;
-  EXPECT_NE(r1.out.find("geodesic limit   0.61 turns per pass (N = 0.59)"), std::string::npos)
-      << r1.out;
+  EXPECT_TRUE(rep["pattern"]["geodesic"].as<bool>());
+  const double c = rep["pattern"]["turnaround_radius_mm"].as<double>();
+  EXPECT_GE(c, rep["pattern"]["requested_radius_mm"].as<double>());
+  EXPECT_GT(rep["summary"]["turns_per_pass"].as<double>(), limit);
+  EXPECT_EQ(rep["coverage"]["bare_fraction"].as<double>(), 0.0);
+  EXPECT_GE(rep["coverage"]["stations"].size(), 8u);
+  EXPECT_EQ(r1.err.find("warning"), std::string::npos) << r1.err;
+  EXPECT_NE(r1.out.find("coverage         bare 0.00%"), std::string::npos) << r1.out;
+  EXPECT_NE(r1.out.find("(geodesic, turning around at r = "), std::string::npos) << r1.out;
 }
 
-// The same vessel with N = 1 (the job before fractional turns): beyond the limit, so windplan
-// helices warns, suggesting turns <= 0.6 (N_max 0.608 rounded down to hundredths).
-TEST_F(CliRun, VesselBeyondTheTurnLimitIsWarnedWithASuggestion) {
-  std::string yaml = read_all(config("vessel.yaml"));
-  const std::size_t at = yaml.find("\n  turns: 0.59\n");
-  ASSERT_NE(at, std::string::npos);
-  yaml.replace(at, 15, "\n  turns: 1\n");
-  const std::size_t cut = yaml.find("cutlines:");
-  ASSERT_NE(cut, std::string::npos);
-  yaml.erase(cut, yaml.find("winding:") - cut);  // the cut-lines are not the point here
-  const fs::path job = dir_ / "vessel_n1.yaml";
+// Between dwell ends more turns than a geodesic can make are warned about with a suggestion:
+// the cone 60 -> 40 mm over 400 mm allows arccos(40 / 60) / sin(b) / 2 pi = 2.68 turns.
+TEST_F(CliRun, ConeBeyondTheTurnLimitIsWarnedWithASuggestion) {
+  std::string yaml = read_all(config("cone.yaml"));
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"\n  turns: 3 ", "\n  turns: 5 "},
+                                 {"\n  beta: 1 ", "\n  beta: 0 "}}) {
+    const std::size_t at = yaml.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    yaml.replace(at, from.size(), to);
+  }
+  const fs::path job = dir_ / "cone_n5.yaml";
   std::ofstream(job) << yaml;
   const Proc r = run({"helices", job.string()});
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("warning: winding.turns = 1 exceeds the 0.608 turns"), std::string::npos)
+  EXPECT_NE(r.out.find("warning: winding.turns = 5 exceeds the 2.68 turns"), std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("use turns <= 0.6, beta > 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("use turns <= 2.68, beta > 0"), std::string::npos) << r.out;
 }
 
 TEST_F(CliRun, EveryShippedConfigRunsEndToEnd) {
