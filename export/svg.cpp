@@ -144,8 +144,18 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
     << (axis_kind ? " (unrolled about the spindle axis)"
                   : " (unrolled in the tube's own coordinates)")
     << "</text>\n";
+  const CoverageReport& cov = plan.metrics.coverage;
+  double sub_y = 36;
+  if (cov.measured()) {
+    o << "<text id=\"coverage\" x=\"" << ml << "\" y=\"" << sub_y
+      << "\" font-family=\"sans-serif\" font-size=\"11\" fill=\""
+      << (cov.bare_fraction > 0.0 ? "#b00000" : "#1a6e2e")
+      << "\">measured coverage: " << xml_escape(cov.brief_report()) << "</text>\n";
+    sub_y += 13;
+  }
   if (!un.fallback_reason.empty()) {
-    o << "<text x=\"" << ml << "\" y=\"36\" font-family=\"sans-serif\" font-size=\"11\" "
+    o << "<text x=\"" << ml << "\" y=\"" << sub_y
+      << "\" font-family=\"sans-serif\" font-size=\"11\" "
       << "fill=\"#8a3b00\">" << xml_escape(un.fallback_reason) << "</text>\n";
   }
   o << "<defs><clipPath id=\"plot\"><rect x=\"" << f2(ml) << "\" y=\"" << f2(mt) << "\" width=\""
@@ -306,6 +316,18 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
     markers.push_back({0.0, solid, "end 0 (h = 0)"});
     markers.push_back({un.length(), solid, "end 1 (h = 1)"});
   }
+  // Measured coverage stations (axial positions, so on the axis unrolling only): a bare one is
+  // a red dashed line with its figures.
+  const std::string bare_style = "stroke=\"#c00000\" stroke-width=\"1.2\" stroke-dasharray=\"3 3\"";
+  if (axis_kind) {
+    for (const StationCoverage& st : cov.stations) {
+      if (st.bare_fraction > 0.0) {
+        markers.push_back(
+            {st.station, bare_style,
+             "bare " + f2(100.0 * st.bare_fraction) + "% (gap " + f2(st.widest_gap) + " mm)"});
+      }
+    }
+  }
   std::sort(markers.begin(), markers.end(),
             [](const Marker& a, const Marker& b) { return a.x < b.x; });
   LabelLanes lanes;
@@ -323,6 +345,16 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
       << (right ? "end" : "start") << "\">" << xml_escape(m.label) << "</text>\n";
   }
   o << "</g>\n";
+  if (axis_kind && cov.measured()) {
+    o << "<g id=\"coverage-stations\">\n";
+    for (const StationCoverage& st : cov.stations) {
+      const double x = px(st.station), y = mt + ph + 1;
+      o << "<path class=\"station\" data-station=\"" << f2(st.station) << "\" data-bare=\""
+        << f2(100.0 * st.bare_fraction) << "\" d=\"M" << f2(x) << "," << f2(y)
+        << " l-4,7 h8 z\" fill=\"" << (st.bare_fraction > 0.0 ? "#c00000" : "#1a9850") << "\"/>\n";
+    }
+    o << "</g>\n";
+  }
 
   // Legend.
   const double lx = ml + pw + 18;
@@ -387,6 +419,14 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
   line_key(solid, axis_kind ? "mandrel end" : "end of the wound region");
   if (axis_kind) line_key(dash, "turnaround zone");
   line_key("stroke=\"#555\" stroke-width=\"0.6\"", "fibre centre line");
+  if (axis_kind && cov.measured()) {
+    o << "<path d=\"M" << f2(lx + 12) << "," << f2(ly + 1) << " l-4,7 h8 z\" fill=\"#1a9850\"/>\n"
+      << "<path d=\"M" << f2(lx + 22) << "," << f2(ly + 1) << " l-4,7 h8 z\" fill=\"#c00000\"/>\n"
+      << "<text x=\"" << f2(lx + 30) << "\" y=\"" << f2(ly + 9)
+      << "\">measured station: covered / bare</text>\n";
+    ly += 14;
+    line_key(bare_style, "bare at a station (figures above)");
+  }
   o << "</g>\n</svg>\n";
   return o.str();
 }

@@ -168,6 +168,29 @@ void headline_json(JsonWriter& j, const WindingPlan& plan, const Motion& motion)
         fmt("%.2f turns per pass", m.geodesic_turn_limit) + fmt(" (N = %.2f)", m.turns_per_pass));
   }
   j.end_array();
+  // The measured coverage (planner/coverage.h), when the plan carries it: its figures, then one
+  // row per station.
+  const CoverageReport& cov = m.coverage;
+  if (cov.measured()) {
+    j.key("coverage").begin_array();
+    row("bare (worst station)",
+        fmt("%.2f%%", 100.0 * cov.bare_fraction) + fmt(", widest gap %.1f mm", cov.widest_gap));
+    row("widest overlap",
+        fmt("%.2f mm", cov.widest_overlap) +
+            fmt(" (%.2f mm on the largest sections)", cov.widest_overlap_largest));
+    row("bands stacked", "up to " + std::to_string(cov.max_stack));
+    row("cover factor", fmt("%.3f (smallest)", cov.cover_factor));
+    row("plies", fmt("%.2f (mean)", cov.mean_plies));
+    row("spacing CV", fmt("%.4f", cov.spacing_cv) + fmt(", mean %.2f mm", cov.spacing_mean));
+    row("stations", std::to_string(cov.stations.size()) + " measured" +
+                        (cov.skipped ? ", " + std::to_string(cov.skipped) + " skipped" : ""));
+    for (const StationCoverage& st : cov.stations) {
+      row(fmt("at %.1f mm", st.station), fmt("bare %.2f%%", 100.0 * st.bare_fraction) +
+                                             fmt(", gap %.1f mm", st.widest_gap) +
+                                             fmt(", %.2f plies", st.mean_plies));
+    }
+    j.end_array();
+  }
   j.key("warnings").begin_array();
   for (const std::string& w : m.warnings) j.value(w);
   j.end_array();

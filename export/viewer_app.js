@@ -53,14 +53,19 @@
     el('td', {}, tr, r[0]);
     el('td', {}, tr, r[1]);
   });
-  if (D.coverage) {
+  if (D.coverage) {  // the measured coverage: figures, then one row per station (folded)
     el('h2', {}, panel, 'Measured coverage');
     var ct = el('table', { id: 'coverage' }, panel);
+    var cdet = el('details', { id: 'coverage-stations' }, panel), nst = 0;
     D.coverage.forEach(function (r) {
-      var tr = el('tr', {}, ct);
+      var station = r[0].indexOf('at ') === 0;
+      var tr = el('tr', {}, station ? (cdet.querySelector('table') || el('table', {}, cdet)) : ct);
+      if (station) ++nst;
       el('td', {}, tr, r[0]);
-      el('td', {}, tr, r[1]);
+      el('td', { 'class': /bare 0\.00%/.test(r[1]) || !station ? '' : 'warn' }, tr, r[1]);
     });
+    el('summary', {}, cdet, 'per station (' + nst + ')');
+    cdet.insertBefore(cdet.lastChild, cdet.firstChild);
   }
   if (D.warnings.length) {
     var det = el('details', { id: 'warnings' }, panel);

@@ -160,6 +160,38 @@ TEST(DevelopmentSvg, MarkerLabelsDoNotOverlap) {
     }
 }
 
+TEST(DevelopmentSvg, MeasuredBareStationsAreMarked) {
+  WindingPlan plan = cylinder_plan(10);
+  StationCoverage covered, bare;
+  covered.station = 50;
+  bare.station = 200;
+  bare.bare_fraction = 0.0321;
+  bare.widest_gap = 4.5;
+  plan.metrics.coverage.stations = {covered, bare};
+  plan.metrics.coverage.bare_fraction = 0.0321;
+  const auto root = test::XmlReader::parse(development_svg(plan, Unrolling::make(plan, Mesh())));
+  const Scale sc = scale_of(*root);
+  std::vector<const test::XmlElement*> st;
+  root->find_all([](const test::XmlElement& e) { return e.attr("class") == "station"; }, &st);
+  ASSERT_EQ(st.size(), 2u);
+  EXPECT_EQ(st[0]->attr("data-bare"), "0.00");
+  EXPECT_EQ(st[1]->attr("data-bare"), "3.21");
+  EXPECT_EQ(st[1]->attr("fill"), "#c00000");
+  // The bare station's line and label, at its axial position.
+  bool labelled = false;
+  for (const test::XmlElement* t : root->by_id("labels")->by_name("text"))
+    labelled |= t->text == "bare 3.21% (gap 4.50 mm)";
+  EXPECT_TRUE(labelled);
+  bool line = false;
+  for (const test::XmlElement* l : root->by_id("labels")->by_name("line"))
+    line |= l->attr("stroke") == "#c00000" &&
+            std::fabs(std::stod(l->attr("x1")) - (sc.x0 + sc.sx * 200)) < 0.02;
+  EXPECT_TRUE(line);
+  const test::XmlElement* sub = root->by_id("coverage");
+  ASSERT_NE(sub, nullptr);
+  EXPECT_NE(sub->text.find("measured coverage: bare 3.21%"), std::string::npos) << sub->text;
+}
+
 TEST(Unrolling, ConformalCoordinatesOfATube) {
   // Open cylinder r = 50, length 700 along z: h is linear in z (exactly harmonic on the regular
   // grid), L = area / mean perimeter = 700, and the conjugate angle is the angle about the axis

@@ -115,6 +115,20 @@ TEST(ViewerPage, SelfContainedWithThePlansData) {
   EXPECT_EQ(floats(string_field(h, "mesh_triangles")).size(), 3u * mesh.num_faces());
 }
 
+TEST(ViewerPage, MeasuredCoverageInThePanel) {
+  WindingPlan plan = test::helix_plan(50, 40, 1.5, 50, 1);
+  const Mesh mesh(test::open_cylinder(50, 700, 8, 4));
+  EXPECT_EQ(viewer_page(plan, mesh, Motion{}).html.find("\"coverage\":"), std::string::npos);
+  StationCoverage st;
+  st.station = 120;
+  st.bare_fraction = 0.0125;
+  st.widest_gap = 2.5;
+  plan.metrics.coverage.stations = {st};
+  const std::string h = viewer_page(plan, mesh, Motion{}).html;
+  EXPECT_NE(h.find("\"coverage\":"), std::string::npos);
+  EXPECT_NE(h.find("[\"at 120.0 mm\",\"bare 1.25%, gap 2.5 mm, 0.00 plies\"]"), std::string::npos);
+}
+
 TEST(ViewerPage, LargePlanIsDecimatedUnderTheLimitWithANote) {
   // 4 circuits of 150000 points: about 25 MB of point data before decimation.
   WindingPlan plan = test::helix_plan(50, 40, 20, 150000, 4);
