@@ -25,6 +25,12 @@ std::string layer_colour(int l) {
   return buf;
 }
 
+std::string fmt1(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
+
 // A curve in the plot's coordinates with its angle unwrapped (continuous, may leave [0, 360)).
 struct Unwrapped {
   std::vector<Vec2> pts;  // (along mm, around deg unwrapped)
@@ -123,7 +129,7 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
     xmin = (std::isfinite(xmin) ? xmin : 0.0) - 1.0;
     xmax = xmin + 2.0;
   }
-  const double ml = 70, mr = 250, mt = 88, mb = 58;
+  const double ml = 70, mr = 250, mt = 100, mb = 58;
   const double pw = opts.width - ml - mr, ph = opts.height - mt - mb;
   auto px = [&](double x) { return ml + (x - xmin) / (xmax - xmin) * pw; };
   auto py = [&](double deg) { return mt + deg / 360.0 * ph; };
@@ -316,15 +322,18 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
     markers.push_back({0.0, solid, "end 0 (h = 0)"});
     markers.push_back({un.length(), solid, "end 1 (h = 1)"});
   }
-  // Measured coverage stations (axial positions, so on the axis unrolling only): a bare one is
-  // a red dashed line with its figures.
+  // Measured coverage stations: a bare one is a red dashed line with its figures. On a shape of
+  // revolution a station is an axial position; off one, a level of the harmonic height
+  // (planner/coverage.h), drawn at along = level * L in the conformal unrolling.
   const std::string bare_style = "stroke=\"#c00000\" stroke-width=\"1.2\" stroke-dasharray=\"3 3\"";
-  if (axis_kind) {
+  const bool levels = std::isnan(plan.metrics.geodesic_turn_limit);
+  const bool stations_drawn = cov.measured() && (axis_kind != levels);
+  auto station_x = [&](double station) { return levels ? station * un.length() : station; };
+  if (stations_drawn) {
     for (const StationCoverage& st : cov.stations) {
       if (st.bare_fraction > 0.0) {
         markers.push_back(
-            {st.station, bare_style,
-             "bare " + f2(100.0 * st.bare_fraction) + "% (gap " + f2(st.widest_gap) + " mm)"});
+            {station_x(st.station), bare_style, fmt1(100.0 * st.bare_fraction) + "% bare"});
       }
     }
   }
@@ -345,10 +354,10 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
       << (right ? "end" : "start") << "\">" << xml_escape(m.label) << "</text>\n";
   }
   o << "</g>\n";
-  if (axis_kind && cov.measured()) {
+  if (stations_drawn) {
     o << "<g id=\"coverage-stations\">\n";
     for (const StationCoverage& st : cov.stations) {
-      const double x = px(st.station), y = mt + ph + 1;
+      const double x = px(station_x(st.station)), y = mt + ph + 1;
       o << "<path class=\"station\" data-station=\"" << f2(st.station) << "\" data-bare=\""
         << f2(100.0 * st.bare_fraction) << "\" d=\"M" << f2(x) << "," << f2(y)
         << " l-4,7 h8 z\" fill=\"" << (st.bare_fraction > 0.0 ? "#c00000" : "#1a9850") << "\"/>\n";
@@ -419,13 +428,13 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
   line_key(solid, axis_kind ? "mandrel end" : "end of the wound region");
   if (axis_kind) line_key(dash, "turnaround zone");
   line_key("stroke=\"#555\" stroke-width=\"0.6\"", "fibre centre line");
-  if (axis_kind && cov.measured()) {
+  if (stations_drawn) {
     o << "<path d=\"M" << f2(lx + 12) << "," << f2(ly + 1) << " l-4,7 h8 z\" fill=\"#1a9850\"/>\n"
       << "<path d=\"M" << f2(lx + 22) << "," << f2(ly + 1) << " l-4,7 h8 z\" fill=\"#c00000\"/>\n"
       << "<text x=\"" << f2(lx + 30) << "\" y=\"" << f2(ly + 9)
       << "\">measured station: covered / bare</text>\n";
     ly += 14;
-    line_key(bare_style, "bare at a station (figures above)");
+    line_key(bare_style, "bare at a station (% of its loop)");
   }
   o << "</g>\n</svg>\n";
   return o.str();

@@ -31,8 +31,16 @@ Unrolling Unrolling::make(const WindingPlan& plan, const Mesh& mandrel,
     return u;
   }
   try {
-    const std::array<std::vector<int>, 2> lv = {mandrel.loop_vertices(loops[0]),
-                                                mandrel.loop_vertices(loops[1])};
+    std::array<std::vector<int>, 2> lv = {mandrel.loop_vertices(loops[0]),
+                                          mandrel.loop_vertices(loops[1])};
+    // h = 0 on the loop at the lower axial position (the start loop of the winding surface), as
+    // the planner's harmonic height, so that coverage levels read the same here.
+    auto mean_axial = [&](const std::vector<int>& l) {
+      double a = 0.0;
+      for (int v : l) a += u.frame_.axial(mandrel.position(v));
+      return l.empty() ? 0.0 : a / static_cast<double>(l.size());
+    };
+    if (mean_axial(lv[0]) > mean_axial(lv[1])) std::swap(lv[0], lv[1]);
     u.hc_ = compute_harmonic_coordinates(mandrel, lv);
     double perimeter = 0.0;
     for (const auto& l : lv)

@@ -7,7 +7,8 @@
 // is the axial position about the spindle axis, around the angle of export/kinematics.h's
 // AxisFrame (counter-clockwise about the axis direction).
 // Other annuli (a bent tube): the wound region's own conformal coordinates (planner/harmonic.h):
-// along = h * L with h the harmonic height (0 on the first boundary loop, 1 on the second) and
+// along = h * L with h the harmonic height (0 on the boundary loop at the lower axial position,
+// the winding surface's start loop, 1 on the other; planner/coverage.h's levels are this h) and
 // L = area / mean perimeter of the two loops (the length of a tube of constant section), around
 // = the conjugate angle theta. So a bent tube unrolls like a straight one: a helix about its
 // centre line is a straight band, instead of loops about a principal axis.

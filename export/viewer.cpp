@@ -184,10 +184,12 @@ void headline_json(JsonWriter& j, const WindingPlan& plan, const Motion& motion)
     row("spacing CV", fmt("%.4f", cov.spacing_cv) + fmt(", mean %.2f mm", cov.spacing_mean));
     row("stations", std::to_string(cov.stations.size()) + " measured" +
                         (cov.skipped ? ", " + std::to_string(cov.skipped) + " skipped" : ""));
+    // Stations: mm along the axis on shapes of revolution, else levels of the harmonic height.
+    const bool levels = std::isnan(m.geodesic_turn_limit);
     for (const StationCoverage& st : cov.stations) {
-      row(fmt("at %.1f mm", st.station), fmt("bare %.2f%%", 100.0 * st.bare_fraction) +
-                                             fmt(", gap %.1f mm", st.widest_gap) +
-                                             fmt(", %.2f plies", st.mean_plies));
+      row(levels ? fmt("at h = %.3f", st.station) : fmt("at %.1f mm", st.station),
+          fmt("bare %.2f%%", 100.0 * st.bare_fraction) + fmt(", gap %.1f mm", st.widest_gap) +
+              fmt(", %.2f plies", st.mean_plies));
     }
     j.end_array();
   }

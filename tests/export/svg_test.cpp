@@ -180,7 +180,7 @@ TEST(DevelopmentSvg, MeasuredBareStationsAreMarked) {
   // The bare station's line and label, at its axial position.
   bool labelled = false;
   for (const test::XmlElement* t : root->by_id("labels")->by_name("text"))
-    labelled |= t->text == "bare 3.21% (gap 4.50 mm)";
+    labelled |= t->text == "3.2% bare";
   EXPECT_TRUE(labelled);
   bool line = false;
   for (const test::XmlElement* l : root->by_id("labels")->by_name("line"))

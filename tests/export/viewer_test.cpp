@@ -119,6 +119,7 @@ TEST(ViewerPage, MeasuredCoverageInThePanel) {
   WindingPlan plan = test::helix_plan(50, 40, 1.5, 50, 1);
   const Mesh mesh(test::open_cylinder(50, 700, 8, 4));
   EXPECT_EQ(viewer_page(plan, mesh, Motion{}).html.find("\"coverage\":"), std::string::npos);
+  plan.metrics.geodesic_turn_limit = 1.0;  // a shape of revolution: stations in mm
   StationCoverage st;
   st.station = 120;
   st.bare_fraction = 0.0125;
@@ -127,6 +128,10 @@ TEST(ViewerPage, MeasuredCoverageInThePanel) {
   const std::string h = viewer_page(plan, mesh, Motion{}).html;
   EXPECT_NE(h.find("\"coverage\":"), std::string::npos);
   EXPECT_NE(h.find("[\"at 120.0 mm\",\"bare 1.25%, gap 2.5 mm, 0.00 plies\"]"), std::string::npos);
+  // Off a shape of revolution the stations are levels of the harmonic height.
+  plan.metrics.geodesic_turn_limit = std::nan("");
+  plan.metrics.coverage.stations[0].station = 0.25;
+  EXPECT_NE(viewer_page(plan, mesh, Motion{}).html.find("[\"at h = 0.250\","), std::string::npos);
 }
 
 TEST(ViewerPage, LargePlanIsDecimatedUnderTheLimitWithANote) {
