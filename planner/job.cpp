@@ -39,6 +39,7 @@ bool MandrelOptions::is_valid(std::string* why) const {
     if (why) *why = "axis.direction must be a non-zero vector";
     return false;
   }
+  if (!region.is_valid(why)) return false;
   if (source == "pipe") return pipe.is_valid(why);
   if (source == "cone") return cone.is_valid(why);
   if (source == "vessel") return vessel.is_valid(why);
@@ -83,6 +84,17 @@ void decode_mandrel(ConfigNode n, const std::filesystem::path& base, MandrelOpti
     const Vec3 d(direction[0], direction[1], direction[2]);
     if (!(d.norm() > 1e-12)) a.fail("direction", "must be a non-zero vector");
     m->axis.direction = d.normalized();
+  }
+  if (ConfigNode r = n.section("region"); r.present()) {
+    RegionOptions& g = m->region;
+    g.enabled = true;
+    r.require("start", &g.start);
+    r.require("end", &g.end);
+    r.get_choice("surface", {"outer", "inner"}, &g.surface);
+    r.get("component", &g.component);
+    r.get("min_fraction", &g.cut.min_fraction);
+    r.finish();
+    if (std::string why; !g.is_valid(&why)) r.fail_here(why);
   }
   // The section of the chosen parametric shape; the others are rejected as unknown keys.
   if (m->source == "pipe") {

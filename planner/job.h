@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/axis.h"
+#include "geometry/mandrel_region.h"
 #include "geometry/parametric_mandrel.h"
 #include "geometry/tessellate.h"
 #include "planner/cutlines.h"
@@ -46,6 +47,9 @@ struct MandrelOptions {
   /// The spindle axis, when given (`axis: {origin, direction}`); otherwise it is inferred.
   bool has_axis = false;
   SpindleAxis axis;
+  /// The wound region (`region: {start, end, surface, component}`): an axial range and the
+  /// surface around the axis in it; when absent, every non-planar face (see mandrel_builder.h).
+  RegionOptions region;
   /// Parameters of the parametric sources (mm, degrees).
   PipeParams pipe;
   ConeParams cone;

@@ -70,7 +70,7 @@ CadShape mandrel_shape(const MandrelOptions& m, std::vector<std::string>* warnin
   throw ConfigError("mandrel.source: " + m.source + " has no CAD shape (only cad and parametric)");
 }
 
-Mandrel build_mandrel(const MandrelOptions& m) {
+Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
   std::string why;
   if (!m.is_valid(&why)) throw ConfigError("mandrel: " + why);
   const auto t0 = Clock::now();
@@ -157,6 +157,23 @@ Mandrel build_mandrel(const MandrelOptions& m) {
       }
     }
   }
+  // The region: cut on its planes; per face a patch id that also records "wound".
+  std::vector<char> keep;
+  if (m.region.enabled) {
+    RegionSelection sel = select_region(out.mesh, out.axis, m.region);
+    std::vector<int> cut_patch(sel.mesh.num_faces());
+    for (int f = 0; f < sel.mesh.num_faces(); ++f) {
+      cut_patch[f] = 2 * patch[sel.face_parent[f]] + (sel.keep[f] ? 1 : 0);
+    }
+    patch = std::move(cut_patch);
+    patch_wound.assign(2 * patch_wound.size(), 0);
+    for (std::size_t i = 1; i < patch_wound.size(); i += 2) patch_wound[i] = 1;
+    out.mesh = std::move(sel.mesh);
+    out.health = check_mesh(TriangleSoup{out.mesh.points(), out.mesh.triangles()});
+    out.region_split_edges = sel.split_edges;
+    out.region_moved_vertices = sel.moved_vertices;
+    out.region_max_move = sel.max_move;
+  }
   if (m.remesh > 0.0) {
     RemeshOptions ro;
     ro.target_edge_length = m.remesh;
@@ -166,7 +183,7 @@ Mandrel build_mandrel(const MandrelOptions& m) {
     out.remesh_ms = r.time_ms;
     out.health = check_mesh(TriangleSoup{out.mesh.points(), out.mesh.triangles()});
   }
-  std::vector<char> keep(out.mesh.num_faces());
+  keep.assign(out.mesh.num_faces(), 0);
   for (int f = 0; f < out.mesh.num_faces(); ++f) keep[f] = patch_wound[patch[f]];
   if (std::find(keep.begin(), keep.end(), 1) == keep.end()) {
     throw TopologyError("mandrel (" + describe(m, selected) + "): no wound region: " +
@@ -176,7 +193,27 @@ Mandrel build_mandrel(const MandrelOptions& m) {
                                    " B-rep faces are planar (planar faces are taken as end caps)") +
                         "; the winding surface must be an annulus");
   }
-  out.winding = extract_winding_surface(out.mesh, keep, out.axis);
+  out.candidates = candidate_regions(out.mesh, keep, out.axis);
+  out.description = describe(m, selected);
+  try {
+    out.winding = extract_winding_surface(out.mesh, keep, out.axis);
+    for (const CandidateRegion& c : out.candidates) {
+      if (c.faces == out.winding.mesh.num_faces()) out.chosen_candidate = c.index - 1;
+    }
+  } catch (const TopologyError& e) {
+    out.suggestion = suggest_region(out.mesh, out.axis);
+    std::string list;
+    for (const CandidateRegion& c : out.candidates) list += (list.empty() ? "" : "; ") + c.brief();
+    const std::string msg =
+        "mandrel (" + out.description + "): " + e.what() + ". Candidate regions: " + list +
+        (out.suggestion.found
+             ? ". Set mandrel." + out.suggestion.keys() + " to wind the outer wall (r ~ " +
+                   std::to_string(static_cast<int>(std::lround(out.suggestion.radius))) + " mm)"
+             : ". No axial range with a clean outer wall was found: set mandrel.region "
+               "{start, end} (mm along the axis) and mandrel.axis by hand");
+    if (require_annulus) throw TopologyError(msg);
+    out.warnings.push_back(msg);
+  }
   out.profile = compute_radius_profile(out.mesh, out.axis);
   out.description = describe(m, selected);
   out.total_ms = ms_since(t0);
