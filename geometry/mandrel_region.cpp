@@ -345,7 +345,7 @@ RegionSuggestion suggest_region(const Mesh& full, const SpindleAxis& axis_in, in
         const double den = r.x() * e.y() - r.y() * e.x();
         if (std::abs(den) < 1e-300) continue;
         // seg[0] + v e = lambda r
-        const double v = (seg[0].y() * r.x() - seg[0].x() * r.y()) / den;
+        const double v = (seg[0].x() * r.y() - seg[0].y() * r.x()) / den;
         if (v < 0.0 || v >= 1.0) continue;
         const double lambda = (seg[0] + v * e).dot(r);
         if (lambda <= 0.0) continue;

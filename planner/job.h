@@ -11,6 +11,7 @@
 #include "geometry/axis.h"
 #include "geometry/mandrel_region.h"
 #include "geometry/parametric_mandrel.h"
+#include "geometry/section_mandrel.h"
 #include "geometry/tessellate.h"
 #include "planner/cutlines.h"
 #include "planner/girth.h"
@@ -29,7 +30,7 @@ LengthUnit parse_length_unit(const std::string& s);
 /// The `mandrel:` section: a mesh file, a CAD file or a parametric shape (docs/config.md).
 struct MandrelOptions {
   /// Where the mandrel comes from: "mesh" (a triangle-mesh file), "cad" (STEP/IGES/BREP),
-  /// or a parametric shape: "pipe", "cone", "vessel", "bent_tube".
+  /// or a parametric shape: "pipe", "cone", "vessel", "bent_tube", "section".
   std::string source = "mesh";
   /// Mesh or CAD file, resolved relative to the job file's directory when loaded from a job.
   std::filesystem::path file;
@@ -55,6 +56,9 @@ struct MandrelOptions {
   ConeParams cone;
   VesselParams vessel;
   BentTubeParams bent_tube;
+  SectionParams section;  ///< ellipse or rounded-rectangle section (geometry/section_mandrel.h)
+  /// Parametric sources except bent_tube: bore, shafts, flanges with bolt holes, screw tabs.
+  MandrelFeatures features;
 
   bool is_valid(std::string* why) const;
 };

@@ -9,6 +9,7 @@
 #include "geometry/errors.h"
 #include "geometry/parametric_mandrel.h"
 #include "geometry/remesh.h"
+#include "geometry/section_mandrel.h"
 #include "geometry/tessellate.h"
 #include "planner/mandrel_mesh.h"
 
@@ -44,20 +45,52 @@ std::string describe(const MandrelOptions& m, const std::string& selected) {
     };
     s << "vessel R=" << v.radius << " L=" << v.length << " mm, start: " << dome(v.dome_start)
       << ", end: " << dome(v.dome_end);
+  } else if (m.source == "section") {
+    const SectionParams& p = m.section;
+    if (p.shape == SectionShape::Ellipse) {
+      s << "elliptical section " << 2 * p.semi_x << " x " << 2 * p.semi_y << " mm";
+    } else {
+      s << "rounded-rectangle section " << p.width << " x " << p.height << " mm, corners r="
+        << p.corner_radius;
+    }
+    s << ", L=" << p.length << " mm, ends: " << (p.end_start.dome ? "dome" : "flat") << "/"
+      << (p.end_end.dome ? "dome" : "flat");
   } else if (m.source == "bent_tube") {
     s << "bent tube R=" << m.bent_tube.radius << " mm, " << m.bent_tube.segments.size()
       << " segment(s), " << m.bent_tube.bends.size() << " bend(s), centreline "
       << bent_tube_length(m.bent_tube) << " mm";
   }
+  const MandrelFeatures& f = m.features;
+  if (!f.empty()) {
+    s << "; features:";
+    if (f.bore > 0.0) s << " bore r=" << f.bore;
+    if (f.shaft_start.radius > 0.0 || f.shaft_end.radius > 0.0) s << " shafts";
+    if (!f.flanges.empty()) s << " " << f.flanges.size() << " flange(s)";
+    if (!f.tabs.empty()) s << " " << f.tabs.size() << " tab row(s)";
+  }
   return s.str();
+}
+
+// The body's distance from the axis at angle theta (for placing tabs on the wall).
+double body_outline(const MandrelOptions& m, double theta) {
+  if (m.source == "pipe") return m.pipe.radius;
+  if (m.source == "cone") return std::max(m.cone.radius_start, m.cone.radius_end);
+  if (m.source == "vessel") return m.vessel.radius;
+  if (m.source == "section") return section_radius(m.section, theta);
+  return 0.0;
 }
 
 }  // namespace
 
 CadShape mandrel_shape(const MandrelOptions& m, std::vector<std::string>* warnings) {
-  if (m.source == "pipe") return make_pipe(m.pipe);
-  if (m.source == "cone") return make_cone(m.cone);
-  if (m.source == "vessel") return make_vessel(m.vessel);
+  if (m.source == "pipe" || m.source == "cone" || m.source == "vessel" || m.source == "section") {
+    const CadShape body = m.source == "pipe"     ? make_pipe(m.pipe)
+                          : m.source == "cone"   ? make_cone(m.cone)
+                          : m.source == "vessel" ? make_vessel(m.vessel)
+                                                 : make_section_mandrel(m.section);
+    return add_mandrel_features(body, m.features,
+                                [&m](double theta) { return body_outline(m, theta); });
+  }
   if (m.source == "bent_tube") return make_bent_tube(m.bent_tube);
   if (m.source == "cad") {
     CadImportOptions io;
@@ -81,8 +114,9 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
   // and per patch whether it is wound.
   std::vector<int> patch;
   std::vector<char> patch_wound;
-  const bool parametric =
-      m.source == "pipe" || m.source == "cone" || m.source == "vessel" || m.source == "bent_tube";
+  const bool parametric = m.source == "pipe" || m.source == "cone" || m.source == "vessel" ||
+                          m.source == "bent_tube" || m.source == "section";
+  std::vector<Vec3> plane_normal;  // per B-rep face: the plane's normal, zero when not planar
 
   if (m.source == "mesh") {
     std::vector<std::string> changes;
@@ -104,7 +138,10 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
     out.tessellation_ms = tess.time_ms;
     out.brep_faces = static_cast<int>(tess.faces.size());
     patch = tess.triangle_face;
-    for (const CadFaceInfo& f : tess.faces) patch_wound.push_back(f.kind != CadSurfaceKind::Plane);
+    for (const CadFaceInfo& f : tess.faces) {
+      patch_wound.push_back(f.kind != CadSurfaceKind::Plane);
+      plane_normal.push_back(f.kind == CadSurfaceKind::Plane ? f.plane_normal : Vec3::Zero());
+    }
     soup = std::move(tess.soup);
   } else {
     throw ConfigError("mandrel.source: unknown source '" + m.source + "'");
@@ -129,10 +166,14 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
     out.axis.direction.normalize();
     out.axis_source = "job";
     out.revolution = radius_spread(out.mesh, out.axis) <= AxisInferenceOptions{}.revolution_tolerance;
-  } else if (m.source == "pipe" || m.source == "cone" || m.source == "vessel") {
+  } else if (m.source == "pipe" || m.source == "cone" || m.source == "vessel" ||
+             m.source == "section") {
     out.axis = SpindleAxis{};
     out.axis_source = "parametric";
-    out.revolution = true;
+    // The wound wall of pipe, cone and vessel is one of revolution (features are left out by
+    // mandrel.region); an elliptical or rounded-rectangle section is not.
+    out.revolution = m.source != "section" ||
+                     (m.section.shape == SectionShape::Ellipse && m.section.semi_x == m.section.semi_y);
   } else {
     const AxisInference inf = infer_spindle_axis(out.mesh);
     out.axis = inf.axis;
@@ -146,7 +187,13 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
     }
   }
 
-  // Wound region.
+  // Wound region. B-rep planar faces are end caps when normal to the axis (within 1 degree);
+  // planar faces along it (the flat sides of a rounded-rectangle boom) are wound.
+  for (std::size_t i = 0; i < plane_normal.size(); ++i) {
+    if (plane_normal[i].norm() > 0.5) {
+      patch_wound[i] = std::abs(plane_normal[i].dot(out.axis.direction)) < std::cos(M_PI / 180.0);
+    }
+  }
   if (m.source == "mesh") {
     patch.assign(out.mesh.num_faces(), 1);
     patch_wound = {0, 1};
