@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 
 #include "geometry/errors.h"
@@ -63,7 +64,18 @@ PlaneCutResult cut_at_stations(const Mesh& mesh, const SpindleAxis& axis_in,
         d[v] = 0.0;
       }
     }
-    // No-sliver rule: per vertex, the nearest crossing point within min_fraction of an edge.
+    // No-sliver rule: a crossing closer to a vertex than min_fraction of the vertex's shortest
+    // edge moves the vertex there (a move that small cannot fold its triangles); otherwise the
+    // edge is split and the new vertex keeps that distance from it.
+    std::vector<double> shortest(pts.size(), std::numeric_limits<double>::infinity());
+    for (const Tri& t : tris) {
+      for (int k = 0; k < 3; ++k) {
+        const int a = t[k], b = t[(k + 1) % 3];
+        const double l = (pts[a] - pts[b]).norm();
+        shortest[a] = std::min(shortest[a], l);
+        shortest[b] = std::min(shortest[b], l);
+      }
+    }
     std::vector<double> best_move(pts.size(), -1.0);
     std::vector<Vec3> target(pts.size());
     for (const Tri& t : tris) {
@@ -71,13 +83,13 @@ PlaneCutResult cut_at_stations(const Mesh& mesh, const SpindleAxis& axis_in,
         const int a = t[k], b = t[(k + 1) % 3];
         if (!(d[a] * d[b] < 0.0)) continue;
         const double u = d[a] / (d[a] - d[b]);
-        const int v = u < f_min ? a : (u > 1.0 - f_min ? b : -1);
-        if (v < 0) continue;
         const Vec3 x = onto(pts[a] + u * (pts[b] - pts[a]));
-        const double move = (x - pts[v]).norm();
-        if (best_move[v] < 0.0 || move < best_move[v]) {
-          best_move[v] = move;
-          target[v] = x;
+        for (const int v : {a, b}) {
+          const double move = (x - pts[v]).norm();
+          if (move < f_min * shortest[v] && (best_move[v] < 0.0 || move < best_move[v])) {
+            best_move[v] = move;
+            target[v] = x;
+          }
         }
       }
     }

@@ -8,12 +8,12 @@
 // A split edge is split once, at one new vertex shared by both of its triangles, so a closed
 // (or open) oriented 2-manifold stays one, with the same orientation.
 //
-// No slivers: an edge that crosses a plane closer than `min_fraction` of its length to one of
-// its end vertices is not split; that vertex is moved onto the plane instead (to the crossing
-// point on the edge, so it stays on the piecewise-linear surface). Every child triangle then
-// keeps at least min_fraction^2 of its parent's area; a vertex moves by at most min_fraction of
-// its longest crossing edge. Vertices already within 1e-12 of the mesh size are put exactly on
-// the plane.
+// No slivers: an edge whose crossing lies closer to one of its end vertices than `min_fraction`
+// of that vertex's shortest edge is not split; the vertex is moved onto the plane instead (to
+// the crossing point on the edge, so it stays on the piecewise-linear surface). A vertex so moves
+// by less than min_fraction of its shortest edge (its triangles cannot fold), and every new
+// vertex lies at least that far from the corners of the edge it splits. Vertices already within
+// 1e-12 of the mesh size are put exactly on the plane.
 #include <string>
 #include <vector>
 
@@ -23,8 +23,8 @@
 namespace windplan {
 
 struct PlaneCutOptions {
-  /// Crossings closer than this fraction of the edge length to an end vertex move that vertex
-  /// onto the plane instead of splitting the edge (dimensionless, in [0, 0.5)).
+  /// A crossing closer to an edge's end vertex than this fraction of the vertex's shortest edge
+  /// moves the vertex onto the plane instead of splitting the edge (dimensionless, [0, 0.5)).
   double min_fraction = 0.05;
   bool is_valid(std::string* why) const;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "geometry/cad_import.h"
@@ -68,6 +69,12 @@ std::string describe(const MandrelOptions& m, const std::string& selected) {
     if (!f.flanges.empty()) s << " " << f.flanges.size() << " flange(s)";
     if (!f.tabs.empty()) s << " " << f.tabs.size() << " tab row(s)";
   }
+  return s.str();
+}
+
+std::string radius_text(double r) {
+  std::ostringstream s;
+  s << std::setprecision(4) << r;
   return s.str();
 }
 
@@ -254,8 +261,8 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
     const std::string msg =
         "mandrel (" + out.description + "): " + e.what() + ". Candidate regions: " + list +
         (out.suggestion.found
-             ? ". Set mandrel." + out.suggestion.keys() + " to wind the outer wall (r ~ " +
-                   std::to_string(static_cast<int>(std::lround(out.suggestion.radius))) + " mm)"
+             ? ". Set mandrel." + out.suggestion.keys() + " to wind the outer wall (mean radius " +
+                   radius_text(out.suggestion.radius) + " mm)"
              : ". No axial range with a clean outer wall was found: set mandrel.region "
                "{start, end} (mm along the axis) and mandrel.axis by hand");
     if (require_annulus) throw TopologyError(msg);
