@@ -194,11 +194,11 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
     }
   }
 
-  // Wound region. B-rep planar faces are end caps when normal to the axis (within 1 degree);
-  // planar faces along it (the flat sides of a rounded-rectangle boom) are wound.
+  // Wound region. B-rep planar faces are end caps, except those along the axis (normal
+  // perpendicular to it within 1 degree: the flat sides of a rounded-rectangle boom), wound.
   for (std::size_t i = 0; i < plane_normal.size(); ++i) {
     if (plane_normal[i].norm() > 0.5) {
-      patch_wound[i] = std::abs(plane_normal[i].dot(out.axis.direction)) < std::cos(M_PI / 180.0);
+      patch_wound[i] = std::abs(plane_normal[i].dot(out.axis.direction)) < std::sin(M_PI / 180.0);
     }
   }
   if (m.source == "mesh") {
@@ -227,6 +227,8 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
     out.region_split_edges = sel.split_edges;
     out.region_moved_vertices = sel.moved_vertices;
     out.region_max_move = sel.max_move;
+    out.candidates = std::move(sel.candidates);
+    out.chosen_candidate = sel.chosen;
   }
   if (m.remesh > 0.0) {
     RemeshOptions ro;
@@ -247,13 +249,11 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
                                    " B-rep faces are planar (planar faces are taken as end caps)") +
                         "; the winding surface must be an annulus");
   }
-  out.candidates = candidate_regions(out.mesh, keep, out.axis);
+  if (!m.region.enabled) out.candidates = candidate_regions(out.mesh, keep, out.axis);
   out.description = describe(m, selected);
   try {
     out.winding = extract_winding_surface(out.mesh, keep, out.axis);
-    for (const CandidateRegion& c : out.candidates) {
-      if (c.faces == out.winding.mesh.num_faces()) out.chosen_candidate = c.index - 1;
-    }
+    if (!m.region.enabled) out.chosen_candidate = 0;  // the selection is one annulus
   } catch (const TopologyError& e) {
     out.suggestion = suggest_region(out.mesh, out.axis);
     std::string list;

@@ -11,12 +11,13 @@
 //
 // The wound region: with mandrel.region, the full mesh is cut exactly on the region's two station
 // planes and the chosen surface around the axis between them is wound (geometry/mandrel_region.h);
-// otherwise, for B-rep sources every face that is not planar (planar faces are the end
-// caps: pipe/cone/tube ends, the vessel's polar-opening disks; a CAD model's flat faces are
-// taken to be caps too); for a mesh file, the whole mesh when it is open, otherwise every
+// otherwise, for B-rep sources every face that is not planar, and the planar faces along the
+// axis (normal perpendicular to it within 1 degree: a rounded-rectangle boom's flat sides);
+// other planar faces are end caps (pipe/cone/tube ends, the vessel's polar-opening disks, a
+// CAD model's flat ends) and are left out; for a mesh file, the whole mesh when it is open, otherwise every
 // triangle whose normal is not parallel to the axis (within 1 degree): flat end caps are dropped.
-// The axis is the job's `mandrel.axis`, or the known axis of pipe/cone/vessel (+Z through the
-// origin), or inferred (geometry/winding_surface.h) for CAD, mesh and bent-tube mandrels.
+// The axis is the job's `mandrel.axis`, or the known axis of pipe/cone/vessel/section (+Z
+// through the origin), or inferred (geometry/winding_surface.h) for CAD, mesh and bent-tube mandrels.
 //
 // When the wound region is not an annulus, the TopologyError lists the candidate regions (each
 // connected part: axial extent, radius range, loops) and suggests the mandrel.region keys of a
@@ -47,6 +48,7 @@ struct Mandrel {
   RadiusProfile profile;       ///< largest radius of the whole `mesh` along the axis (clearance)
   /// The connected parts of the wound-face selection (of the faces between the region's planes
   /// when mandrel.region is set), largest first, and the one wound (-1 when none is an annulus).
+  /// Their face_list indexes `mesh` before remeshing (mandrel.remesh renumbers faces).
   std::vector<CandidateRegion> candidates;
   int chosen_candidate = -1;
   RegionSuggestion suggestion;  ///< a clean outer-wall range, when the selection is not one
