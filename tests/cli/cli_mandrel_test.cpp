@@ -113,5 +113,65 @@ TEST_F(MandrelCli, ErrorsNameTheKeyOrFile) {
   EXPECT_EQ(run({config("pipe.yaml"), "--nope"}).code, 2);
 }
 
+// A mandrel whose wound region is not an annulus (an elliptical canister with a bore and screw
+// tabs): the candidate table on stdout, one error line naming mandrel.region on stderr, exit 1.
+TEST_F(MandrelCli, NonAnnulusPrintsTheRegionTableAndTheSuggestedKeys) {
+  std::ofstream(dir_ / "canister.yaml")
+      << "mandrel:\n  source: section\n  section: {shape: ellipse, semi_axes: [80, 50], "
+         "length: 300}\n  features:\n    bore: 20\n    tabs:\n"
+         "      - {at: 10, count: 2, reach: 25, width: 20, thickness: 8, hole_radius: 4}\n"
+         "      - {at: 282, count: 2, reach: 25, width: 20, thickness: 8, hole_radius: 4}\n";
+  const CliRun r = run({(dir_ / "canister.yaml").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.out.find("loops  around  genus"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("suggested (under mandrel:): region: {start: "), std::string::npos) << r.out;
+  // Six candidates: the wall with its tabs, the bore, four tab undersides.
+  for (const char* row : {"\n    1 ", "\n    2 ", "\n    6 "}) {
+    EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
+  }
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("Candidate regions: #1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Set mandrel.region: {start: "), std::string::npos) << r.err;
+}
+
+TEST_F(MandrelCli, RegionIsReportedInJson) {
+  const CliRun r = run({config("flanged_pipe.yaml"), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const YAML::Node j = YAML::Load(r.out);
+  EXPECT_EQ(j["region"]["start"].as<double>(), 20.0);
+  EXPECT_EQ(j["region"]["end"].as<double>(), 480.0);
+  ASSERT_EQ(j["regions"].size(), 2u) << "the wall and the bore between the planes";
+  EXPECT_TRUE(j["regions"][0]["wound"].as<bool>());
+  EXPECT_NEAR(j["regions"][0]["radius_min"].as<double>(), 50.0, 0.01);
+  EXPECT_NEAR(j["profile"]["max_radius"].as<double>(), 90.0, 0.01) << "the flanges count";
+}
+
+TEST_F(MandrelCli, RegionAndSectionErrorsAreOneLineNamingTheKey) {
+  struct Case {
+    const char* yaml;
+    const char* key;
+  };
+  for (const Case& c :
+       {Case{"mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 500}\n"
+             "  region: {start: 600, end: 700}\n",
+             "mandrel.region: the range [600, 700] mm misses the mandrel"},
+        Case{"mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 500}\n"
+             "  axis: {origin: [300, 0, 0], direction: [0, 0, 1]}\n"
+             "  region: {start: 100, end: 400}\n",
+             "goes around the spindle axis"},
+        Case{"mandrel:\n  source: section\n  section: {shape: rounded_rectangle, width: 100, "
+             "height: 200, corner_radius: 60, length: 300}\n",
+             "corner_radius (60 mm) must be at most half"},
+        Case{"mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 500}\n"
+             "  region: {start: 100, end: 400, component: 3}\n",
+             "mandrel.region.component: 3 is out of range"}}) {
+    std::ofstream(dir_ / "bad.yaml") << c.yaml;
+    const CliRun r = run({(dir_ / "bad.yaml").string()});
+    EXPECT_EQ(r.code, 1) << c.yaml;
+    EXPECT_NE(r.err.find(c.key), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace windplan
