@@ -45,13 +45,15 @@ int winding_number(const std::vector<Vec3>& loop, const AxisFrame& frame) {
   return static_cast<int>(std::lround(total / (2.0 * M_PI)));
 }
 
-CandidateRegion describe_part(const Mesh& mesh, std::vector<int> faces, const AxisFrame& frame) {
+// `index` is scratch space of one -1 per mesh vertex; it is left all -1 again.
+CandidateRegion describe_part(const Mesh& mesh, std::vector<int> faces, const AxisFrame& frame,
+                              std::vector<int>& index) {
   CandidateRegion c;
   c.faces = static_cast<int>(faces.size());
   c.axial_min = c.radius_min = std::numeric_limits<double>::infinity();
   c.axial_max = c.radius_max = -c.axial_min;
   TriangleSoup soup;
-  std::vector<int> index(mesh.num_vertices(), -1);
+  std::vector<int> used;
   for (int f : faces) {
     const double a = mesh.face_area(f);
     c.area += a;
@@ -60,6 +62,7 @@ CandidateRegion describe_part(const Mesh& mesh, std::vector<int> faces, const Ax
     for (int& v : t) {
       if (index[v] < 0) {
         index[v] = static_cast<int>(soup.points.size());
+        used.push_back(v);
         const Vec3& p = mesh.position(v);
         soup.points.push_back(p);
         c.axial_min = std::min(c.axial_min, frame.axis.axial(p));
@@ -71,6 +74,7 @@ CandidateRegion describe_part(const Mesh& mesh, std::vector<int> faces, const Ax
     }
     soup.triangles.push_back(t);
   }
+  for (int v : used) index[v] = -1;
   if (c.area > 0.0) c.mean_radius /= c.area;
   try {
     const Mesh part(std::move(soup));
@@ -137,6 +141,7 @@ std::vector<CandidateRegion> candidate_regions(const Mesh& mesh, const std::vect
   }
   const AxisFrame frame(axis);
   std::vector<int> comp(mesh.num_faces(), -1);
+  std::vector<int> scratch(mesh.num_vertices(), -1);
   std::vector<CandidateRegion> out;
   for (int seed = 0; seed < mesh.num_faces(); ++seed) {
     if (!select[seed] || comp[seed] >= 0) continue;
@@ -155,7 +160,7 @@ std::vector<CandidateRegion> candidate_regions(const Mesh& mesh, const std::vect
         }
       }
     }
-    out.push_back(describe_part(mesh, std::move(faces), frame));
+    out.push_back(describe_part(mesh, std::move(faces), frame, scratch));
   }
   std::stable_sort(out.begin(), out.end(),
                    [](const CandidateRegion& a, const CandidateRegion& b) { return a.area > b.area; });

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
@@ -30,23 +29,15 @@
 
 #include "geometry/cad_shape_occt.h"
 #include "geometry/errors.h"
+#include "geometry/param_check.h"
 
 namespace windplan {
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-bool fail(std::string* why, const std::string& msg) {
-  if (why) *why = msg;
-  return false;
-}
-
-bool positive(double v) { return std::isfinite(v) && v > 0.0; }
+using param_check::fail;
+using param_check::num;
+using param_check::positive;
 
 bool end_valid(const SectionEndParams& e, double half_x, const std::string& key,
                std::string* why) {
@@ -148,6 +139,26 @@ TopoDS_Shape cylinder(double r, double z0, double z1, const gp_Pnt& at = gp::Ori
 
 const char* to_string(SectionShape s) {
   return s == SectionShape::Ellipse ? "ellipse" : "rounded_rectangle";
+}
+
+SectionParams SectionParams::ellipse(double a, double b, double length) {
+  SectionParams p;
+  p.shape = SectionShape::Ellipse;
+  p.semi_x = a;
+  p.semi_y = b;
+  p.length = length;
+  return p;
+}
+
+SectionParams SectionParams::rounded_rectangle(double width, double height, double corner_radius,
+                                               double length) {
+  SectionParams p;
+  p.shape = SectionShape::RoundedRectangle;
+  p.width = width;
+  p.height = height;
+  p.corner_radius = corner_radius;
+  p.length = length;
+  return p;
 }
 
 bool SectionParams::is_valid(std::string* why) const {

@@ -45,6 +45,11 @@ struct SectionParams {
   SectionEndParams end_start;   ///< the end at z = 0
   SectionEndParams end_end;     ///< the end at z = length
   bool is_valid(std::string* why) const;
+  /// An elliptical section a x b (semi-axes along X and Y, mm), `length` long, flat ends.
+  static SectionParams ellipse(double a, double b, double length);
+  /// A rounded-rectangle section (mm), `length` long, flat ends.
+  static SectionParams rounded_rectangle(double width, double height, double corner_radius,
+                                         double length);
   /// Half-width of the section along X (mm): semi_x or width / 2.
   double half_x() const { return shape == SectionShape::Ellipse ? semi_x : 0.5 * width; }
 };

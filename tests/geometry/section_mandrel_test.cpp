@@ -23,12 +23,7 @@ TEST(SectionMandrel, EllipticPrismAreaAndVolume) {
 }
 
 TEST(SectionMandrel, RoundedRectanglePrismAreaAndVolume) {
-  SectionParams p;
-  p.shape = SectionShape::RoundedRectangle;
-  p.width = 120;
-  p.height = 80;
-  p.corner_radius = 15;
-  p.length = 600;
+  const SectionParams p = SectionParams::rounded_rectangle(120, 80, 15, 600);
   const CadShapeInfo info = cad_shape_info(make_section_mandrel(p));
   const double section = 120.0 * 80.0 - (4.0 - M_PI) * 15.0 * 15.0;
   EXPECT_NEAR(info.volume, section * 600.0, 1e-6 * section * 600.0);
@@ -62,11 +57,7 @@ TEST(SectionMandrel, DomedEndsCloseTheSolid) {
 }
 
 TEST(SectionMandrel, RejectsBadParameters) {
-  SectionParams p;
-  p.shape = SectionShape::RoundedRectangle;
-  p.width = 100;
-  p.height = 200;
-  p.corner_radius = 60;  // > width / 2
+  const SectionParams p = SectionParams::rounded_rectangle(100, 200, 60, 400);  // r > width / 2
   std::string why;
   EXPECT_FALSE(p.is_valid(&why));
   EXPECT_NE(why.find("corner_radius"), std::string::npos) << why;
@@ -80,9 +71,7 @@ TEST(SectionMandrel, RejectsBadParameters) {
 
 TEST(MandrelFeatures, FlangesShaftsBoltHolesAndBoreVolume) {
   // A pipe R 50, L 500 with bore r 20, shafts r 25, two flanges r 90 x 12 with 8 holes r 5.
-  SectionParams circle;
-  circle.semi_x = circle.semi_y = 50.0;
-  circle.length = 500.0;
+  const SectionParams circle = SectionParams::ellipse(50, 50, 500);
   MandrelFeatures f;
   f.bore = 20;
   f.shaft_start = {25, 100};

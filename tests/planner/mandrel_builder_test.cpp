@@ -325,9 +325,7 @@ TEST(MandrelBuilder, EllipticalCanisterWithBoreAndScrewTabs) {
   const std::string yaml = std::string(kCanisterBody) + "  region: {start: 30, end: 270}\n";
   const Mandrel m = build_mandrel(load_job_from_string(yaml, "canister.yaml"));
   expect_cut_on_planes(m, 30.0, 270.0);
-  SectionParams e;
-  e.semi_x = 80;
-  e.semi_y = 50;
+  const SectionParams e = SectionParams::ellipse(80, 50, 300);
   expect_area(m.winding.area, section_perimeter(e) * 240.0, 50.0 * 50.0 / 80.0);
   EXPECT_FALSE(m.revolution);
   EXPECT_EQ(m.axis_source, "parametric");
@@ -337,11 +335,7 @@ TEST(MandrelBuilder, EllipticalCanisterWithBoreAndScrewTabs) {
 }
 
 TEST(MandrelBuilder, RoundedRectangleBoomWithFlatEnds) {
-  SectionParams r;
-  r.shape = SectionShape::RoundedRectangle;
-  r.width = 120;
-  r.height = 80;
-  r.corner_radius = 15;
+  const SectionParams r = SectionParams::rounded_rectangle(120, 80, 15, 600);
   // Without a region: the flat caps are left out, the flat sides along the axis are wound.
   const Mandrel whole = build_mandrel(load_job_from_string(kBoom, "boom.yaml"));
   expect_cut_on_planes(whole, 0.0, 600.0);
