@@ -162,8 +162,9 @@ std::vector<CandidateRegion> candidate_regions(const Mesh& mesh, const std::vect
     }
     out.push_back(describe_part(mesh, std::move(faces), frame, scratch));
   }
-  std::stable_sort(out.begin(), out.end(),
-                   [](const CandidateRegion& a, const CandidateRegion& b) { return a.area > b.area; });
+  std::stable_sort(out.begin(), out.end(), [](const CandidateRegion& a, const CandidateRegion& b) {
+    return a.area > b.area;
+  });
   for (std::size_t i = 0; i < out.size(); ++i) out[i].index = static_cast<int>(i) + 1;
   return out;
 }
@@ -270,8 +271,7 @@ RegionSelection select_region_impl(const Mesh& full, const SpindleAxis& axis,
       const CandidateRegion &p = out.candidates[pick], &c = out.candidates[i];
       const double overlap =
           std::min(p.axial_max, c.axial_max) - std::max(p.axial_min, c.axial_min);
-      const double shorter =
-          std::min(p.axial_max - p.axial_min, c.axial_max - c.axial_min);
+      const double shorter = std::min(p.axial_max - p.axial_min, c.axial_max - c.axial_min);
       if (i != pick && overlap < 0.5 * shorter) {
         throw ConfigError("mandrel.region: the range " + range + " holds " +
                           std::to_string(around.size()) +
@@ -385,7 +385,8 @@ RegionSuggestion suggest_region(const Mesh& full, const SpindleAxis& axis_in, in
     runs.push_back({(j - i) * h * rsum / ((j - i + 1) * K), {i, j}});
     i = j + 1;
   }
-  std::sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  std::sort(runs.begin(), runs.end(),
+            [](const auto& x, const auto& y) { return x.first > y.first; });
   for (std::size_t r = 0; r < std::min<std::size_t>(runs.size(), 3); ++r) {
     for (int shrink = 0; shrink < 3; ++shrink) {
       const int i = runs[r].second.first + shrink, j = runs[r].second.second - shrink;

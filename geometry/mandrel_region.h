@@ -38,19 +38,19 @@ struct RegionOptions {
 
 /// One connected part of a face selection.
 struct CandidateRegion {
-  int index = 0;             ///< 1-based, in the order of the table
-  int faces = 0;             ///< triangles
-  double area = 0.0;         ///< mm^2
-  double axial_min = 0.0;    ///< mm, along the axis
-  double axial_max = 0.0;    ///< mm
-  double radius_min = 0.0;   ///< mm, distance of its vertices from the axis
-  double radius_max = 0.0;   ///< mm
-  double mean_radius = 0.0;  ///< mm, area-weighted radius of the face centroids
-  int loops = 0;             ///< boundary loops (-1: not a manifold patch)
-  int loops_around = 0;      ///< boundary loops with winding number +-1 about the axis
-  int genus = 0;             ///< from V - E + F = 2 - 2 genus - loops
-  bool around = false;       ///< goes around the axis (loops_around > 0)
-  bool annulus = false;      ///< genus 0, two loops, both around the axis
+  int index = 0;               ///< 1-based, in the order of the table
+  int faces = 0;               ///< triangles
+  double area = 0.0;           ///< mm^2
+  double axial_min = 0.0;      ///< mm, along the axis
+  double axial_max = 0.0;      ///< mm
+  double radius_min = 0.0;     ///< mm, distance of its vertices from the axis
+  double radius_max = 0.0;     ///< mm
+  double mean_radius = 0.0;    ///< mm, area-weighted radius of the face centroids
+  int loops = 0;               ///< boundary loops (-1: not a manifold patch)
+  int loops_around = 0;        ///< boundary loops with winding number +-1 about the axis
+  int genus = 0;               ///< from V - E + F = 2 - 2 genus - loops
+  bool around = false;         ///< goes around the axis (loops_around > 0)
+  bool annulus = false;        ///< genus 0, two loops, both around the axis
   std::vector<int> face_list;  ///< its faces in the mesh the selection was made on
   /// "#2: axial 10..490 mm, radius 50..50 mm, 2 loops (2 around the axis), genus 0, 3200 mm^2"
   std::string brief() const;

@@ -39,10 +39,10 @@ using param_check::fail;
 using param_check::num;
 using param_check::positive;
 
-bool end_valid(const SectionEndParams& e, double half_x, const std::string& key,
-               std::string* why) {
+bool end_valid(const SectionEndParams& e, double half_x, const std::string& key, std::string* why) {
   if (!e.dome) return true;
-  if (!positive(e.height)) return fail(why, key + ".height must be > 0 mm (got " + num(e.height) + ")");
+  if (!positive(e.height))
+    return fail(why, key + ".height must be > 0 mm (got " + num(e.height) + ")");
   if (!(positive(e.opening) && e.opening < half_x)) {
     return fail(why, key + ".opening (" + num(e.opening) +
                          " mm) must be > 0 and smaller than the section's half-width along X (" +
@@ -104,13 +104,15 @@ TopoDS_Shape dome(const SectionParams& p, const SectionEndParams& e, double z0, 
 
 TopoDS_Shape fuse(const TopoDS_Shape& a, const TopoDS_Shape& b, const char* what) {
   BRepAlgoAPI_Fuse op(a, b);
-  if (!op.IsDone()) throw InvariantError(std::string("mandrel features: fusing the ") + what + " failed");
+  if (!op.IsDone())
+    throw InvariantError(std::string("mandrel features: fusing the ") + what + " failed");
   return op.Shape();
 }
 
 TopoDS_Shape cut(const TopoDS_Shape& a, const TopoDS_Shape& b, const char* what) {
   BRepAlgoAPI_Cut op(a, b);
-  if (!op.IsDone()) throw InvariantError(std::string("mandrel features: cutting the ") + what + " failed");
+  if (!op.IsDone())
+    throw InvariantError(std::string("mandrel features: cutting the ") + what + " failed");
   return op.Shape();
 }
 
@@ -233,7 +235,8 @@ bool MandrelFeatures::is_valid(std::string* why, const std::string& key) const {
   if (!(std::isfinite(bore) && bore >= 0.0)) {
     return fail(why, key + ".bore must be >= 0 mm (got " + num(bore) + ")");
   }
-  for (const auto& [name, s] : {std::pair{"shaft_start", shaft_start}, std::pair{"shaft_end", shaft_end}}) {
+  for (const auto& [name, s] :
+       {std::pair{"shaft_start", shaft_start}, std::pair{"shaft_end", shaft_end}}) {
     if (!(std::isfinite(s.radius) && s.radius >= 0.0)) {
       return fail(why, key + "." + name + ".radius must be >= 0 mm");
     }
@@ -264,7 +267,8 @@ bool MandrelFeatures::is_valid(std::string* why, const std::string& key) const {
   for (std::size_t i = 0; i < tabs.size(); ++i) {
     const TabParams& t = tabs[i];
     const std::string k = key + ".tabs[" + std::to_string(i) + "]";
-    if (!std::isfinite(t.at) || !std::isfinite(t.angle)) return fail(why, k + ".at and .angle must be finite");
+    if (!std::isfinite(t.at) || !std::isfinite(t.angle))
+      return fail(why, k + ".at and .angle must be finite");
     if (t.count < 1) return fail(why, k + ".count must be >= 1");
     if (!positive(t.reach) || !positive(t.width) || !positive(t.thickness)) {
       return fail(why, k + ": reach, width and thickness must be > 0 mm");
@@ -315,9 +319,10 @@ CadShape add_mandrel_features(const CadShape& body_in, const MandrelFeatures& f,
                 .Shape();
         if (t.hole_radius > 0.0) {
           const double rc = r_wall + 0.5 * t.reach;
-          block = cut(block, cylinder(t.hole_radius, t.at - 1.0, t.at + t.thickness + 1.0,
-                                      gp_Pnt(rc, 0.0, 0.0)),
-                      "tab hole");
+          block = cut(
+              block,
+              cylinder(t.hole_radius, t.at - 1.0, t.at + t.thickness + 1.0, gp_Pnt(rc, 0.0, 0.0)),
+              "tab hole");
         }
         gp_Trsf rot;
         rot.SetRotation(gp_Ax1(gp::Origin(), gp::DZ()), th);
@@ -333,8 +338,8 @@ CadShape add_mandrel_features(const CadShape& body_in, const MandrelFeatures& f,
       }
     }
     if (f.bore > 0.0) {
-      body = cut(body, cylinder(f.bore, z0 - f.shaft_start.length - 1.0,
-                                z1 + f.shaft_end.length + 1.0),
+      body = cut(body,
+                 cylinder(f.bore, z0 - f.shaft_start.length - 1.0, z1 + f.shaft_end.length + 1.0),
                  "bore");
     }
     return make_cad_shape(one_solid(body, "mandrel features"));

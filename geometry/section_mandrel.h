@@ -71,26 +71,26 @@ struct ShaftParams {
 };
 
 struct FlangeParams {
-  double at = 0.0;          ///< axial position of the flange's lower face (mm)
-  double radius = 80.0;     ///< outer radius (mm), larger than the body there
-  double thickness = 10.0;  ///< along the axis (mm), > 0
-  int bolts = 0;            ///< bolt holes on the pitch circle (count, >= 0)
+  double at = 0.0;             ///< axial position of the flange's lower face (mm)
+  double radius = 80.0;        ///< outer radius (mm), larger than the body there
+  double thickness = 10.0;     ///< along the axis (mm), > 0
+  int bolts = 0;               ///< bolt holes on the pitch circle (count, >= 0)
   double bolt_radius = 4.0;    ///< mm, > 0 when bolts > 0
   double pitch_radius = 70.0;  ///< mm; the holes must lie inside the flange
 };
 
 struct TabParams {
-  double at = 0.0;         ///< axial position of the tab's lower face (mm)
-  int count = 2;           ///< tabs spread evenly around the axis, the first at `angle`
-  double angle = 0.0;      ///< degrees from +X towards +Y
-  double reach = 25.0;     ///< how far the tab sticks out of the wall (mm), > 0
-  double width = 20.0;     ///< tangential width (mm), > 0
-  double thickness = 8.0;  ///< along the axis (mm), > 0
+  double at = 0.0;           ///< axial position of the tab's lower face (mm)
+  int count = 2;             ///< tabs spread evenly around the axis, the first at `angle`
+  double angle = 0.0;        ///< degrees from +X towards +Y
+  double reach = 25.0;       ///< how far the tab sticks out of the wall (mm), > 0
+  double width = 20.0;       ///< tangential width (mm), > 0
+  double thickness = 8.0;    ///< along the axis (mm), > 0
   double hole_radius = 3.0;  ///< screw hole parallel to the axis (mm), 0 = none, < width / 2
 };
 
 struct MandrelFeatures {
-  double bore = 0.0;  ///< radius of a through bore along the axis (mm); 0 = none
+  double bore = 0.0;        ///< radius of a through bore along the axis (mm); 0 = none
   ShaftParams shaft_start;  ///< below the body's lowest point
   ShaftParams shaft_end;    ///< above the body's highest point
   std::vector<FlangeParams> flanges;

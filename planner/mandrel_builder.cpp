@@ -179,8 +179,8 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
     out.axis_source = "parametric";
     // The wound wall of pipe, cone and vessel is one of revolution (features are left out by
     // mandrel.region); an elliptical or rounded-rectangle section is not.
-    out.revolution = m.source != "section" ||
-                     (m.section.shape == SectionShape::Ellipse && m.section.semi_x == m.section.semi_y);
+    out.revolution = m.source != "section" || (m.section.shape == SectionShape::Ellipse &&
+                                               m.section.semi_x == m.section.semi_y);
   } else {
     const AxisInference inf = infer_spindle_axis(out.mesh);
     out.axis = inf.axis;

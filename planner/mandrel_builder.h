@@ -14,10 +14,11 @@
 // otherwise, for B-rep sources every face that is not planar, and the planar faces along the
 // axis (normal perpendicular to it within 1 degree: a rounded-rectangle boom's flat sides);
 // other planar faces are end caps (pipe/cone/tube ends, the vessel's polar-opening disks, a
-// CAD model's flat ends) and are left out; for a mesh file, the whole mesh when it is open, otherwise every
-// triangle whose normal is not parallel to the axis (within 1 degree): flat end caps are dropped.
-// The axis is the job's `mandrel.axis`, or the known axis of pipe/cone/vessel/section (+Z
-// through the origin), or inferred (geometry/winding_surface.h) for CAD, mesh and bent-tube mandrels.
+// CAD model's flat ends) and are left out; for a mesh file, the whole mesh when it is open,
+// otherwise every triangle whose normal is not parallel to the axis (within 1 degree): flat end
+// caps are dropped. The axis is the job's `mandrel.axis`, or the known axis of
+// pipe/cone/vessel/section (+Z through the origin), or inferred (geometry/winding_surface.h) for
+// CAD, mesh and bent-tube mandrels.
 //
 // When the wound region is not an annulus, the TopologyError lists the candidate regions (each
 // connected part: axial extent, radius range, loops) and suggests the mandrel.region keys of a

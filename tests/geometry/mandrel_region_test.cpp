@@ -19,8 +19,8 @@ Mesh flanged_pipe() {
   f.shaft_start = {25, 100};
   f.shaft_end = {25, 100};
   f.flanges = {FlangeParams{0, 90, 12, 8, 5, 75}, FlangeParams{488, 90, 12, 8, 5, 75}};
-  const CadShape s = add_mandrel_features(make_pipe(PipeParams{50, 500}), f,
-                                          [](double) { return 50.0; });
+  const CadShape s =
+      add_mandrel_features(make_pipe(PipeParams{50, 500}), f, [](double) { return 50.0; });
   return Mesh(tessellate(s).soup);
 }
 

@@ -77,8 +77,8 @@ TEST(MandrelFeatures, FlangesShaftsBoltHolesAndBoreVolume) {
   f.shaft_start = {25, 100};
   f.shaft_end = {25, 100};
   f.flanges = {FlangeParams{0, 90, 12, 8, 5, 75}, FlangeParams{488, 90, 12, 8, 5, 75}};
-  const CadShape s = add_mandrel_features(make_section_mandrel(circle), f,
-                                          [](double) { return 50.0; });
+  const CadShape s =
+      add_mandrel_features(make_section_mandrel(circle), f, [](double) { return 50.0; });
   const CadShapeInfo info = cad_shape_info(s);
   EXPECT_EQ(info.solids, 1);
   EXPECT_EQ(info.free_edges, 0);
