@@ -35,6 +35,10 @@ int run_mandrel(const std::vector<std::string>& argv) {
   args.expect_positional(1, "a job file");
   const Job job = load_job(args.positional()[0]);
   Mandrel m = build_mandrel(job.mandrel, /*require_annulus=*/false);
+  // The full mesh is written even when it cannot be wound (to look at it, or to use it as a
+  // mesh-file mandrel with a region).
+  const std::string out = args.has("-o") ? args.value("-o") : args.value("--out");
+  if (!out.empty()) write_mesh(out, m.mesh);
   const bool windable = m.winding.mesh.num_faces() > 0;
   if (!windable) {
     // Say what is there: the candidate regions and the suggested keys, then fail.
@@ -50,8 +54,6 @@ int run_mandrel(const std::vector<std::string>& argv) {
   }
   for (const std::string& w : m.warnings) std::cerr << "windplan mandrel: warning: " << w << "\n";
 
-  const std::string out = args.has("-o") ? args.value("-o") : args.value("--out");
-  if (!out.empty()) write_mesh(out, m.mesh);
   if (args.has("--winding")) write_mesh(args.value("--winding"), m.winding.mesh);
   if (args.has("--step")) {
     if (m.shape.empty()) {
