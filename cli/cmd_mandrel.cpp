@@ -138,6 +138,7 @@ int run_mandrel(const std::vector<std::string>& argv) {
     j.key("timings_ms").begin_object();
     j.field("tessellation", m.tessellation_ms);
     j.field("remesh", m.remesh_ms);
+    j.field("region", m.region_ms);
     j.field("total", m.total_ms);
     j.end_object();
     j.key("warnings").begin_array();
@@ -175,6 +176,7 @@ int run_mandrel(const std::vector<std::string>& argv) {
   s << "  max radius " << rmax << " mm over " << m.profile.axial.size() << " stations\n";
   s << "  time: tessellation " << m.tessellation_ms << " ms";
   if (job.mandrel.remesh > 0.0) s << ", remesh " << m.remesh_ms << " ms";
+  if (job.mandrel.region.enabled) s << ", region " << m.region_ms << " ms";
   s << ", total " << m.total_ms << " ms\n";
   std::cout << s.str();
   return 0;

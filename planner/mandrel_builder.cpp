@@ -214,6 +214,7 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
   // The region: cut on its planes; per face a patch id that also records "wound".
   std::vector<char> keep;
   if (m.region.enabled) {
+    const auto t_region = Clock::now();
     RegionSelection sel = select_region(out.mesh, out.axis, m.region);
     std::vector<int> cut_patch(sel.mesh.num_faces());
     for (int f = 0; f < sel.mesh.num_faces(); ++f) {
@@ -229,6 +230,7 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
     out.region_max_move = sel.max_move;
     out.candidates = std::move(sel.candidates);
     out.chosen_candidate = sel.chosen;
+    out.region_ms = ms_since(t_region);
   }
   if (m.remesh > 0.0) {
     RemeshOptions ro;

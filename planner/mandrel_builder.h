@@ -61,6 +61,7 @@ struct Mandrel {
   std::string description;     ///< one line: source, shape and dimensions
   double tessellation_ms = 0;  ///< B-rep meshing and welding (0 for meshes)
   double remesh_ms = 0;        ///< isotropic remeshing (0 when off)
+  double region_ms = 0;        ///< mandrel.region: plane cut and candidates (0 when not set)
   double total_ms = 0;         ///< the whole build
   std::vector<std::string> warnings;
 
