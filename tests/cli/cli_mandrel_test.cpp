@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -190,6 +191,44 @@ TEST_F(MandrelCli, RegionAndSectionErrorsAreOneLineNamingTheKey) {
     EXPECT_NE(r.err.find(c.key), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+}
+
+// Two open tubes one after the other along the axis (a mesh file): a range over both holds two
+// surfaces around the axis and neither nests in the other; the error asks for
+// mandrel.region.component, and the component chosen winds.
+TEST_F(MandrelCli, RegionOverTwoTubesNeedsAComponent) {
+  std::ofstream obj(dir_ / "two_tubes.obj");
+  const int n = 48;
+  for (int tube = 0; tube < 2; ++tube) {
+    for (int ring = 0; ring < 2; ++ring) {
+      for (int k = 0; k < n; ++k) {
+        const double a = 2.0 * M_PI * k / n;
+        obj << "v " << 40.0 * std::cos(a) << " " << 40.0 * std::sin(a) << " "
+            << 300.0 * tube + 200.0 * ring << "\n";
+      }
+    }
+  }
+  for (int tube = 0; tube < 2; ++tube) {
+    const int b = 1 + 2 * n * tube;  // OBJ indices are 1-based
+    for (int k = 0; k < n; ++k) {
+      const int k1 = (k + 1) % n;
+      obj << "f " << b + k << " " << b + k1 << " " << b + n + k1 << "\n";
+      obj << "f " << b + k << " " << b + n + k1 << " " << b + n + k << "\n";
+    }
+  }
+  obj.close();
+  const std::string job = "mandrel:\n  source: mesh\n  file: two_tubes.obj\n"
+                          "  axis: {origin: [0, 0, 0], direction: [0, 0, 1]}\n";
+  std::ofstream(dir_ / "two.yaml") << job << "  region: {start: 100, end: 400}\n";
+  const CliRun r = run({(dir_ / "two.yaml").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("choose one with mandrel.region.component"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  std::ofstream(dir_ / "two.yaml") << job << "  region: {start: 100, end: 400, component: 2}\n";
+  const CliRun ok = run({(dir_ / "two.yaml").string(), "--json"});
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  const YAML::Node j = YAML::Load(ok.out);
+  EXPECT_TRUE(j["regions"][1]["wound"].as<bool>());
 }
 
 }  // namespace
