@@ -255,9 +255,14 @@ RegionSelection select_region_impl(const Mesh& full, const SpindleAxis& axis,
       if (out.candidates[i].around) around.push_back(static_cast<int>(i));
     }
     if (around.empty()) {
-      throw ConfigError("mandrel.region: no surface in the range " + range +
-                        " goes around the spindle axis (check mandrel.axis and the range); " +
-                        "candidates: " + listing());
+      const bool closed = std::any_of(out.candidates.begin(), out.candidates.end(),
+                                      [](const CandidateRegion& c) { return c.loops == 0; });
+      throw ConfigError(
+          "mandrel.region: no surface in the range " + range + " goes around the spindle axis (" +
+          (closed ? "the range takes in a closed part of the mandrel: keep region.start and "
+                    "region.end inside its axial extent " + extent + " to cut it open"
+                  : "check mandrel.axis and the range") +
+          "); candidates: " + listing() + suggestion());
     }
     const bool outer = options.surface == "outer";
     int pick = around[0];
@@ -287,7 +292,13 @@ RegionSelection select_region_impl(const Mesh& full, const SpindleAxis& axis,
                       range + " is not an annulus (" + std::to_string(c.loops) + " loop(s), " +
                       std::to_string(c.loops_around) + " around the axis, genus " +
                       std::to_string(c.genus) +
-                      "): flanges, holes or tabs in the range? narrow region.start/region.end; " +
+                      "): " +
+                      (a < amin || b > amax
+                           ? "the range runs past an end of the mandrel (axial extent " + extent +
+                                 "); keep region.start/region.end inside it"
+                           : std::string("flanges, holes or tabs in the range? narrow "
+                                         "region.start/region.end")) +
+                      "; " +
                       "candidates: " + listing() + suggestion());
   }
   out.keep.assign(m.num_faces(), 0);

@@ -97,6 +97,12 @@ TEST(MandrelRegion, BadRanges) {
   o.component = 7;
   e = error_of(m, SpindleAxis{}, o);
   EXPECT_NE(e.find("mandrel.region.component"), std::string::npos) << e;
+  // Past the ends: the closed mandrel (no loop) or a cup (one loop), each said so.
+  e = error_of(m, SpindleAxis{}, range(-200, 700));
+  EXPECT_NE(e.find("keep region.start and region.end inside its axial extent [-100, 600] mm"),
+            std::string::npos) << e;
+  e = error_of(m, SpindleAxis{}, range(20, 700));
+  EXPECT_NE(e.find("the range runs past an end of the mandrel"), std::string::npos) << e;
   o = range(480, 20);
   e = error_of(m, SpindleAxis{}, o);
   EXPECT_NE(e.find("region.start"), std::string::npos) << e;
