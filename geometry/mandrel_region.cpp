@@ -404,9 +404,11 @@ RegionSuggestion suggest_region(const Mesh& full, const SpindleAxis& axis_in, in
       if (j <= i) break;
       RegionOptions o;
       o.enabled = true;
-      // Round inwards to 0.1 mm so that the keys read well.
-      o.start = std::ceil((amin + (i + 0.5) * h) * 10.0) / 10.0;
-      o.end = std::floor((amin + (j + 0.5) * h) * 10.0) / 10.0;
+      // Round inwards to a tenth of the station spacing's decade (0.1 mm for a spacing of
+      // 1 to 10 mm) so that the keys read well.
+      const double q = std::pow(10.0, std::floor(std::log10(h)) - 1.0);
+      o.start = std::ceil((amin + (i + 0.5) * h) / q) * q;
+      o.end = std::floor((amin + (j + 0.5) * h) / q) * q;
       if (!(o.end > o.start)) break;
       try {
         const RegionSelection sel = select_region_impl(full, axis, o, false);
