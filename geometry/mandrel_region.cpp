@@ -260,7 +260,8 @@ RegionSelection select_region_impl(const Mesh& full, const SpindleAxis& axis,
       throw ConfigError(
           "mandrel.region: no surface in the range " + range + " goes around the spindle axis (" +
           (closed ? "the range takes in a closed part of the mandrel: keep region.start and "
-                    "region.end inside its axial extent " + extent + " to cut it open"
+                    "region.end inside its axial extent " +
+                        extent + " to cut it open"
                   : "check mandrel.axis and the range") +
           "); candidates: " + listing() + suggestion());
     }
@@ -291,15 +292,13 @@ RegionSelection select_region_impl(const Mesh& full, const SpindleAxis& axis,
     throw ConfigError("mandrel.region: surface #" + std::to_string(c.index) + " in the range " +
                       range + " is not an annulus (" + std::to_string(c.loops) + " loop(s), " +
                       std::to_string(c.loops_around) + " around the axis, genus " +
-                      std::to_string(c.genus) +
-                      "): " +
+                      std::to_string(c.genus) + "): " +
                       (a < amin || b > amax
                            ? "the range runs past an end of the mandrel (axial extent " + extent +
                                  "); keep region.start/region.end inside it"
                            : std::string("flanges, holes or tabs in the range? narrow "
                                          "region.start/region.end")) +
-                      "; " +
-                      "candidates: " + listing() + suggestion());
+                      "; " + "candidates: " + listing() + suggestion());
   }
   out.keep.assign(m.num_faces(), 0);
   for (int f : c.face_list) out.keep[f] = 1;
@@ -398,28 +397,58 @@ RegionSuggestion suggest_region(const Mesh& full, const SpindleAxis& axis_in, in
   }
   std::sort(runs.begin(), runs.end(),
             [](const auto& x, const auto& y) { return x.first > y.first; });
+  // A run stops where the outline turns steeply, also on a dome running into its opening. Past
+  // the run the wall may go on (a dome) until a flat face across the axis (a cap, a shoulder, a
+  // flange or tab face) or a change of sheets: slab i (between stations i and i + 1) is "flat"
+  // when such a face reaches into it.
+  std::vector<char> flat(N, 0);
+  const double c1 = std::cos(M_PI / 180.0);
+  for (int f = 0; f < full.num_faces(); ++f) {
+    if (!(std::abs(full.face_normal(f).dot(axis.direction)) > c1)) continue;
+    const double x = axis.axial(full.face_centroid(f));
+    const int i = static_cast<int>(std::floor((x - amin) / h - 0.5));
+    for (int k = std::max(0, i - 1); k <= std::min(N - 1, i + 1); ++k) flat[k] = 1;
+  }
+  auto same_sheets = [&](int i) {
+    for (int k = 0; k < K; ++k) {
+      const std::size_t a = static_cast<std::size_t>(i) * K + k;
+      if (sheets[a] == 0 || sheets[a] != sheets[a + K]) return false;
+    }
+    return true;
+  };
+  auto extend = [&](int i, int step) {
+    while (true) {
+      const int slab = step > 0 ? i : i - 1;
+      if (slab < 0 || slab >= N - 1 || flat[slab] || !same_sheets(slab)) return i;
+      i += step;
+    }
+  };
+  // Round inwards to a tenth of the station spacing's decade (0.1 mm for a spacing of 1 to
+  // 10 mm) so that the keys read well.
+  const double q = std::pow(10.0, std::floor(std::log10(h)) - 1.0);
+  auto attempt = [&](int i, int j) {
+    RegionOptions o;
+    o.enabled = true;
+    o.start = std::ceil((amin + (i + 0.5) * h) / q) * q;
+    o.end = std::floor((amin + (j + 0.5) * h) / q) * q;
+    if (!(o.end > o.start)) return false;
+    try {
+      const RegionSelection sel = select_region_impl(full, axis, o, false);
+      out.found = true;
+      out.start = o.start;
+      out.end = o.end;
+      out.radius = sel.candidates[sel.chosen].mean_radius;
+      return true;
+    } catch (const InputError&) {
+      return false;
+    }
+  };
   for (std::size_t r = 0; r < std::min<std::size_t>(runs.size(), 3); ++r) {
-    for (int shrink = 0; shrink < 3; ++shrink) {
-      const int i = runs[r].second.first + shrink, j = runs[r].second.second - shrink;
-      if (j <= i) break;
-      RegionOptions o;
-      o.enabled = true;
-      // Round inwards to a tenth of the station spacing's decade (0.1 mm for a spacing of
-      // 1 to 10 mm) so that the keys read well.
-      const double q = std::pow(10.0, std::floor(std::log10(h)) - 1.0);
-      o.start = std::ceil((amin + (i + 0.5) * h) / q) * q;
-      o.end = std::floor((amin + (j + 0.5) * h) / q) * q;
-      if (!(o.end > o.start)) break;
-      try {
-        const RegionSelection sel = select_region_impl(full, axis, o, false);
-        out.found = true;
-        out.start = o.start;
-        out.end = o.end;
-        out.radius = sel.candidates[sel.chosen].mean_radius;
-        return out;
-      } catch (const InputError&) {
-        continue;
-      }
+    const int i = runs[r].second.first, j = runs[r].second.second;
+    const int ie = extend(i, -1), je = extend(j, +1);
+    if ((ie < i || je > j) && (attempt(ie, je) || attempt(ie, j) || attempt(i, je))) return out;
+    for (int shrink = 0; shrink < 3 && i + shrink < j - shrink; ++shrink) {
+      if (attempt(i + shrink, j - shrink)) return out;
     }
   }
   return out;

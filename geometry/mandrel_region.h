@@ -15,7 +15,8 @@
 // outline: it cuts the mesh by many station planes, counts on rays from the axis how many sheets
 // the section crosses and how far out the outermost one is, and takes the longest run of
 // stations where neither changes by more than a tolerance (a flange, a tab or a shaft shoulder
-// changes both), then checks the range with select_region().
+// changes both), carries it on while the sheets stay the same and no flat face across the axis
+// is met (so that it follows a dome to its opening), then checks the range with select_region().
 #include <string>
 #include <vector>
 

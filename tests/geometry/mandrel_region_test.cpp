@@ -100,7 +100,8 @@ TEST(MandrelRegion, BadRanges) {
   // Past the ends: the closed mandrel (no loop) or a cup (one loop), each said so.
   e = error_of(m, SpindleAxis{}, range(-200, 700));
   EXPECT_NE(e.find("keep region.start and region.end inside its axial extent [-100, 600] mm"),
-            std::string::npos) << e;
+            std::string::npos)
+      << e;
   e = error_of(m, SpindleAxis{}, range(20, 700));
   EXPECT_NE(e.find("the range runs past an end of the mandrel"), std::string::npos) << e;
   o = range(480, 20);
@@ -144,6 +145,27 @@ TEST(MandrelRegion, CandidateTableListsEveryPart) {
   EXPECT_EQ(c[0].genus, 17) << "8 bolt holes in each of two flanges and the through bore";
   const std::string table = region_table(c);
   EXPECT_NE(table.find("genus"), std::string::npos);
+}
+
+// A rounded-rectangle boom with lofted domes, shafts at the openings and screw tabs near the
+// start: the suggestion runs from above the tabs (z 50..56) onto the end dome, up to its opening
+// (z = 440, where the flat cap and the shaft begin), not beyond.
+TEST(MandrelRegion, SuggestionFollowsADomeToItsOpening) {
+  SectionParams p = SectionParams::rounded_rectangle(120, 80, 15, 400);
+  p.end_start = p.end_end = SectionEndParams{true, 40.0, 20.0};
+  MandrelFeatures f;
+  f.shaft_start = {12, 60};
+  f.shaft_end = {12, 60};
+  f.tabs = {TabParams{50, 4, 45, 20, 16, 6, 3}};
+  const CadShape s = add_mandrel_features(make_section_mandrel(p), f,
+                                          [&p](double th) { return section_radius(p, th); });
+  const Mesh m(tessellate(s).soup);
+  const RegionSuggestion g = suggest_region(m, SpindleAxis{});
+  ASSERT_TRUE(g.found);
+  EXPECT_GT(g.start, 56.0);
+  EXPECT_LT(g.start, 60.0);
+  EXPECT_GT(g.end, 430.0) << "on the dome";
+  EXPECT_LT(g.end, 440.0) << "below its opening";
 }
 
 }  // namespace
