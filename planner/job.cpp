@@ -387,6 +387,7 @@ void decode_cutlines(ConfigNode& root, const std::filesystem::path& base,
     c.to = Vec3(to[0], to[1], to[2]);
     n.get_choice("normal_mode", {"free", "fixed", "cone"}, &c.normal_mode);
     n.get("max_tilt_deg", &c.max_tilt_deg);
+    n.get("keep_offset", &c.keep_offset);
     n.finish();
     n.check(c);
     cuts->push_back(std::move(c));
@@ -408,8 +409,22 @@ void decode_girth(ConfigNode n, GirthOptions* g) {
 
 void decode_winding(ConfigNode n, WindingOptions* w) {
   if (!n.present()) return;
-  n.get("turns", &w->turns);
+  w->turns_given = n.get("turns", &w->turns);
   std::string circuits;
+  if (n.has("pattern")) {
+    std::string word;
+    if (n.is_map("pattern")) {
+      ConfigNode pat = n.section("pattern");
+      pat.require("circuits", &w->circuits);
+      pat.get("skip", &w->skip);
+      pat.finish();
+      if (w->circuits < 1) pat.fail("circuits", "must be >= 1");
+      if (w->skip < 1 && w->circuits > 1) pat.fail("skip", "must be >= 1");
+    } else if (n.get("pattern", &word) && word != "auto") {
+      n.fail("pattern", "must be auto or {circuits: K, skip: p} (got '" + word + "')");
+    }
+    if (n.has("circuits")) n.fail("circuits", "give winding.pattern or winding.circuits, not both");
+  }
   if (n.get("circuits", &circuits)) {
     if (circuits == "auto") {
       w->circuits = 0;
@@ -434,6 +449,10 @@ void decode_winding(ConfigNode n, WindingOptions* w) {
   n.get("end_station", &w->end_station);
   n.get("curvature_window", &w->curvature_window);
   n.get("meridians", &w->meridians);
+  n.get("turnaround", &w->turnaround);
+  n.get("angle", &w->angle);
+  n.get("turnaround_window", &w->turnaround_window);
+  n.get("coverage_stations", &w->coverage_stations);
   n.finish();
   n.check(*w);
 }

@@ -90,36 +90,69 @@ TEST_F(CliRun, VesselRunsAndTwoRunsAreByteIdentical) {
   // report.json is JSON (YAML reads it) with the plan's circuits.
   const YAML::Node rep = YAML::LoadFile((a / "report.json").string());
   EXPECT_TRUE(rep.IsMap());
-  // The shipped vessel (isotensoid domes, 30 mm openings) allows about 0.6 turns per geodesic
-  // pass between the openings (planner/clairaut.h): its N = 0.59 stays below the reported limit,
-  // so there is no turn-limit warning.
+  // The shipped vessel (isotensoid domes, 30 mm openings): geodesic passes that turn around on
+  // the domes (issue 12), so they make more turns than the 0.6 that would reach the openings;
+  // no bare band anywhere, no warning, and the summary says so.
   const double limit = rep["summary"]["geodesic_turn_limit"].as<double>();
   EXPECT_GT(limit, 0.5);
   EXPECT_LT(limit, 0.8);
-  EXPECT_EQ(rep["summary"]["turns_per_pass"].as<double>(), 0.59);
-  EXPECT_LT(0.59, limit);
-  EXPECT_EQ(r1.err.find("turns a geodesic can make"), std::string::npos) << r1.err;
-  EXPECT_NE(r1.out.find("geodesic limit   0.61 turns per pass (N = 0.59)"), std::string::npos)
-      << r1.out;
+  EXPECT_TRUE(rep["pattern"]["geodesic"].as<bool>());
+  const double c = rep["pattern"]["turnaround_radius_mm"].as<double>();
+  EXPECT_GE(c, rep["pattern"]["requested_radius_mm"].as<double>());
+  EXPECT_GT(rep["summary"]["turns_per_pass"].as<double>(), limit);
+  EXPECT_EQ(rep["coverage"]["bare_fraction"].as<double>(), 0.0);
+  EXPECT_GE(rep["coverage"]["stations"].size(), 8u);
+  EXPECT_EQ(r1.err.find("warning"), std::string::npos) << r1.err;
+  EXPECT_NE(r1.out.find("coverage         bare 0.00%"), std::string::npos) << r1.out;
+  EXPECT_NE(r1.out.find("(geodesic, turning around at r = "), std::string::npos) << r1.out;
 }
 
-// The same vessel with N = 1 (the job before fractional turns): beyond the limit, so windplan
-// helices warns, suggesting turns <= 0.6 (N_max 0.608 rounded down to hundredths).
-TEST_F(CliRun, VesselBeyondTheTurnLimitIsWarnedWithASuggestion) {
-  std::string yaml = read_all(config("vessel.yaml"));
-  const std::size_t at = yaml.find("\n  turns: 0.59\n");
+// Between dwell ends more turns than a geodesic can make are warned about with a suggestion:
+// the cone 60 -> 40 mm over 400 mm allows arccos(40 / 60) / sin(b) / 2 pi = 2.68 turns.
+TEST_F(CliRun, ConeBeyondTheTurnLimitIsWarnedWithASuggestion) {
+  std::string yaml = read_all(config("cone.yaml"));
+  const std::string from = "\n  turns: 2\n";
+  const std::size_t at = yaml.find(from);
   ASSERT_NE(at, std::string::npos);
-  yaml.replace(at, 15, "\n  turns: 1\n");
-  const std::size_t cut = yaml.find("cutlines:");
-  ASSERT_NE(cut, std::string::npos);
-  yaml.erase(cut, yaml.find("winding:") - cut);  // the cut-lines are not the point here
-  const fs::path job = dir_ / "vessel_n1.yaml";
+  yaml.replace(at, from.size(), "\n  turns: 5\n");
+  ASSERT_NE(yaml.find("\n  beta: 0 "), std::string::npos);
+  const fs::path job = dir_ / "cone_n5.yaml";
   std::ofstream(job) << yaml;
   const Proc r = run({"helices", job.string()});
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("warning: winding.turns = 1 exceeds the 0.608 turns"), std::string::npos)
+  EXPECT_NE(r.out.find("warning: winding.turns = 5 exceeds the 2.68 turns"), std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("use turns <= 0.6, beta > 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("use turns <= 2.68, beta > 0"), std::string::npos) << r.out;
+}
+
+// windplan patterns: the table's first row is what `pattern: auto` winds, every row measured
+// on its own laid bands; off a shape of revolution it is refused.
+TEST_F(CliRun, PatternsTableStartsWithWhatAutoWinds) {
+  const fs::path job = dir_ / "hemi.yaml";
+  std::ofstream(job) << "name: hemi\nmandrel:\n  source: vessel\n  vessel:\n    radius: 100\n"
+                        "    length: 300\n    dome: {type: hemispherical, polar_opening: 30}\n"
+                        "winding:\n  band_width: 16\n";
+  const Proc t = run({"patterns", job.string(), "--json", "--top", "4"});
+  ASSERT_EQ(t.code, 0) << t.err;
+  const YAML::Node table = YAML::Load(t.out);
+  ASSERT_GE(table["patterns"].size(), 2u);
+  ASSERT_LE(table["patterns"].size(), 4u);
+  const YAML::Node first = table["patterns"][0];
+  const Proc h = run({"helices", job.string(), "--json"});
+  ASSERT_EQ(h.code, 0) << h.err;
+  const YAML::Node plan = YAML::Load(h.out);
+  EXPECT_EQ(plan["metrics"]["pattern_info"]["circuits"].as<int>(), first["circuits"].as<int>());
+  EXPECT_EQ(plan["metrics"]["pattern_info"]["skip"].as<int>(), first["skip"].as<int>());
+  EXPECT_NEAR(plan["metrics"]["pattern_info"]["turnaround_radius"].as<double>(),
+              first["turnaround_radius"].as<double>(), 1e-9);
+  EXPECT_EQ(plan["metrics"]["coverage"]["bare_fraction"].as<double>(), first["bare_fraction"].as<double>());
+  for (const YAML::Node& row : table["patterns"]) {
+    EXPECT_GE(row["turnaround_radius"].as<double>(), table["window_lo"].as<double>());
+    EXPECT_LE(row["turnaround_radius"].as<double>(), table["window_hi"].as<double>());
+  }
+  const Proc bent = run({"patterns", config("bent_tube.yaml").string()});
+  EXPECT_EQ(bent.code, 1);
+  EXPECT_NE(bent.err.find("not a shape of revolution"), std::string::npos) << bent.err;
 }
 
 TEST_F(CliRun, EveryShippedConfigRunsEndToEnd) {
@@ -156,6 +189,23 @@ TEST_F(CliRun, BadWindingInputIsExitOneWithTheKey) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("turns"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("bad.yaml"), std::string::npos) << r.err;
+  // Patterns and turnarounds on a vessel (issue 12): one line naming the key, exit 1.
+  for (const auto& [winding, key] :
+       {std::pair<std::string, std::string>{"turnaround: 10", "winding.turnaround = 10.00 mm"},
+        {"turnaround: 150", "winding.turnaround = 150.00 mm"},
+        {"pattern: {circuits: 12, skip: 4}", "coprime"},
+        {"pattern: {circuits: 7, skip: 3}\n  turnaround_window: 0", "winding.pattern: K=7, p=3"}}) {
+    std::ofstream(job) << "mandrel:\n  source: vessel\n  vessel:\n    radius: 100\n"
+                          "    length: 300\n    dome: {type: hemispherical, polar_opening: 30}\n"
+                          "winding:\n  band_width: 16\n  " << winding << "\n";
+    const Proc v = run({"run", job.string(), "--out", (dir_ / "o").string()});
+    EXPECT_EQ(v.code, 1) << winding;
+    EXPECT_NE(v.err.find(key), std::string::npos) << v.err;
+    std::istringstream lines(v.err);  // one error line (besides the stage progress lines)
+    int errors = 0;
+    for (std::string l; std::getline(lines, l);) errors += l.find("error:") != std::string::npos;
+    EXPECT_EQ(errors, 1) << v.err;
+  }
   const Proc u = run({"run"});
   EXPECT_EQ(u.code, 2) << u.err;
   const Proc h = run({"helices"});

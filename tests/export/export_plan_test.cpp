@@ -265,8 +265,8 @@ TEST(ExportPlan, ReportsCarryTheTurnaroundStabilityApartFromThePasses) {
   }
   const std::string summary = summary_text(plan, r);
   EXPECT_NE(summary.find("  max slippage     0.1250\n"), std::string::npos) << summary;
-  EXPECT_NE(summary.find("  turnarounds      max slippage 0.2500, 75.0 mm above mu (25.00%), "
-                         "bridging 1.5 mm\n"),
+  EXPECT_NE(summary.find("  dwell arcs       max slippage 0.2500, 75.0 mm above mu (25.00%), "
+                         "bridging 1.5 mm (held by pins or a ring)\n"),
             std::string::npos)
       << summary;
 }
