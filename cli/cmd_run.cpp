@@ -12,8 +12,10 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "export/export_plan.h"
+#include "export/layup_export.h"
 #include "export/report.h"
 #include "planner/job.h"
+#include "planner/layup.h"
 #include "planner/pipeline.h"
 
 namespace windplan::cli {
@@ -25,7 +27,9 @@ const char* const kRunHelp =
     "payout.csv, axes.csv, G-code, report.json/md, mesh.ply, paths.ply, development.svg,\n"
     "axes.svg, viewer.html, as switched by output:) into the output directory. Progress goes to\n"
     "stderr, one line per stage (on a terminal also a live line for the stage under way); the\n"
-    "summary to stdout. Two runs of the same job write byte-identical files.\n\n"
+    "summary to stdout. Two runs of the same job write byte-identical files.\n"
+    "A job with layers: winds every layer in order on the surface built by the ones under it\n"
+    "into one program, and writes laminate.csv/.vtu and layer_profiles.csv/.svg besides.\n\n"
     "  --out DIR   output directory (default: output.directory of the job, else\n"
     "              out/<job name>/ relative to the current directory)\n";
 
@@ -48,26 +52,39 @@ int run_run(const std::vector<std::string>& argv) {
   PipelineOptions po;
   po.on_stage_start = [&](const std::string& stage) { progress.start(stage); };
   po.on_stage = [&](const StageTiming& t) { progress.finish(t.stage, t.seconds); };
-  PipelineResult r = plan_job(job, po);
-  for (const std::string& w : r.plan.metrics.warnings) {
+  // A job with `layers:` is a layup (planner/layup.h): every layer in order, one program.
+  PipelineResult r;
+  LayupResult layup;
+  const bool layered = !job.layers.empty();
+  if (layered) {
+    layup = plan_layup(job, po);
+  } else {
+    r = plan_job(job, po);
+  }
+  WindingPlan& plan = layered ? layup.plan : r.plan;
+  const Mandrel& mandrel = layered ? layup.mandrel : r.mandrel;
+  for (const std::string& w : plan.metrics.warnings) {
     std::cerr << "windplan run: warning: " << w << "\n";
   }
 
   const auto t0 = std::chrono::steady_clock::now();
   progress.start("export");
   ExportContext context;
-  context.wound_region = &r.mandrel.winding.mesh;
-  context.wound_face_map = &r.mandrel.winding.face_map;
+  context.wound_region = &mandrel.winding.mesh;
+  context.wound_face_map = &mandrel.winding.face_map;
   context.on_file = [&](const std::string& file, int done, int total) {
     progress.count(done, total, file);
   };
-  const ExportResult ex =
-      export_plan(r.plan, r.mandrel.mesh, job.machine, job.output, dir, context);
+  if (layered) {
+    context.also_written = layup_file_names(layup, job.output);
+    write_layup_files(layup, job.output, dir);
+  }
+  const ExportResult ex = export_plan(plan, mandrel.mesh, job.machine, job.output, dir, context);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.plan.metrics.timings.push_back({"export", secs});
+  plan.metrics.timings.push_back({"export", secs});
   progress.finish("export", secs,
                   " (" + std::to_string(ex.files.size()) + " files in " + dir.string() + ")");
-  std::cout << summary_text(r.plan, ex);
+  std::cout << summary_text(plan, ex);
   return 0;
 }
 

@@ -108,6 +108,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   if (output.ply) r.files.insert(r.files.end(), {"mesh.ply", "paths.ply"});
   if (output.svg) r.files.insert(r.files.end(), {"development.svg", "axes.svg"});
   if (output.viewer) r.files.push_back("viewer.html");
+  r.files.insert(r.files.end(), context.also_written.begin(), context.also_written.end());
   if (output.report) r.files.insert(r.files.end(), {"report.json", "report.md"});
 
   int done = 0;

@@ -50,6 +50,9 @@ struct ExportContext {
   const std::vector<int>* wound_face_map = nullptr;
   /// Called after each file with its name, the files written so far and their number.
   std::function<void(const std::string& file, int done, int total)> on_file;
+  /// Files another writer puts into the directory (a layup's laminate files,
+  /// export/layup_export.h): listed in ExportResult::files and the reports, before them.
+  std::vector<std::string> also_written;
 };
 
 /// Computes the motion and writes the files.
