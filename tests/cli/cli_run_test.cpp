@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -83,10 +84,12 @@ TEST_F(CliRun, VesselRunsAndTwoRunsAreByteIdentical) {
     EXPECT_TRUE(read_all(e.path()) == read_all(other)) << e.path().filename() << " differs";
   }
   for (const char* f : {"fibre_path.csv", "payout.csv", "axes.csv", "toolpath.ngc", "report.json",
-                        "report.md", "mesh.ply", "paths.ply", "development.svg"}) {
+                        "report.md", "mesh.ply", "paths.ply", "development.svg", "axes.svg",
+                        "viewer.html"}) {
     EXPECT_TRUE(fs::exists(a / f)) << f;
   }
-  EXPECT_GE(files, 9);
+  EXPECT_GE(files, 11);
+  EXPECT_LT(fs::file_size(a / "viewer.html"), 5000000u);
   // report.json is JSON (YAML reads it) with the plan's circuits.
   const YAML::Node rep = YAML::LoadFile((a / "report.json").string());
   EXPECT_TRUE(rep.IsMap());
@@ -267,6 +270,69 @@ TEST_F(CliRun, HelicesJsonReportsEveryPass) {
   EXPECT_FALSE(j["geodesic_turn_limit"]["bounded"].as<bool>());
   EXPECT_TRUE(j["geodesic_turn_limit"]["turns"].IsNull());
   EXPECT_NEAR(j["geodesic_turn_limit"]["min_radius_mm"].as<double>(), 50.0, 1e-9);
+}
+
+// Shop mandrels made in code, wound end to end: the region is cut out of the whole mandrel, the
+// plan is exported and its coverage reported.
+TEST_F(CliRun, ShopMandrelsWindWithCoverageReported) {
+  const std::string winding = "winding: {turns: 1, circuits: 8, band_width: 10}\n";
+  const std::vector<std::pair<std::string, std::string>> jobs{
+      {"shop_pipe",
+       "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 500}\n  features:\n"
+       "    bore: 20\n    shaft_start: {radius: 25, length: 100}\n"
+       "    shaft_end: {radius: 25, length: 100}\n    flanges:\n"
+       "      - {at: 0, radius: 90, thickness: 12, bolts: 8, bolt_radius: 5, pitch_radius: 75}\n"
+       "      - {at: 488, radius: 90, thickness: 12, bolts: 8, bolt_radius: 5, pitch_radius: 75}\n"
+       "  region: {start: 20, end: 480}\n"},
+      {"canister",
+       "mandrel:\n  source: section\n  section: {shape: ellipse, semi_axes: [80, 50], "
+       "length: 300}\n  features:\n    bore: 20\n    tabs:\n"
+       "      - {at: 10, count: 2, reach: 25, width: 20, thickness: 8, hole_radius: 4}\n"
+       "      - {at: 282, count: 2, reach: 25, width: 20, thickness: 8, hole_radius: 4}\n"
+       "  region: {start: 30, end: 270}\n"},
+      {"boom",
+       "mandrel:\n  source: section\n  section: {shape: rounded_rectangle, width: 120, "
+       "height: 80, corner_radius: 15, length: 600}\n  region: {start: 50, end: 550}\n"}};
+  for (const auto& [name, yaml] : jobs) {
+    SCOPED_TRACE(name);
+    const fs::path job = dir_ / (name + ".yaml");
+    std::ofstream(job) << yaml << winding;
+    const fs::path out = dir_ / ("out_" + name);
+    const Proc r = run({"run", job.string(), "--out", out.string()});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("cover factor"), std::string::npos) << r.out;
+    const YAML::Node rep = YAML::LoadFile((out / "report.json").string());
+    EXPECT_GT(rep["summary"]["cover_factor"].as<double>(), 0.0);
+    EXPECT_TRUE(fs::exists(out / "toolpath.ngc"));
+  }
+}
+
+// The shared meshes that are real mandrels: each either winds as given, or fails naming what to
+// change (mandrel.region with suggested keys), and winds with that change.
+TEST_F(CliRun, SharedMandrelMeshesWindOrSayWhatToChange) {
+  for (const char* name : {"aerobar-brake-mandrel.stl", "bent-pipe.stl"}) {
+    SCOPED_TRACE(name);
+    const fs::path mesh = test::shared_mesh(name);
+    if (!fs::exists(mesh)) {
+      GTEST_SKIP() << mesh << " is absent (../shared not checked out)";
+    }
+    const std::string base = "mandrel:\n  source: mesh\n  file: " + mesh.string() + "\n";
+    const std::string winding = "winding: {turns: 1, circuits: 4}\n";
+    const fs::path job = dir_ / "shared.yaml";
+    std::ofstream(job) << base << winding;
+    const Proc r = run({"run", job.string(), "--out", (dir_ / "o1").string()});
+    if (r.code == 0) continue;
+    EXPECT_EQ(r.code, 1) << r.err;
+    const std::size_t k = r.err.find("Set mandrel.region: {start: ");
+    ASSERT_NE(k, std::string::npos) << r.err;
+    double a = 0, b = 0;
+    ASSERT_EQ(std::sscanf(r.err.c_str() + k, "Set mandrel.region: {start: %lf, end: %lf}", &a, &b),
+              2);
+    std::ofstream(job) << base << "  region: {start: " << a << ", end: " << b << "}\n" << winding;
+    const Proc r2 = run({"run", job.string(), "--out", (dir_ / "o2").string()});
+    EXPECT_EQ(r2.code, 0) << r2.err;
+    EXPECT_NE(r2.out.find("cover factor"), std::string::npos) << r2.out;
+  }
 }
 
 // ---- layups (planner/layup.h): the shipped vessel_layup.yaml and bad layer input ----
