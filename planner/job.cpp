@@ -1,5 +1,6 @@
 #include "planner/job.h"
 
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -342,6 +343,7 @@ void decode_output(ConfigNode n, const std::filesystem::path& base, OutputOption
   n.get("report", &o->report);
   n.get("ply", &o->ply);
   n.get("svg", &o->svg);
+  n.get("viewer", &o->viewer);
   n.get("timings", &o->timings);
   n.finish();
   n.check(*o);
@@ -457,6 +459,75 @@ void decode_winding(ConfigNode n, WindingOptions* w) {
   n.check(*w);
 }
 
+// ---- layers: (planner/layers.h) and material: (planner/material.h) ----
+
+void decode_layers(ConfigNode& root, const WindingOptions& winding,
+                   std::vector<LayerOptions>* layers) {
+  if (!root.has("layers")) return;
+  std::vector<ConfigNode> list = root.list("layers");
+  if (list.empty()) {
+    root.fail("layers",
+              "the list is empty: give at least one layer (kind: helical or hoop), or leave "
+              "'layers:' out for one helical layer made of 'winding:'");
+  }
+  std::vector<int> count(2, 0);
+  for (ConfigNode& n : list) {
+    LayerOptions L;
+    std::string kind;
+    if (!n.get_choice("kind", {"helical", "hoop"}, &kind)) {
+      n.fail_here("a layer needs 'kind: helical' or 'kind: hoop'");
+    }
+    L.kind = kind == "hoop" ? LayerKind::Hoop : LayerKind::Helical;
+    L.name = kind + std::to_string(++count[L.kind == LayerKind::Hoop]);
+    n.get("name", &L.name);
+    if (L.kind == LayerKind::Helical) {
+      L.winding = winding;
+      decode_winding(n, &L.winding);  // the layer's own winding keys; finish() and check()
+    } else {
+      L.hoop.band_width = winding.band_width;
+      L.hoop.mu = winding.mu;
+      n.get("band_width", &L.hoop.band_width);
+      n.get("mu", &L.hoop.mu);
+      n.get("overlap", &L.hoop.overlap);
+      n.get("passes", &L.hoop.passes);
+      n.get("reversal_friction", &L.hoop.reversal_friction);
+      n.get("point_spacing", &L.hoop.point_spacing);
+      n.get("meridians", &L.hoop.meridians);
+      std::array<double, 2> range{};
+      if (n.get("range", &range)) {
+        L.hoop.x0 = range[0];
+        L.hoop.x1 = range[1];
+      }
+      n.finish();
+      n.check(L.hoop);
+    }
+    layers->push_back(L);
+  }
+}
+
+void decode_material(ConfigNode n, MaterialOptions* m) {
+  if (!n.present()) return;
+  if (n.has("tex") && n.has("linear_density")) {
+    n.fail("linear_density", "give either tex (g/km) or linear_density (g/m), not both");
+  }
+  if (n.has("tows") && n.has("band_thickness")) {
+    n.fail("band_thickness", "give either tows (per band) or band_thickness (mm), not both");
+  }
+  n.get("tex", &m->tex);
+  double g_per_m = 0.0;
+  if (n.get("linear_density", &g_per_m)) {
+    if (!(g_per_m > 0.0)) n.fail("linear_density", "must be > 0 g/m");
+    m->tex = 1000.0 * g_per_m;
+  }
+  n.get("fibre_density", &m->fibre_density);
+  n.get("resin_density", &m->resin_density);
+  n.get("fibre_volume_fraction", &m->fibre_volume_fraction);
+  n.get("tows", &m->tows);
+  n.get("band_thickness", &m->band_thickness);
+  n.finish();
+  n.check(*m);
+}
+
 Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   Job job;
   job.path = std::filesystem::absolute(file).lexically_normal();
@@ -469,6 +540,8 @@ Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   decode_winding(root.section("winding"), &job.winding);
   decode_girth(root.section("girth"), &job.girth);
   decode_cutlines(root, base, &job.cutlines);
+  decode_layers(root, job.winding, &job.layers);
+  decode_material(root.section("material"), &job.material);
   root.finish();
   return job;
 }

@@ -15,7 +15,9 @@
 #include "geometry/tessellate.h"
 #include "planner/cutlines.h"
 #include "planner/girth.h"
+#include "planner/layers.h"
 #include "planner/machine_options.h"
+#include "planner/material.h"
 #include "planner/winding_options.h"
 
 namespace windplan {
@@ -74,6 +76,9 @@ struct Job {
   WindingOptions winding;  ///< `winding:` (helices, coverage, stability; planner/helix.h)
   GirthOptions girth;      ///< `girth:` (girth field sampling, planner/girth.h)
   std::vector<CutLineOptions> cutlines;  ///< `cutlines:` (planar trim lines, planner/cutlines.h)
+  /// `layers:` (planner/layers.h), innermost first; empty: one helical layer made of `winding`.
+  std::vector<LayerOptions> layers;
+  MaterialOptions material;  ///< `material:` (the tow and the composite, planner/material.h)
 };
 
 /// Loads and validates a job file.
