@@ -72,6 +72,7 @@ int run_run(const std::vector<std::string>& argv) {
   ExportContext context;
   context.wound_region = &mandrel.winding.mesh;
   context.wound_face_map = &mandrel.winding.face_map;
+  context.revolution = mandrel.revolution;
   context.on_file = [&](const std::string& file, int done, int total) {
     progress.count(done, total, file);
   };

@@ -147,7 +147,8 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     const Mesh& region = context.wound_region ? *context.wound_region : mandrel_mesh;
     write_text_atomically(
         dir / "development.svg",
-        development_svg(plan, Unrolling::make(plan, region, context.wound_face_map)));
+        development_svg(plan,
+                        Unrolling::make(plan, region, context.wound_face_map, context.revolution)));
     wrote("development.svg");
     write_text_atomically(dir / "axes.svg", axes_svg(r.motion, plan.job_name));
     wrote("axes.svg");

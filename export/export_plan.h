@@ -20,6 +20,7 @@
 // "index" is always the index of the point in its circuit's dense points.
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,10 @@ struct ExportContext {
   /// Per face of wound_region, the mandrel mesh's face (WindingSurface::face_map; FibrePoint::face
   /// indexes the mandrel mesh). Null: the identity.
   const std::vector<int>* wound_face_map = nullptr;
+  /// The mandrel is a surface of revolution about the plan's axis (Mandrel::revolution):
+  /// development.svg unrolls it about the axis. Unset: judged from the plan
+  /// (PlanMetrics::geodesic_turn_limit is a number).
+  std::optional<bool> revolution;
   /// Called after each file with its name, the files written so far and their number.
   std::function<void(const std::string& file, int done, int total)> on_file;
   /// Files another writer puts into the directory (a layup's laminate files,

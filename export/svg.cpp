@@ -75,6 +75,7 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
   std::vector<Band> bands(plan.circuits.size());
   for (std::size_t k = 0; k < plan.circuits.size(); ++k) {
     const Circuit& c = plan.circuits[k];
+    const double wk = circuit_band_width(plan, static_cast<int>(k));  // its layer's band
     double ref = 0.0;
     for (std::size_t i = 0; i < c.points.size(); ++i) {
       const FibrePoint& p = c.points[i];
@@ -82,9 +83,9 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
       q.y() = i == 0 ? q.y() : near_to(q.y(), ref);
       ref = q.y();
       bands[k].centre.add(q);
-      if (w > 0.0) {
+      if (wk > 0.0) {
         Vec3 side = p.normal.cross(p.tangent);
-        side = side.norm() > 0.0 ? Vec3(side.normalized() * (w / 2.0)) : Vec3(Vec3::Zero());
+        side = side.norm() > 0.0 ? Vec3(side.normalized() * (wk / 2.0)) : Vec3(Vec3::Zero());
         Vec2 a = un.map_offset(p.position, p.face, p.position + side),
              b = un.map_offset(p.position, p.face, p.position - side);
         a.y() = near_to(a.y(), ref);
@@ -234,7 +235,7 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
     const Band& b = bands[k];
     if (b.centre.pts.size() < 2) continue;
     const std::vector<std::size_t> keep = thin(b.centre.pts);
-    if (w > 0.0) {
+    if (!b.left.pts.empty()) {
       o << "<polygon id=\"band-" << k << "\" class=\"band\" data-circuit=\""
         << plan.circuits[k].index << "\" data-layer=\"" << layers[k] << "\" points=\""
         << points_attr(b.left.pts, b.right.pts, keep) << "\"/>\n";
@@ -258,7 +259,7 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
     const Band& b = bands[k];
     if (b.centre.pts.size() < 2) continue;
     o << "<g class=\"circuit\" id=\"circuit-" << plan.circuits[k].index << "\">\n";
-    if (w > 0.0) {
+    if (!b.left.pts.empty()) {
       use("band-" + std::to_string(k), std::min(b.left.lo, b.right.lo),
           std::max(b.left.hi, b.right.hi),
           "fill=\"" + band_colour(k) + "\" fill-opacity=\"" + f2(opts.band_opacity) +
@@ -326,8 +327,8 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
   // revolution a station is an axial position; off one, a level of the harmonic height
   // (planner/coverage.h), drawn at along = level * L in the conformal unrolling.
   const std::string bare_style = "stroke=\"#c00000\" stroke-width=\"1.2\" stroke-dasharray=\"3 3\"";
-  const bool levels = std::isnan(plan.metrics.geodesic_turn_limit);
-  const bool stations_drawn = cov.measured() && (axis_kind != levels);
+  const bool levels = !axis_kind;
+  const bool stations_drawn = cov.measured();
   auto station_x = [&](double station) { return levels ? station * un.length() : station; };
   if (stations_drawn) {
     for (const StationCoverage& st : cov.stations) {
@@ -370,7 +371,7 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
   double ly = mt + 4;
   o << "<g id=\"legend\" font-family=\"sans-serif\" font-size=\"11\" fill=\"#222\">\n"
     << "<text x=\"" << f2(lx) << "\" y=\"" << f2(ly) << "\" font-weight=\"bold\">"
-    << (by_layer ? "Layers" : "Circuits") << " (band " << f2(w) << " mm)</text>\n";
+    << (by_layer ? "Layers" : "Circuits (band " + f2(w) + " mm)") << "</text>\n";
   ly += 8;
   auto swatch = [&](double x, double y, const std::string& fill, double op, const std::string& text,
                     const std::string& cls) {
@@ -382,7 +383,7 @@ std::string development_svg(const WindingPlan& plan, const Unrolling& un, const 
   };
   if (by_layer) {
     for (int l : layer_set) {
-      swatch(lx, ly, layer_colour(l), 1.0, "layer " + std::to_string(l), "legend-layer");
+      swatch(lx, ly, layer_colour(l), 1.0, layer_label(plan, l), "legend-layer");
       ly += 14;
     }
   } else if (plan.circuits.size() <= 48) {

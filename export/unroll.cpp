@@ -19,11 +19,11 @@ double wrap_deg(double d) {
 }  // namespace
 
 Unrolling Unrolling::make(const WindingPlan& plan, const Mesh& mandrel,
-                          const std::vector<int>* face_map) {
+                          const std::vector<int>* face_map, std::optional<bool> revolution) {
   Unrolling u;
   u.frame_ = make_axis_frame(plan.axis);
   // A shape of revolution (the planner found its geodesic turn limit): the spindle axis is its own.
-  if (!std::isnan(plan.metrics.geodesic_turn_limit)) return u;
+  if (revolution ? *revolution : !std::isnan(plan.metrics.geodesic_turn_limit)) return u;
   const std::vector<std::vector<int>> loops = mandrel.boundary_loops();
   if (loops.size() != 2) {
     u.fallback_reason = "the mandrel has " + std::to_string(loops.size()) +
@@ -119,7 +119,25 @@ int Unrolling::locate(const Vec3& p, int hint, Vec3* bary) const {
       return face;
     }
   }
-  // The closest face (all of them: a cut-line has a few hundred points).
+  // Near the last point located (consecutive points of a path or cut-line are close): the faces
+  // round the vertices of its face; one that holds p is taken.
+  if (last_face_ >= 0) {
+    const auto& t = mesh_.triangle(last_face_);
+    const double scale = (mesh_.position(t[1]) - mesh_.position(t[0])).norm() +
+                         (mesh_.position(t[2]) - mesh_.position(t[0])).norm();
+    for (int k = 0; k < 3; ++k) {
+      for (int h : mesh_.outgoing_halfedges(t[k])) {
+        const int g = mesh_.face(h);
+        if (g < 0 || !barycentric(p, g, bary) || bary->minCoeff() < -1e-3) continue;
+        if (face_distance(p, g, bary) <= 1e-2 * scale + 1e-9) {
+          barycentric(p, g, bary);
+          last_face_ = g;
+          return g;
+        }
+      }
+    }
+  }
+  // The closest face of all.
   int best = 0;
   double bd = std::numeric_limits<double>::infinity();
   for (int f = 0; f < mesh_.num_faces(); ++f) {
@@ -130,6 +148,7 @@ int Unrolling::locate(const Vec3& p, int hint, Vec3* bary) const {
       best = f;
     }
   }
+  last_face_ = best;
   barycentric(p, best, bary);
   *bary = bary->cwiseMax(0.0);
   *bary /= bary->sum();

@@ -2,8 +2,8 @@
 // The coordinates a development plot unrolls the wound surface into: "along" (mm, between the two
 // ends) and "around" (deg, in [0, 360)).
 //
-// Shapes of revolution (PlanMetrics::geodesic_turn_limit is a number, not NaN) and any mesh that
-// is not an annulus: along
+// Shapes of revolution (the caller says so, or PlanMetrics::geodesic_turn_limit is a number) and
+// any mesh that is not an annulus: along
 // is the axial position about the spindle axis, around the angle of export/kinematics.h's
 // AxisFrame (counter-clockwise about the axis direction).
 // Other annuli (a bent tube): the wound region's own conformal coordinates (planner/harmonic.h):
@@ -12,8 +12,9 @@
 // L = area / mean perimeter of the two loops (the length of a tube of constant section), around
 // = the conjugate angle theta. So a bent tube unrolls like a straight one: a helix about its
 // centre line is a straight band, instead of loops about a principal axis.
-// A point is located by its mesh face when given and on it, else by the closest face (a search
-// over all faces); h and the lifted angle are interpolated inside that face.
+// A point is located by its mesh face when given and on it, else near the last point located,
+// else by the closest face of all; h and the lifted angle are interpolated inside that face.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,11 @@ class Unrolling {
   /// `face_map` (optional): per face of `mandrel`, the face of the mesh that FibrePoint::face
   /// indexes (WindingSurface::face_map when `mandrel` is the wound region cut out of the full
   /// mesh).
+  /// `revolution` (optional): whether the mandrel is a shape of revolution (Mandrel::revolution);
+  /// unset: PlanMetrics::geodesic_turn_limit is a number.
   static Unrolling make(const WindingPlan& plan, const Mesh& mandrel,
-                        const std::vector<int>* face_map = nullptr);
+                        const std::vector<int>* face_map = nullptr,
+                        std::optional<bool> revolution = std::nullopt);
 
   Kind kind() const { return kind_; }
   /// (along mm, around deg in [0, 360)) of a point on (or near) the mandrel; `face` a hint (-1:
@@ -54,6 +58,8 @@ class Unrolling {
   Kind kind_ = Kind::Axis;
   AxisFrame frame_;
   Mesh mesh_;                   ///< a copy (conformal kind only)
+  mutable int last_face_ = -1;  ///< the face of the last point located (a search hint; not
+                                ///< thread-safe: one Unrolling per thread)
   std::vector<int> hint_face_;  ///< FibrePoint::face -> face of mesh_ (-1: none); empty: identity
   HarmonicCoordinates hc_;
   double length_ = 0.0;

@@ -27,7 +27,29 @@ bool ViewerOptions::is_valid(std::string* why) const {
 }
 
 std::vector<int> circuit_layers(const WindingPlan& plan) {
-  return std::vector<int>(plan.circuits.size(), 0);
+  std::vector<int> out(plan.circuits.size(), 0);
+  for (std::size_t l = 0; l < plan.layers.size(); ++l) {
+    const LayerSummary& s = plan.layers[l];
+    for (int k = s.first_circuit; k < s.first_circuit + s.circuit_count; ++k)
+      if (k >= 0 && k < static_cast<int>(out.size())) out[k] = static_cast<int>(l);
+  }
+  return out;
+}
+
+double circuit_band_width(const WindingPlan& plan, int k) {
+  const std::vector<int> layers = circuit_layers(plan);
+  if (k >= 0 && k < static_cast<int>(layers.size()) &&
+      layers[k] < static_cast<int>(plan.layers.size()) && plan.layers[layers[k]].band_width > 0.0)
+    return plan.layers[layers[k]].band_width;
+  return plan.metrics.band_width;
+}
+
+std::string layer_label(const WindingPlan& plan, int l) {
+  if (l < 0 || l >= static_cast<int>(plan.layers.size())) return "layer " + std::to_string(l);
+  const LayerSummary& s = plan.layers[l];
+  char buf[64];
+  std::snprintf(buf, sizeof buf, " (%s, %.1f deg)", s.kind.c_str(), s.angle);
+  return s.name + buf;
 }
 
 std::string base64(const unsigned char* data, std::size_t n) {
@@ -252,10 +274,15 @@ PageData page_data(const WindingPlan& plan, const Motion& motion, const AxisFram
     j.begin_object()
         .field("index", ci.index)
         .field("layer", layers[c])
+        .field("width", circuit_band_width(plan, static_cast<int>(c)))
         .field("first", first)
         .field("count", static_cast<int>(kept.size()))
         .end_object();
   }
+  j.end_array();
+  j.key("layers").begin_array();
+  for (std::size_t l = 0; l < plan.layers.size(); ++l)
+    j.value(layer_label(plan, static_cast<int>(l)));
   j.end_array();
   out.points = static_cast<int>(ang.size());
   j.field("positions", b64_f32(pos));

@@ -53,9 +53,15 @@ struct ViewerPage {
 ViewerPage viewer_page(const WindingPlan& plan, const Mesh& mandrel, const Motion& motion,
                        const ViewerOptions& opts = {});
 
-/// The layer of each circuit (in plan order) as the page colours and groups them: 0 for every
-/// circuit until plans carry layers.
+/// The layer of each circuit (in plan order; WindingPlan::layers), as the page and
+/// development.svg colour and group them: 0 for every circuit of a plan without layers.
 std::vector<int> circuit_layers(const WindingPlan& plan);
+
+/// Band width of circuit k (mm): its layer's, else the plan's.
+double circuit_band_width(const WindingPlan& plan, int k);
+
+/// "name (kind, angle deg)" of layer l, for legends; "layer l" without layers.
+std::string layer_label(const WindingPlan& plan, int l);
 
 /// RFC 4648 base64 of raw bytes (no line breaks).
 std::string base64(const unsigned char* data, std::size_t n);

@@ -113,6 +113,7 @@
   function circuitColour(k) { return hsl(((k * 137.50776405) % 360) / 360, 0.75, 0.42); }
   var layerPalette = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b',
                       '#e377c2', '#17becf', '#bcbd22', '#7f7f7f'];
+  function layerName(l) { return D.layers && D.layers[l] ? D.layers[l] : 'layer ' + l; }
   function layerColour(l) { return new THREE.Color(layerPalette[((l % 10) + 10) % 10]); }
   function ramp(stops, x) {  // stops: [[x, '#rrggbb'], ...] increasing in x
     if (x <= stops[0][0]) return new THREE.Color(stops[0][1]);
@@ -212,7 +213,7 @@
       var c = circuits[k];
       var h = lift;
       var r = ribbon(P.subarray(3 * c.first, 3 * (c.first + c.count)),
-                     N.subarray(3 * c.first, 3 * (c.first + c.count)), c.count, w, h);
+                     N.subarray(3 * c.first, 3 * (c.first + c.count)), c.count, c.width > 0 ? c.width : w, h);
       pos.set(r, 6 * v);
       for (var i = 0; i < c.count; ++i) {
         pointOf[v + i] = c.first + i;
@@ -339,7 +340,7 @@
       layerIds.forEach(function (l) {
         var d = el('div', {}, legend);
         el('span', { 'class': 'sw', style: 'background:#' + layerColour(l).getHexString() }, d);
-        d.appendChild(document.createTextNode(' layer ' + l));
+        d.appendChild(document.createTextNode(' ' + layerName(l)));
       });
     } else {
       var d = el('div', {}, legend);
@@ -352,7 +353,7 @@
     }
   }
   layerIds.forEach(function (lid, i) {
-    var c = checkbox('layer-' + lid, 'layer ' + lid, true, layerBox);
+    var c = checkbox('layer-' + lid, layerName(lid), true, layerBox);
     c.addEventListener('change', function () { layers[i].visible = c.checked; update(); });
   });
 

@@ -57,6 +57,13 @@ Scale scale_of(const test::XmlElement& svg) {
   return s;
 }
 
+// Every text under e, concatenated.
+std::string svg_text_of(const test::XmlElement& e) {
+  std::string t = e.text;
+  for (const auto& c : e.children) t += " " + svg_text_of(*c);
+  return t;
+}
+
 WindingPlan cylinder_plan(double w) {
   WindingPlan plan = test::helix_plan(50, 40, 1.5, 400, 3);
   plan.metrics.band_width = w;
@@ -127,6 +134,34 @@ TEST(DevelopmentSvg, BandIsAsWideAsOnTheMandrel) {
   const Vec2 c = points_of(path->attr("points")).front();
   EXPECT_NEAR((c.x() - s.x0) / s.sx, 0.0, 0.05);
   EXPECT_NEAR((c.y() - s.y0) / s.sy, 120.0, 0.05);  // circuit 1 of 3 starts at 120 deg
+}
+
+TEST(DevelopmentSvg, LayersColourTheBandsAndSetTheirWidth) {
+  WindingPlan plan = cylinder_plan(10);
+  LayerSummary a, b;
+  a.name = "inner";
+  a.kind = "helical";
+  a.first_circuit = 0;
+  a.circuit_count = 2;
+  a.band_width = 10;
+  b.name = "outer";
+  b.kind = "helical";
+  b.first_circuit = 2;
+  b.circuit_count = 1;
+  b.band_width = 20;
+  plan.layers = {a, b};
+  const auto root = test::XmlReader::parse(development_svg(plan, Unrolling::make(plan, Mesh())));
+  std::vector<const test::XmlElement*> sw;
+  root->find_all([](const test::XmlElement& e) { return e.attr("class") == "legend-layer"; }, &sw);
+  ASSERT_EQ(sw.size(), 2u);
+  EXPECT_NE(svg_text_of(*root->by_id("legend")).find("outer (helical, 0.0 deg)"), std::string::npos);
+  EXPECT_EQ(root->by_id("band-1")->attr("data-layer"), "0");
+  EXPECT_EQ(root->by_id("band-2")->attr("data-layer"), "1");
+  // The outer layer's band is 20 mm wide: delta x = w sin a.
+  const Scale sc = scale_of(*root);
+  const std::vector<Vec2> pts = points_of(root->by_id("band-2")->attr("points"));
+  EXPECT_NEAR(std::fabs(pts.front().x() - pts.back().x()) / sc.sx, 20 * std::sin(40 * M_PI / 180),
+              0.2);
 }
 
 TEST(DevelopmentSvg, MarkerLabelsDoNotOverlap) {

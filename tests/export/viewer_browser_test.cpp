@@ -168,7 +168,7 @@ class ViewerBrowser : public ::testing::Test {
   }
 
   // The checks shared by the jobs: first and last moments, and one other colour mode.
-  void check_job(const std::string& config, const std::string& name) {
+  fs::path check_job(const std::string& config, const std::string& name) {
     const fs::path page = run_job(config);
     render_plots(page.parent_path(), name);
     ASSERT_TRUE(fs::exists(page));
@@ -203,6 +203,7 @@ class ViewerBrowser : public ::testing::Test {
     EXPECT_GT(differing_pixels(early.image, full.image), ce.view / 50);
     // The page fills the view: not all background.
     EXPECT_LT(ce.background, ce.view * 9 / 10);
+    return page;
   }
 
   fs::path dir_;
@@ -211,6 +212,18 @@ class ViewerBrowser : public ::testing::Test {
 TEST_F(ViewerBrowser, Vessel) { check_job("vessel.yaml", "vessel"); }
 
 TEST_F(ViewerBrowser, BentTube) { check_job("bent_tube.yaml", "bent_tube"); }
+
+// The layup job (planner/layup.h): coloured by layer, with each layer named in the panel.
+TEST_F(ViewerBrowser, VesselLayup) {
+  const fs::path page = check_job("vessel_layup.yaml", "vessel_layup");
+  const std::string html = read_all(page);
+  for (const char* name : {"hoop1 (hoop", "helical1 (helical", "hoop2 (hoop", "helical2 (helical"})
+    EXPECT_NE(html.find(name), std::string::npos) << name;
+  const Shot s = shoot(page, "t=1&mode=layer", "vessel_layup_layers");
+  expect_clean(s, "t=1.000");
+  EXPECT_NE(s.console.find("mode=layer"), std::string::npos) << s.console;
+  EXPECT_GT(classify(s.image).colour, classify(s.image).view / 20);
+}
 
 // A plan too large for the page: thinned, with the note in the panel, and still drawn.
 TEST_F(ViewerBrowser, DecimatedPageStillDraws) {
