@@ -113,7 +113,9 @@ bool is_windplan_output_name(const std::string& name) {
   static const std::set<std::string> names = {
       "fibre_path.csv", "payout.csv",   "axes.csv",      "eye_pose.csv",   "cutlines.csv",
       "toolpath.ngc",   "toolpath.gcode", "toolpath.nc", "mesh.ply",       "paths.ply",
-      "development.svg", "report.json", "report.md",     "manifest.json"};
+      "development.svg", "report.json", "report.md",     "manifest.json",  "axes.svg",
+      "viewer.html",    "laminate.csv", "laminate.vtu",  "layer_profiles.csv",
+      "layer_profiles.svg"};
   if (names.count(name)) return true;
   // "<name>.tmp.<pid>": a temporary of write_file_atomically left by a killed run.
   const std::size_t t = name.rfind(".tmp.");

@@ -21,6 +21,7 @@
 #include "planner/fibre_metrics.h"
 #include "planner/girth.h"
 #include "planner/helix.h"
+#include "planner/revolution_winding.h"
 #include "planner/job.h"
 #include "planner/mandrel_builder.h"
 #include "planner/plan.h"
@@ -39,6 +40,11 @@ struct PipelineResult {
   bool has_girth = false;  ///< the girth field was computed (beta > 0 or no revolution)
   GirthField girth;
   std::vector<double> face_girth;  ///< per winding-surface face (mm): girth field or 2 pi r
+  /// true: the circuits come from Clairaut's integral (a shape of revolution, beta = 0;
+  /// planner/revolution_winding.h) and `revolution` holds them (its circuits moved into the
+  /// plan); false: from the geodesic core (`helices`).
+  bool clairaut = false;
+  RevolutionWinding revolution;
   HelixPlan helices;
   std::vector<PassReport> passes;
   bool has_turn_limit = false;  ///< turn_limit was computed (a shape of revolution)
@@ -49,5 +55,12 @@ struct PipelineResult {
 /// Runs a loaded job up to the WindingPlan.
 /// \throw what the stages throw: IoError/InputError/TopologyError/ConfigError for bad input.
 PipelineResult plan_job(const Job& job, const PipelineOptions& options = {});
+
+/// The winding stages of plan_job (girth, helices, metrics and coverage, the turn limit; not the
+/// mandrel, not the cut-lines) on a mandrel already built, with `winding` in place of
+/// job.winding: the helical layers of a layup (planner/layup.h) run it on the surfaces built by
+/// the layers under them.
+PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOptions& winding,
+                            const PipelineOptions& options = {});
 
 }  // namespace windplan
