@@ -16,31 +16,17 @@ namespace windplan {
 
 namespace {
 
-struct HelicalLayer {
-  std::vector<Circuit> circuits;
-  PlanMetrics metrics;
-};
-
-// The helical planning of a one-layer job (planner/pipeline.h) on a winding surface.
-HelicalLayer wind_helical(const WindingSurface& ws, const std::vector<int>& face_map,
-                          const SpindleAxis& axis, bool revolution, const WindingOptions& wo,
-                          const GirthOptions& go) {
-  const std::array<std::vector<int>, 2> loops{ws.loops[0].vertices, ws.loops[1].vertices};
-  std::vector<double> face_girth(ws.mesh.num_faces());
-  if (wo.beta > 0.0 || !revolution) {
-    face_girth = compute_girth_field(ws.mesh, loops, go).face_girth(ws.mesh);
-  } else {
-    for (int f = 0; f < ws.mesh.num_faces(); ++f) {
-      face_girth[f] = 2.0 * M_PI * axis.radius(ws.mesh.face_centroid(f));
-    }
-  }
-  std::vector<double> rho;
-  if (wo.beta > 0.0) rho = density_from_girth(ws.mesh, face_girth, wo.beta);
-  const HelixPlan hp = plan_helices(ws.mesh, loops, rho, axis, wo);
-  HelicalLayer h;
-  h.circuits = build_circuits(ws.mesh, hp, face_map, axis, wo);
-  h.metrics = compute_plan_metrics(ws.mesh, hp, h.circuits, face_girth, axis, revolution, wo);
-  return h;
+// A built surface as a mandrel for plan_winding: the whole mesh is the wound region.
+Mandrel built_mandrel(const Mandrel& md, Mesh mesh, bool revolution, RadiusProfile profile) {
+  Mandrel m;
+  m.winding = extract_winding_surface(mesh, std::vector<char>(mesh.num_faces(), 1), md.axis);
+  m.mesh = std::move(mesh);
+  m.axis = md.axis;
+  m.axis_source = md.axis_source;
+  m.revolution = revolution;
+  m.profile = std::move(profile);
+  m.description = "the surface built by the layers under it";
+  return m;
 }
 
 WindingSurface whole_surface(const Mesh& mesh, const SpindleAxis& axis) {
@@ -109,6 +95,27 @@ std::vector<double> band_spread_thickness(const Mesh& mesh, const std::vector<do
   std::vector<double> t(nf, 0.0);
   for (int f = 0; f < nf; ++f) t[f] = volume[f] / mesh.face_area(f);
   return t;
+}
+
+// The outer surface's profile as a clearance envelope on the stations of the mandrel's own
+// profile (a few hundred: the machine's envelope is evaluated per point, and the built meridian
+// has thousands): at each station the largest radius of the surface within the neighbouring
+// stations, so that the envelope never cuts into the part.
+RadiusProfile envelope_profile(const RadiusProfile& surface, const RadiusProfile& stations) {
+  if (stations.axial.size() < 2) return surface;
+  RadiusProfile e;
+  e.axial = stations.axial;
+  e.radius.assign(e.axial.size(), 0.0);
+  const std::size_t n = e.axial.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double lo = e.axial[i > 0 ? i - 1 : 0], hi = e.axial[i + 1 < n ? i + 1 : n - 1];
+    double r = surface.at(e.axial[i]);
+    for (std::size_t j = 0; j < surface.axial.size(); ++j) {
+      if (surface.axial[j] >= lo && surface.axial[j] <= hi) r = std::max(r, surface.radius[j]);
+    }
+    e.radius[i] = std::max(r, stations.radius[i]);
+  }
+  return e;
 }
 
 }  // namespace
@@ -234,18 +241,22 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
       }
       for (const std::string& w : hl.warnings) warnings.push_back(w);
     } else {
-      HelicalLayer hl;
-      if (R.revolution) {
-        if (k == 0) {
-          hl = wind_helical(ws, ws.face_map, axis, true, L.winding, job.girth);
-        } else {
-          const WindingSurface on = whole_surface(revolve_meridian(surface, axis, edge), axis);
-          hl = wind_helical(on, {}, axis, true, L.winding, job.girth);
-        }
+      // The winding stages of a one-layer job (planner/pipeline.h) on the current surface.
+      PipelineOptions quiet;
+      PipelineResult pr;
+      if (k == 0) {
+        pr = plan_winding(md, job, L.winding, quiet);
+      } else if (R.revolution) {
+        pr = plan_winding(built_mandrel(md, revolve_meridian(surface, axis, edge), true,
+                                        forward_profile(surface)),
+                          job, L.winding, quiet);
       } else {
-        hl = wind_helical(k == 0 ? ws : built, k == 0 ? ws.face_map : std::vector<int>{}, axis,
-                          false, L.winding, job.girth);
+        pr = plan_winding(built_mandrel(md, built.mesh, false, md.profile), job, L.winding, quiet);
       }
+      struct {
+        std::vector<Circuit> circuits;
+        PlanMetrics metrics;
+      } hl{std::move(pr.plan.circuits), std::move(pr.plan.metrics)};
       out.circuits = std::move(hl.circuits);
       if (k > 0) {
         for (Circuit& c : out.circuits) {
@@ -262,7 +273,9 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
           angles.push_back(p.winding_angle);
         }
       });
-      S.clairaut = median(cs);
+      // The Clairaut route's turnaround parallel, else the median measured on the passes.
+      S.clairaut =
+          hl.metrics.pattern_info.geodesic ? hl.metrics.pattern_info.turnaround_radius : median(cs);
       S.angle = median(angles);
       S.circuits = hl.metrics.circuits;
       S.coverage = hl.metrics.cover_factor;
@@ -357,7 +370,7 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
   WindingPlan& plan = R.plan;
   plan.job_name = job.name;
   plan.axis = axis;
-  plan.profile = R.revolution ? forward_profile(surface) : md.profile;
+  plan.profile = R.revolution ? envelope_profile(forward_profile(surface), md.profile) : md.profile;
   int index = 0;
   for (LayupLayer& L : R.layers) {
     L.summary.first_circuit = static_cast<int>(plan.circuits.size());

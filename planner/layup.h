@@ -7,11 +7,13 @@
 // layer is planned on the current surface:
 //   hoop:    planner/hoop.h on the surface's radius profile (range default: the mandrel's
 //            cylindrical part), thickness (3) of planner/laminate_thickness.h;
-//   helical: the helix planner (planner/helix.h, as `windplan run` plans a one-layer job) on the
-//            mandrel's own winding surface for the innermost layer, else on the surface of
-//            revolution of the current meridian (rings about a mesh edge apart); its thickness is
-//            (2) of planner/laminate_thickness.h from its own circuits: K, and the Clairaut
-//            constant c measured on its passes (the median of r sin a).
+//   helical: the winding stages of a one-layer job (plan_winding, planner/pipeline.h: the
+//            Clairaut route with its pattern on shapes of revolution, else the geodesic core)
+//            with the layer's winding keys, on the mandrel for the innermost layer, else on the
+//            surface of revolution of the current meridian (rings about a mesh edge apart); its
+//            thickness is (2) of planner/laminate_thickness.h from its own circuits: K, and the
+//            Clairaut constant c of its pattern (the geodesic core's route: the median of r sin a
+//            measured on its passes).
 // The current meridian is then offset by the layer's thickness (offset_meridian: a thickness
 // that would close a polar opening is an InputError naming the layer).
 // Other mandrels (helical layers only): a layer's thickness on each face of the current surface
@@ -24,7 +26,7 @@
 // layers, and WindingPlan::layers their figures (planner/layer_summary.h). Its metrics are the
 // innermost helical layer's (coverage, pattern, stability) with fibre_length and circuits
 // summed over all layers, and every layer's warnings prefixed with its name; its profile is the
-// outer surface's (the machine clears the finished part). Points of layers wound on a built
+// outer surface's on the mandrel profile's stations (the machine clears the finished part). Points of layers wound on a built
 // surface have face -1 (they do not lie on the mandrel's mesh).
 #include <string>
 #include <vector>
