@@ -244,9 +244,11 @@ TEST_F(CliOutputSet, CoarseRemeshWarnsWithTheAreaChange) {
   const fs::path job = dir_ / "coarse.yaml";
   std::ofstream(job) << "mandrel: {source: pipe, remesh: 50, pipe: {radius: 50, length: 500}}\n"
                         "winding: {turns: 2, circuits: 2}\noutput: {csv: false, ply: false, svg: false}\n";
-  const test::RunResult r = run({"run", job.string(), "--out", (dir_ / "o").string()});
+  // (windplan mandrel: on this coarse mesh the pipe's waist falls below the turnaround radius,
+  // so `run` stops in the planner after the mandrel stage.)
+  const test::RunResult r = run({"mandrel", job.string()});
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.err.find("warning: mandrel: remesh = 50 mm changed the mandrel's area by -"),
+  EXPECT_NE(r.err.find("warning: remesh = 50 mm changed the mandrel's area by -"),
             std::string::npos)
       << r.err;
 }
