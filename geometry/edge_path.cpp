@@ -71,7 +71,8 @@ Rotation rotate(const Mesh& mesh, int u, int face, bool ccw, const Vec3& d_in, c
   return r;
 }
 
-// Appends the rotation around u from *face to a face satisfying stop, on the smaller side.
+}  // namespace
+
 void turn_at(const Mesh& mesh, int u, int* face, const Vec3& prev_point, const Vec3& next_point,
              const std::function<bool(int)>& stop, SurfacePath* path) {
   if (stop(*face)) return;
@@ -88,6 +89,8 @@ void turn_at(const Mesh& mesh, int u, int* face, const Vec3& prev_point, const V
   *face = r.end_face;
 }
 
+namespace {
+
 bool face_has_vertex(const Mesh& mesh, int f, int v) {
   const Tri& t = mesh.triangle(f);
   return t[0] == v || t[1] == v || t[2] == v;
@@ -102,7 +105,8 @@ int face_of_edge(const Mesh& mesh, int u, int w) {
   return -1;
 }
 
-// The vertex p sits on, or -1.
+}  // namespace
+
 int as_vertex(const Mesh& mesh, const SurfacePoint& p) {
   switch (p.kind) {
     case SurfacePoint::Kind::Vertex: return p.element;
@@ -118,7 +122,6 @@ int as_vertex(const Mesh& mesh, const SurfacePoint& p) {
   return -1;
 }
 
-// Faces whose closure contains p.
 std::vector<int> faces_containing(const Mesh& mesh, const SurfacePoint& p) {
   std::vector<int> faces;
   switch (p.kind) {
@@ -140,8 +143,6 @@ std::vector<int> faces_containing(const Mesh& mesh, const SurfacePoint& p) {
   }
   return faces;
 }
-
-}  // namespace
 
 EdgeGraph build_edge_graph(const Mesh& mesh, const PathMetric& metric, bool diagonals) {
   EdgeGraph g;

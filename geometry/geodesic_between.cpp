@@ -1,0 +1,188 @@
+// geodesic_between and its context (declared in geometry/geodesic.h): the start corridors of an
+// open geodesic and the choice among their refinements (the refinement is geometry/geodesic.cpp).
+#include "geometry/geodesic.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "geometry/errors.h"
+
+namespace windplan {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// The strip of leg `first` (ending at vertex q) continued by leg `second` (starting at q): a
+// rotation around q from first's last face to second's first face, on the side of the smaller
+// angle, with the crossings on q. Empty when the rotation meets the boundary on both sides.
+SurfacePath join_at_vertex(const Mesh& mesh, const SurfacePath& first, const SurfacePath& second,
+                           int q) {
+  SurfacePath joined;
+  const int f1 = strip_face(mesh, first, first.num_crossings());
+  const int f2 = strip_face(mesh, second, 0);
+  std::vector<int> best;
+  double best_angle = std::numeric_limits<double>::infinity();
+  if (f1 != f2) {
+    for (const bool ccw : {true, false}) {
+      int hv = -1;
+      for (int k = 0; k < 3; ++k)
+        if (mesh.from(3 * f1 + k) == q) hv = 3 * f1 + k;
+      if (hv < 0) return joined;
+      std::vector<int> crossings;
+      double angle = 0.0;
+      bool reached = false;
+      for (int step = 0; step < 4 * mesh.valence(q) + 4 && !reached; ++step) {
+        angle += mesh.corner_angle(hv);
+        const int c = ccw ? mesh.prev(hv) : hv;
+        const int t = mesh.twin(c);
+        if (mesh.is_boundary_halfedge(t)) break;
+        crossings.push_back(c);
+        hv = ccw ? t : mesh.next(t);
+        reached = mesh.face(t) == f2;
+      }
+      if (reached && angle < best_angle) {
+        best_angle = angle;
+        best = std::move(crossings);
+      }
+    }
+    if (best.empty()) return joined;
+  }
+  joined.start = first.start;
+  joined.end = second.end;
+  joined.halfedges = first.halfedges;
+  joined.lambdas = first.lambdas;
+  for (const int c : best) {
+    joined.halfedges.push_back(c);
+    joined.lambdas.push_back(mesh.from(c) == q ? 0.0 : 1.0);
+  }
+  joined.halfedges.insert(joined.halfedges.end(), second.halfedges.begin(),
+                          second.halfedges.end());
+  joined.lambdas.insert(joined.lambdas.end(), second.lambdas.begin(), second.lambdas.end());
+  joined.start_face = joined.halfedges.empty() ? first.start_face
+                                               : mesh.face(joined.halfedges.front());
+  return joined;
+}
+
+// The refinements of the start corridors (see GeodesicOptions), the best one kept.
+OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfacePoint& a,
+                                  const SurfacePoint& b, const GeodesicOptions& options,
+                                  const EdgePathOptions& edge_options);
+
+}  // namespace
+
+GeodesicContext::GeodesicContext(const Mesh& mesh, PathMetric metric, int steiner_points_per_edge)
+    : mesh_(mesh),
+      metric_(std::move(metric)),
+      graph_(build_edge_graph(mesh, metric_, true)),
+      plain_graph_(build_edge_graph(mesh, metric_, false)) {
+  if (steiner_points_per_edge > 0 && metric_.kind() != PathMetric::Kind::Anisotropic) {
+    steiner_ = std::make_unique<SteinerGraph>(mesh, metric_, steiner_points_per_edge);
+  }
+}
+
+GeodesicContext::~GeodesicContext() = default;
+
+namespace {
+
+OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfacePoint& a,
+                                  const SurfacePoint& b, const GeodesicOptions& options,
+                                  const EdgePathOptions& edge_options) {
+  OpenGeodesicResult result;
+  const Mesh& mesh = context.mesh();
+  const bool steiner = options.steiner_start && context.steiner_graph() != nullptr;
+  std::vector<int> starts;
+  if (steiner) starts.push_back(0);
+  if (!steiner || options.two_starts) starts.push_back(1);
+  if (options.two_starts && !context.graph().via.empty()) starts.push_back(2);
+  bool have = false;
+  for (const int s : starts) {
+    const auto t0 = Clock::now();
+    EdgePath edge_path;
+    SurfacePath init;
+    if (s == 0) {
+      const SteinerPath sp = shortest_steiner_path(*context.steiner_graph(), a, b);
+      result.steiner_settled = sp.settled;
+      if (!sp.found) {
+        throw InputError("no path from " + to_string(mesh, a) + " to " + to_string(mesh, b) +
+                         ": the points lie on different components of the mesh");
+      }
+      init = strip_from_steiner_path(*context.steiner_graph(), a, sp, b);
+    } else {
+      init = initial_open_path(mesh, s == 1 ? context.graph() : context.plain_graph(), a, b,
+                               edge_options, &edge_path);
+    }
+    result.init_ms += ms_since(t0);
+    const auto t1 = Clock::now();
+    GeodesicResult r = refine_path(mesh, init, context.metric(), options);
+    result.refine_ms += ms_since(t1);
+    if (!have || (r.summary.converged() && (!result.summary.converged() ||
+                                            r.summary.final_length < result.summary.final_length))) {
+      const double time = result.summary.time_ms;
+      result.path = std::move(r.path);
+      result.summary = r.summary;
+      result.summary.time_ms += time;
+      result.constraint_variables = std::move(r.constraint_variables);
+      result.edge_path = std::move(edge_path);
+      result.start = s;
+      have = true;
+    } else {
+      result.summary.time_ms += r.summary.time_ms;
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
+OpenGeodesicResult geodesic_between(const GeodesicContext& context, const SurfacePoint& a,
+                                    const SurfacePoint& b, const GeodesicOptions& options,
+                                    const EdgePathOptions& edge_options) {
+  OpenGeodesicResult result = best_of_starts(context, a, b, options, edge_options);
+  if (!options.split_at_vertices || !result.summary.converged()) return result;
+  // A geodesic through a saddle vertex v leaves v in any direction within an angle: the legs
+  // a -> v and v -> b are independent shortest-path problems, and each may have a shorter
+  // geodesic in another corridor than the one the whole path's strip fixed. Solve the legs
+  // between the vertices passed on their own; when they add up to less, join them at the
+  // vertices and refine the joined path (it lifts off vertices it need not touch).
+  const Mesh& mesh = context.mesh();
+  const std::vector<VertexPassage> passages = vertex_passages(mesh, result.path);
+  if (passages.empty()) return result;
+  std::vector<SurfacePoint> points{a};
+  for (const VertexPassage& p : passages) points.push_back(SurfacePoint::at_vertex(p.vertex));
+  points.push_back(b);
+  double legs_length = 0.0;
+  SurfacePath joined;
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    const OpenGeodesicResult leg = best_of_starts(context, points[i], points[i + 1], options,
+                                                  edge_options);
+    result.init_ms += leg.init_ms;
+    result.refine_ms += leg.refine_ms;
+    result.summary.time_ms += leg.summary.time_ms;
+    if (!leg.summary.converged()) return result;
+    legs_length += leg.summary.final_length;
+    joined = i == 0 ? leg.path : join_at_vertex(mesh, joined, leg.path, points[i].element);
+    if (i > 0 && joined.start_face < 0) return result;
+  }
+  if (!(legs_length < result.summary.final_length * (1.0 - 1e-14))) return result;
+  const auto t0 = Clock::now();
+  GeodesicResult r = refine_path(mesh, joined, context.metric(), options);
+  result.refine_ms += ms_since(t0);
+  result.summary.time_ms += r.summary.time_ms;
+  if (r.summary.converged() && r.summary.final_length < result.summary.final_length) {
+    const double time = result.summary.time_ms;
+    result.path = std::move(r.path);
+    result.summary = r.summary;
+    result.summary.time_ms = time;
+    result.constraint_variables = std::move(r.constraint_variables);
+    result.start = 3;
+  }
+  return result;
+}
+
+}  // namespace windplan
