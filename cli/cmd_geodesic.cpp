@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <set>
@@ -21,6 +22,7 @@
 #include "geometry/json.h"
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_validation.h"
+#include "geometry/parallel.h"
 #include "planner/job.h"
 #include "planner/mandrel_builder.h"
 
@@ -53,12 +55,26 @@ const char* const kGeodesicHelp =
     "usage: windplan geodesic <mesh | job.yaml> --from <vertex | x,y,z> --to <vertex | x,y,z>\n"
     "                         [--density faces.txt | --metric faces.txt] [--solver newton|lbfgs]\n"
     "                         [--json] [-o path.csv]\n"
+    "       windplan geodesic <mesh | job.yaml> --pairs pairs.txt [--json] [-o table]\n"
+    "                         [--threads N] [--density ... | --metric ...] [--solver ...]\n"
     "\n"
     "Computes a locally shortest path between two surface points: the shortest path along mesh\n"
     "edges (A*), turned into a strip of faces, then refined over its edge crossings (Liu et al.,\n"
     "an optimization-driven approach for geodesic paths on triangle meshes). A point is a vertex\n"
     "index (0-based) or x,y,z (mm), projected to the closest surface point.\n"
     "\n"
+    "  --pairs FILE       batch: one pair per line, 'FROM TO' separated by spaces or a tab, each a\n"
+    "                     vertex index or x,y,z (no spaces inside); blank lines and lines\n"
+    "                     starting with '#' are skipped. The mesh is loaded once and the pairs\n"
+    "                     are solved in parallel (--threads N, default all cores). One row per\n"
+    "                     pair, in file order: CSV (header line, from, to, length, ...) or with\n"
+    "                     --json one JSON object per line; to stdout or to -o FILE. Columns /\n"
+    "                     keys: line (of the pairs file), from, to, length (17 significant\n"
+    "                     digits), euclidean_length, converged, termination, iterations,\n"
+    "                     reroutes, pinned_vertices, crossings, time_ms (that pair's solve, wall\n"
+    "                     time; the only column that differs between runs). A bad line (text,\n"
+    "                     a vertex out of range, a point off the mesh) names the file and line,\n"
+    "                     exits 1 and writes nothing.\n"
     "  --exact            also compute the exact polyhedral geodesic distance (CGAL, Euclidean\n"
     "                     metric only; seconds and GBs above 100K faces) and the relative\n"
     "                     excess (length - exact) / exact; JSON keys exact_length, excess\n"
@@ -81,6 +97,13 @@ using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/// %.17g: every double prints back to itself.
+std::string full(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
 }
 
 std::string lower(std::string s) {
@@ -322,7 +345,7 @@ int report(const Args& args, const Setup& s, const GeodesicResult& r, double ini
   }
   const GeodesicSummary& m = r.summary;
   if (args.flag("--json")) {
-    JsonWriter j;
+    JsonWriter j(2, 17);
     j.begin_object();
     j.field("closed", closed);
     j.field("metric", metric_name(s.metric));
@@ -358,8 +381,8 @@ int report(const Args& args, const Setup& s, const GeodesicResult& r, double ini
   }
   std::cout << (closed ? "loop" : "geodesic") << ": " << metric_name(s.metric) << " metric, "
             << (s.options.solver == GeodesicSolver::Newton ? "newton" : "lbfgs") << " solver\n"
-            << "  length " << m.final_length << " mm (initial " << m.initial_length
-            << ", euclidean " << m.euclidean_length << ")\n"
+            << "  length " << full(m.final_length) << " mm (initial " << full(m.initial_length)
+            << ", euclidean " << full(m.euclidean_length) << ")\n"
             << "  " << r.path.num_crossings() << " edge crossings, " << points.size() << " points, "
             << m.iterations << " iterations, " << m.reroutes << " reroutes, " << m.pinned_vertices
             << " pinned vertices\n"
@@ -368,10 +391,130 @@ int report(const Args& args, const Setup& s, const GeodesicResult& r, double ini
             << "  time: init " << init_ms << " ms, refine " << refine_ms << " ms (setup "
             << s.setup_ms << " ms)\n";
   if (exact) {
-    std::cout << "  exact (CGAL) " << *exact << " mm, relative excess "
+    std::cout << "  exact (CGAL) " << full(*exact) << " mm, relative excess "
               << (m.final_length - *exact) / *exact << "\n";
   }
   if (args.has("-o")) std::cout << "written: " << args.value("-o") << "\n";
+  return 0;
+}
+
+/// One pair of `--pairs`, as given and as parsed.
+struct BatchPair {
+  int line = 0;
+  std::string from, to;
+  SurfacePoint a, b;
+};
+
+/// Reads and checks every line of a pairs file before anything is solved.
+/// \throw InputError "FILE:LINE: ..." for the first bad line.
+std::vector<BatchPair> read_pairs(const std::filesystem::path& file, const Mesh& mesh,
+                                  const ClosestPointQuery& query, double tolerance) {
+  const std::string text = read_text_file(file);
+  std::istringstream in(text);
+  std::string line;
+  std::vector<BatchPair> pairs;
+  int no = 0;
+  while (std::getline(in, line)) {
+    ++no;
+    for (char& c : line)
+      if (c == '\t' || c == '\r' || c == ';') c = ' ';
+    std::istringstream ls(line);
+    std::vector<std::string> toks;
+    std::string tok;
+    while (ls >> tok) toks.push_back(tok);
+    if (toks.empty() || toks[0][0] == '#') continue;
+    const std::string at = file.string() + ":" + std::to_string(no) + ": ";
+    if (toks.size() != 2) {
+      throw InputError(at + "expected two points 'FROM TO' (a vertex index or x,y,z each), got '" +
+                       line + "'");
+    }
+    BatchPair p;
+    p.line = no;
+    p.from = toks[0];
+    p.to = toks[1];
+    try {
+      p.a = parse_point(mesh, query, tolerance, "from", toks[0]);
+      p.b = parse_point(mesh, query, tolerance, "to", toks[1]);
+    } catch (const Error& e) {
+      throw InputError(at + e.what());
+    }
+    pairs.push_back(std::move(p));
+  }
+  if (pairs.empty()) throw InputError(file.string() + ": no pairs (one 'FROM TO' per line)");
+  return pairs;
+}
+
+int run_geodesic_batch(const Args& args, Setup& s) {
+  if (args.has("--from") || args.has("--to") || args.flag("--exact")) {
+    throw UsageError("--pairs replaces --from/--to; --exact is for single pairs");
+  }
+  const std::filesystem::path file = args.value("--pairs");
+  const ClosestPointQuery query(s.mesh);
+  const std::vector<BatchPair> pairs = read_pairs(file, s.mesh, query, s.tolerance);
+  const auto t1 = Clock::now();
+  const GeodesicContext ctx(s.mesh, s.metric);
+  s.setup_ms += ms_since(t1);
+  const int n = static_cast<int>(pairs.size());
+  std::vector<OpenGeodesicResult> results(n);
+  std::vector<double> times(n, 0.0);
+  const auto t2 = Clock::now();
+  parallel_for_index(n, [&](int i) {
+    const auto t = Clock::now();
+    try {
+      results[i] = geodesic_between(ctx, pairs[i].a, pairs[i].b, s.options);
+    } catch (const InputError& e) {
+      throw InputError(file.string() + ":" + std::to_string(pairs[i].line) + ": " + e.what());
+    }
+    times[i] = ms_since(t);
+  });
+  const double solve_ms = ms_since(t2);
+  std::ostringstream out;
+  const bool json = args.flag("--json");
+  if (!json) {
+    out << "line,from,to,length,euclidean_length,converged,termination,iterations,reroutes,"
+           "pinned_vertices,crossings,time_ms\n";
+  }
+  auto quoted = [](const std::string& t) {
+    return t.find(',') == std::string::npos ? t : "\"" + t + "\"";
+  };
+  for (int i = 0; i < n; ++i) {
+    const GeodesicSummary& m = results[i].summary;
+    if (json) {
+      JsonWriter j(0, 17);
+      j.begin_object();
+      j.field("line", pairs[i].line);
+      j.field("from", pairs[i].from);
+      j.field("to", pairs[i].to);
+      j.field("length", m.final_length);
+      j.field("euclidean_length", m.euclidean_length);
+      j.field("converged", m.converged());
+      j.field("termination", to_string(m.termination));
+      j.field("iterations", m.iterations);
+      j.field("reroutes", m.reroutes);
+      j.field("pinned_vertices", m.pinned_vertices);
+      j.field("crossings", results[i].path.num_crossings());
+      j.field("time_ms", times[i]);
+      j.end_object();
+      std::string text = j.str();
+      for (char& c : text)
+        if (c == '\n') c = ' ';
+      out << text << "\n";
+    } else {
+      out << pairs[i].line << "," << quoted(pairs[i].from) << "," << quoted(pairs[i].to) << ","
+          << full(m.final_length) << "," << full(m.euclidean_length) << ","
+          << (m.converged() ? "true" : "false") << "," << to_string(m.termination) << ","
+          << m.iterations << "," << m.reroutes << "," << m.pinned_vertices << ","
+          << results[i].path.num_crossings() << "," << full(times[i]) << "\n";
+    }
+  }
+  if (args.has("-o")) {
+    write_text_atomically(args.value("-o"), out.str());
+    std::cerr << "windplan geodesic: " << n << " pairs in " << solve_ms << " ms on up to "
+              << max_threads() << " threads (setup " << s.setup_ms << " ms); written: "
+              << args.value("-o") << "\n";
+  } else {
+    std::cout << out.str();
+  }
   return 0;
 }
 
@@ -384,9 +527,15 @@ int run_geodesic(const std::vector<std::string>& argv) {
   const auto t0 = Clock::now();
   const Args args(
       argv, kGeodesicFlags,
-      {"--from", "--to", "--density", "--metric", "--solver", "-o", "--snap-tolerance"});
+      {"--from", "--to", "--density", "--metric", "--solver", "-o", "--snap-tolerance", "--pairs"});
   args.expect_positional(1, "one mesh file or job file");
-  if (!args.has("--from") || !args.has("--to")) throw UsageError("--from and --to are required");
+  if (args.has("--pairs")) {
+    Setup s = setup(args, t0);
+    return run_geodesic_batch(args, s);
+  }
+  if (!args.has("--from") || !args.has("--to")) {
+    throw UsageError("--from and --to are required (or --pairs FILE)");
+  }
   Setup s = setup(args, t0);
   const ClosestPointQuery query(s.mesh);
   const SurfacePoint a = parse_point(s.mesh, query, s.tolerance, "--from", args.value("--from"));

@@ -3,17 +3,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <functional>
 #include <limits>
 #include <queue>
 #include <set>
-#include <thread>
 #include <utility>
 
 #include "geometry/edge_path.h"
 #include "geometry/errors.h"
 #include "geometry/geodesic.h"
+#include "geometry/parallel.h"
 
 namespace windplan {
 
@@ -666,27 +665,11 @@ GirthField compute_girth_field(const Mesh& annulus, const std::array<std::vector
   for (int v = 0; v < nv; ++v)
     field.lipschitz_bound = std::max(field.lipschitz_bound, 2.0 * nearest[v]);
 
-  // 2. The exact loops, independent of each other: spread over the hardware threads.
+  // 2. The exact loops, independent of each other: spread over the threads (geometry/parallel.h;
+  // each loop writes its own slot, so the field does not depend on the thread count).
   const int count = static_cast<int>(chosen.size());
   std::vector<GirthContext::Loop> exact(count);
-  {
-    const int threads =
-        std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::min(8, count));
-    std::vector<std::exception_ptr> errors(threads);
-    auto work = [&](int id) {
-      try {
-        for (int k = id; k < count; k += threads) exact[k] = context.girth(chosen[k]);
-      } catch (...) {
-        errors[id] = std::current_exception();
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int id = 1; id < threads; ++id) pool.emplace_back(work, id);
-    work(0);
-    for (std::thread& th : pool) th.join();
-    for (const std::exception_ptr& e : errors)
-      if (e) std::rethrow_exception(e);
-  }
+  parallel_for_index(count, [&](int k) { exact[k] = context.girth(chosen[k]); });
   for (int k = 0; k < count; ++k) {
     const GirthContext::Loop& loop = exact[k];
     if (!loop.converged || std::abs(loop.winding) != 1) ++field.unconverged_samples;

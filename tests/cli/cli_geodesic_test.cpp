@@ -340,5 +340,105 @@ TEST_F(CliGeodesic, BadCurves) {
   EXPECT_EQ(has(r.err, "none.csv"), "");
 }
 
+// ---- batch queries (--pairs) ----
+
+namespace batch {
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+}  // namespace batch
+
+// A batch gives, pair for pair, the length of single runs (to the last digit), in file order,
+// whatever the thread count; comments and blank lines are skipped and rows name their line.
+TEST_F(CliGeodesic, PairsBatchEqualsSingleRuns) {
+  const std::string cyl = (dir_ / "cylinder.obj").string();
+  write_mesh(cyl, test::open_cylinder(5.0, 20.0, 24, 10));
+  const std::vector<std::pair<std::string, std::string>> pairs = {
+      {"0", "200"}, {"3", "150"}, {"5,0,0", "0,5,20"}, {"17", "0,-5,10"}, {"100", "101"}};
+  std::string text = "# from to\n\n";
+  for (const auto& p : pairs) text += p.first + " " + p.second + "\n";
+  const std::string file = write("pairs.txt", text);
+  const RunResult one = run({"geodesic", cyl, "--pairs", file, "--threads", "1"});
+  ASSERT_EQ(one.code, 0) << one.err;
+  const RunResult two = run({"geodesic", cyl, "--pairs", file, "--threads", "2", "-o",
+                             (dir_ / "batch.csv").string()});
+  ASSERT_EQ(two.code, 0) << two.err;
+  const std::vector<std::string> rows1 = batch::lines_of(one.out);
+  const std::vector<std::string> rows2 = batch::lines_of(slurp(dir_ / "batch.csv"));
+  ASSERT_EQ(rows1.size(), pairs.size() + 1);
+  ASSERT_EQ(rows2.size(), rows1.size());
+  EXPECT_EQ(rows1[0].rfind("line,from,to,length,", 0), 0u) << rows1[0];
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    std::vector<std::string> f1 = batch::csv_fields(rows1[i + 1]);
+    std::vector<std::string> f2 = batch::csv_fields(rows2[i + 1]);
+    ASSERT_EQ(f1.size(), 12u) << rows1[i + 1];
+    EXPECT_EQ(f1[0], std::to_string(i + 3));  // two skipped lines
+    EXPECT_EQ(f1[1], pairs[i].first);
+    EXPECT_EQ(f1[2], pairs[i].second);
+    f1.pop_back();  // time_ms differs between runs
+    f2.pop_back();
+    EXPECT_EQ(f1, f2) << "1 thread and 2 threads differ on pair " << i;
+    const RunResult single =
+        run({"geodesic", cyl, "--from", pairs[i].first, "--to", pairs[i].second, "--json"});
+    ASSERT_EQ(single.code, 0) << single.err;
+    EXPECT_EQ(std::stod(f1[3]), json_length(single)) << "pair " << i;
+    EXPECT_EQ(f1[5], "true");
+  }
+  // JSON lines: one object per pair with the same lengths.
+  const RunResult js = run({"geodesic", cyl, "--pairs", file, "--json"});
+  ASSERT_EQ(js.code, 0) << js.err;
+  const std::vector<std::string> objs = batch::lines_of(js.out);
+  ASSERT_EQ(objs.size(), pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const YAML::Node n = YAML::Load(objs[i]);
+    EXPECT_EQ(n["length"].as<double>(), std::stod(batch::csv_fields(rows1[i + 1])[3]));
+    EXPECT_EQ(n["line"].as<int>(), static_cast<int>(i + 3));
+  }
+}
+
+// A bad line names the file and line, exits 1 and writes nothing (no partial table).
+TEST_F(CliGeodesic, PairsBadLineIsExitOneWithTheLineAndNoOutput) {
+  const fs::path out = dir_ / "batch.csv";
+  for (const char* bad_line : {"0 9999", "zero 5", "3 50,50,50", "1 2 3", "-1 4"}) {
+    const std::string bad = bad_line;
+    const std::string file = write("bad.txt", "0 120\n# ok so far\n" + bad + "\n5 6\n");
+    const RunResult r = run({"geodesic", plane_, "--pairs", file, "-o", out.string()});
+    EXPECT_EQ(r.code, 1) << bad << ": " << r.err;
+    EXPECT_EQ(has(r.err, "bad.txt:3:"), "") << bad;
+    EXPECT_FALSE(fs::exists(out)) << bad;
+    EXPECT_EQ(r.out, "") << bad;
+  }
+  const RunResult empty = run({"geodesic", plane_, "--pairs", write("empty.txt", "# none\n")});
+  EXPECT_EQ(empty.code, 1);
+  const RunResult both = run({"geodesic", plane_, "--pairs", write("p.txt", "0 1\n"), "--from", "0"});
+  EXPECT_EQ(both.code, 2);
+  const RunResult threads = run({"geodesic", plane_, "--pairs", write("p.txt", "0 1\n"),
+                                 "--threads", "0"});
+  EXPECT_EQ(threads.code, 2);
+}
+
 }  // namespace
 }  // namespace windplan
