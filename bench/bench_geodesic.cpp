@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
   int repeat = 1;  // solves per pair; the fastest init and refine are kept
   int steiner = GeodesicContext::kDefaultSteinerPoints;
   bool edge_starts = false, lbfgs = false, split = true;
+  std::filesystem::path write_pairs, reference;
   std::vector<std::filesystem::path> files;
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress shows when redirected to a file
   for (int i = 1; i < argc; ++i) {
@@ -111,6 +112,10 @@ int main(int argc, char** argv) {
       edge_starts = next() != 0;
     else if (a == "--split")
       split = next() != 0;
+    else if (a == "--write-pairs" && i + 1 < argc)
+      write_pairs = argv[++i];
+    else if (a == "--reference" && i + 1 < argc)
+      reference = argv[++i];
     else if (a == "--lbfgs")
       lbfgs = true;
     else if (a == "--quick") {
@@ -125,6 +130,10 @@ int main(int argc, char** argv) {
           "--steiner K: Steiner points per edge of the start graph (0: edge-graph starts only)\n"
           "--edge-starts 1: also refine from the two edge-graph starts\n"
           "--lbfgs: also run the paper's L-BFGS solver\n"
+          "--write-pairs DIR: write DIR/<mesh file name>.pairs ('source target' per line)\n"
+          "--reference DIR: read DIR/<mesh file name>.ref ('source target exact other_length\n"
+          "  other_cpu_ms' per pair, e.g. an exact MMP distance and FlipOut's length and time on\n"
+          "  the same pairs) instead of running CGAL, and print the side-by-side table\n"
           "--repeat R: each pair is solved R times and its fastest init and refine are kept\n"
           "(the machine is shared: this removes scheduling noise, not work).\n"
           "Pairs are drawn as sources with K targets each; the CGAL exact distance is\n"
@@ -161,6 +170,7 @@ int main(int argc, char** argv) {
   };
   std::vector<Row> rows;
   std::vector<std::string> notes;
+  std::vector<std::string> side;  // the side-by-side table with --reference
 
   for (const auto& file : files) {
     if (!std::filesystem::exists(file)) {
@@ -190,11 +200,31 @@ int main(int argc, char** argv) {
       }
     }
 
+    if (!write_pairs.empty()) {
+      std::ofstream out(write_pairs / (name + ".pairs"));
+      for (const Pair& p : pairs) out << p.source << " " << p.target << "\n";
+    }
+    std::vector<double> other_length(pairs.size(), std::nan("")), other_ms = other_length;
+    std::vector<double> exact(pairs.size(), std::nan(""));
+    if (!reference.empty()) {
+      std::ifstream in(reference / (name + ".ref"));
+      if (!in) {
+        std::fprintf(stderr, "%s: missing\n", (reference / (name + ".ref")).c_str());
+        return 1;
+      }
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        int s0 = -1, t0 = -1;
+        if (!(in >> s0 >> t0 >> exact[i] >> other_length[i] >> other_ms[i]) ||
+            s0 != pairs[i].source || t0 != pairs[i].target) {
+          std::fprintf(stderr, "%s: pair %zu does not match\n", name.c_str(), i);
+          return 1;
+        }
+      }
+    }
     // Exact distances: one CGAL tree per source, for the first sources.
-    const int sources_exact = mesh.num_faces() <= 50000
+    const int sources_exact = !reference.empty() ? 0 : mesh.num_faces() <= 50000
                                   ? (exact_sources_small < 0 ? num_sources : exact_sources_small)
                                   : exact_sources;
-    std::vector<double> exact(pairs.size(), std::nan(""));
     if (sources_exact > 0) {
       t = Clock::now();
       ExactGeodesic cgal(mesh);
@@ -271,6 +301,20 @@ int main(int argc, char** argv) {
         }
       }
       row.pairs = static_cast<int>(pairs.size());
+      if (!reference.empty()) {
+        std::vector<double> ours_equal_cpu;
+        int ours_equal = 0, other_equal = 0;
+        for (std::size_t i = 0; i < pairs.size(); ++i) {
+          if ((row.run.length[i] - exact[i]) / exact[i] <= 1e-9) ++ours_equal;
+          if ((other_length[i] - exact[i]) / exact[i] <= 1e-9) ++other_equal;
+        }
+        const double ours_med = quantile(row.run.cpu, 0.5), other_med = quantile(other_ms, 0.5);
+        side.push_back("| " + name + " | " + std::to_string(mesh.num_faces()) + " | " +
+                       fmt(ours_med) + " ms | " + fmt(other_med) + " ms | " +
+                       fmt(ours_med / other_med, "%.2f") + " | " + std::to_string(ours_equal) +
+                       " / " + std::to_string(pairs.size()) + " | " +
+                       std::to_string(other_equal) + " / " + std::to_string(pairs.size()) + " |");
+      }
       for (const std::string& f : row.run.failures)
         notes.push_back(name + " " + row.solver + " not converged " + f);
       rows.push_back(std::move(row));
@@ -307,6 +351,13 @@ int main(int argc, char** argv) {
         have ? fmt(quantile(r.excess, 1.0), "%.1e").c_str() : "-",
         have ? (std::to_string(equal) + "/" + std::to_string(r.excess.size())).c_str() : "-",
         have ? (std::to_string(within) + "/" + std::to_string(r.excess.size())).c_str() : "-");
+  }
+  if (!side.empty()) {
+    std::printf(
+        "\n| mesh | faces | windplan thread CPU per path (median) | reference (FlipOut) | ratio | "
+        "windplan equal to exact (1e-9) | reference equal to exact |\n|---|---:|---:|---:|---:|"
+        "---:|---:|\n");
+    for (const std::string& l : side) std::printf("%s\n", l.c_str());
   }
   if (!notes.empty()) {
     std::printf("\nnotes:\n");

@@ -13,6 +13,7 @@
 #include "geometry/errors.h"
 #include "geometry/geodesic.h"
 #include "geometry/parallel.h"
+#include "planner/girth_loops.h"
 
 namespace windplan {
 
@@ -447,6 +448,14 @@ SurfacePath GirthContext::refined_halves(int p, const std::vector<int>& cycle) c
   return joined;
 }
 
+namespace {
+// Other corridors tried per girth loop, and how much longer (as edge loops) than the shortest
+// edge loop they may be: the edge loops are a few per cent longer than the loops they lead to.
+constexpr int kOtherCorridors = 2;
+constexpr double kCorridorWindow = 1.15;
+bool finite_length(const GeodesicResult& r) { return std::isfinite(r.summary.euclidean_length); }
+}  // namespace
+
 GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) const {
   const Mesh& mesh = mesh_;
   Loop loop;
@@ -497,10 +506,30 @@ GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) co
       winding = winding2;
     }
   }
+  // The shortest loop, not only a locally shortest one: refine also from edge loops in other
+  // corridors (planner/girth_loops.h) and keep the shortest that winds once.
+  bool other_corridor = false;
+  for (const std::vector<int>& other :
+       alternative_edge_loops(mesh, impl_->graph, impl_->shift, p, cycle, kOtherCorridors,
+                              kCorridorWindow)) {
+    const SurfacePath joined = refined_halves(p, other);
+    if (joined.num_crossings() == 0) continue;
+    GeodesicResult ro = refine_path(mesh, joined, PathMetric{}, first);
+    const int wo = winding_number(ro.path);
+    const bool done = ro.summary.converged() ||
+                      ro.summary.termination == GeodesicTermination::LineSearchFailed;
+    if (done && std::abs(wo) == 1 && finite_length(ro) &&
+        ro.summary.euclidean_length < r.summary.euclidean_length * (1.0 - 1e-12)) {
+      r = std::move(ro);
+      winding = wo;
+      other_corridor = true;
+    }
+  }
   loop.summary = r.summary;
   loop.winding = winding;
-  loop.converged = acceptable(r, winding);
-  if (std::abs(winding) == 1 && r.summary.euclidean_length <= loop.edge_length * (1 + 1e-9)) {
+  loop.converged = other_corridor || acceptable(r, winding);
+  if (std::abs(winding) == 1 &&
+      (other_corridor || r.summary.euclidean_length <= loop.edge_length * (1 + 1e-9))) {
     loop.girth = r.summary.euclidean_length;
     loop.path = std::move(r.path);
   } else {
