@@ -1,6 +1,7 @@
 // windplan geodesic / windplan loop: the geodesic core (geometry/geodesic.h) on the command line.
 // A geodesic between two surface points, or a closed geodesic loop refined from a curve, under
 // the Euclidean, a density or an anisotropic metric; the result as text, JSON or CSV.
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -84,11 +85,21 @@ const char* const kLoopHelp =
     "usage: windplan loop <mesh | job.yaml> --init curve.csv\n"
     "                     [--density faces.txt | --metric faces.txt] [--solver newton|lbfgs]\n"
     "                     [--json] [-o loop.csv]\n"
+    "       windplan loop <mesh | job.yaml> --curves curves.txt [--json] [-o table]\n"
+    "                     [--threads N] [--density ... | --metric ...] [--solver ...]\n"
     "\n"
     "Refines a closed curve into a closed geodesic loop. The curve file holds one point x,y,z\n"
     "(mm) per line, comma or space separated, first point not repeated at the end; an optional\n"
     "header line and lines starting with '#' are skipped. Each point is snapped to the surface,\n"
     "consecutive points are joined by shortest edge paths, and the closed strip is refined.\n"
+    "\n"
+    "  --curves FILE      batch: one closed curve per line, its points x,y,z separated by spaces\n"
+    "                     (at least 3); blank lines and lines starting with '#' are skipped. The\n"
+    "                     mesh is loaded once and the loops are refined in parallel (--threads N,\n"
+    "                     default all cores). One row per curve, in file order, as for\n"
+    "                     'windplan geodesic --pairs' (CSV or --json lines, to stdout or -o\n"
+    "                     FILE), with the column points (the curve's point count) instead of\n"
+    "                     from, to. A bad line names the file and line, exits 1, writes nothing.\n"
     "\n" WINDPLAN_GEODESIC_COMMON_HELP;
 
 namespace {
@@ -444,6 +455,70 @@ std::vector<BatchPair> read_pairs(const std::filesystem::path& file, const Mesh&
   return pairs;
 }
 
+/// One row of a batch: the input line, its identifying text columns, the result.
+struct BatchRow {
+  int line = 0;
+  std::vector<std::pair<std::string, std::string>> ids;
+  GeodesicSummary summary;
+  int crossings = 0;
+  double time_ms = 0.0;
+};
+
+/// The batch table (CSV with a header, or JSON lines), to -o FILE (atomically) or stdout.
+int write_batch(const Args& args, const char* command, const char* what,
+                const std::vector<BatchRow>& rows, double solve_ms, double setup_ms) {
+  std::ostringstream out;
+  const bool json = args.flag("--json");
+  auto quoted = [](const std::string& t) {
+    return t.find(',') == std::string::npos ? t : "\"" + t + "\"";
+  };
+  if (!json && !rows.empty()) {
+    out << "line";
+    for (const auto& id : rows.front().ids) out << "," << id.first;
+    out << ",length,euclidean_length,converged,termination,iterations,reroutes,"
+           "pinned_vertices,crossings,time_ms\n";
+  }
+  for (const BatchRow& row : rows) {
+    const GeodesicSummary& m = row.summary;
+    if (json) {
+      JsonWriter j(0, 17);
+      j.begin_object();
+      j.field("line", row.line);
+      for (const auto& id : row.ids) j.field(id.first, id.second);
+      j.field("length", m.final_length);
+      j.field("euclidean_length", m.euclidean_length);
+      j.field("converged", m.converged());
+      j.field("termination", to_string(m.termination));
+      j.field("iterations", m.iterations);
+      j.field("reroutes", m.reroutes);
+      j.field("pinned_vertices", m.pinned_vertices);
+      j.field("crossings", row.crossings);
+      j.field("time_ms", row.time_ms);
+      j.end_object();
+      std::string text = j.str();
+      for (char& c : text)
+        if (c == '\n') c = ' ';
+      out << text << "\n";
+    } else {
+      out << row.line;
+      for (const auto& id : row.ids) out << "," << quoted(id.second);
+      out << "," << full(m.final_length) << "," << full(m.euclidean_length) << ","
+          << (m.converged() ? "true" : "false") << "," << to_string(m.termination) << ","
+          << m.iterations << "," << m.reroutes << "," << m.pinned_vertices << ","
+          << row.crossings << "," << full(row.time_ms) << "\n";
+    }
+  }
+  if (args.has("-o")) {
+    write_text_atomically(args.value("-o"), out.str());
+    std::cerr << "windplan " << command << ": " << rows.size() << " " << what << " in "
+              << solve_ms << " ms on up to " << max_threads() << " threads (setup " << setup_ms
+              << " ms); written: " << args.value("-o") << "\n";
+  } else {
+    std::cout << out.str();
+  }
+  return 0;
+}
+
 int run_geodesic_batch(const Args& args, Setup& s) {
   if (args.has("--from") || args.has("--to") || args.flag("--exact")) {
     throw UsageError("--pairs replaces --from/--to; --exact is for single pairs");
@@ -468,54 +543,95 @@ int run_geodesic_batch(const Args& args, Setup& s) {
     times[i] = ms_since(t);
   });
   const double solve_ms = ms_since(t2);
-  std::ostringstream out;
-  const bool json = args.flag("--json");
-  if (!json) {
-    out << "line,from,to,length,euclidean_length,converged,termination,iterations,reroutes,"
-           "pinned_vertices,crossings,time_ms\n";
-  }
-  auto quoted = [](const std::string& t) {
-    return t.find(',') == std::string::npos ? t : "\"" + t + "\"";
-  };
+  std::vector<BatchRow> rows(n);
   for (int i = 0; i < n; ++i) {
-    const GeodesicSummary& m = results[i].summary;
-    if (json) {
-      JsonWriter j(0, 17);
-      j.begin_object();
-      j.field("line", pairs[i].line);
-      j.field("from", pairs[i].from);
-      j.field("to", pairs[i].to);
-      j.field("length", m.final_length);
-      j.field("euclidean_length", m.euclidean_length);
-      j.field("converged", m.converged());
-      j.field("termination", to_string(m.termination));
-      j.field("iterations", m.iterations);
-      j.field("reroutes", m.reroutes);
-      j.field("pinned_vertices", m.pinned_vertices);
-      j.field("crossings", results[i].path.num_crossings());
-      j.field("time_ms", times[i]);
-      j.end_object();
-      std::string text = j.str();
-      for (char& c : text)
-        if (c == '\n') c = ' ';
-      out << text << "\n";
-    } else {
-      out << pairs[i].line << "," << quoted(pairs[i].from) << "," << quoted(pairs[i].to) << ","
-          << full(m.final_length) << "," << full(m.euclidean_length) << ","
-          << (m.converged() ? "true" : "false") << "," << to_string(m.termination) << ","
-          << m.iterations << "," << m.reroutes << "," << m.pinned_vertices << ","
-          << results[i].path.num_crossings() << "," << full(times[i]) << "\n";
+    rows[i] = {pairs[i].line, {{"from", pairs[i].from}, {"to", pairs[i].to}},
+               results[i].summary, results[i].path.num_crossings(), times[i]};
+  }
+  return write_batch(args, "geodesic", "pairs", rows, solve_ms, s.setup_ms);
+}
+
+/// `loop --curves`: one closed curve per line, points x,y,z separated by spaces.
+struct BatchCurve {
+  int line = 0;
+  int points = 0;
+  SurfacePath init;
+};
+
+std::vector<BatchCurve> read_curves(const std::filesystem::path& file, const Mesh& mesh,
+                                    const EdgeGraph& graph, double tolerance) {
+  const std::string text = read_text_file(file);
+  std::istringstream in(text);
+  std::string line;
+  std::vector<BatchCurve> curves;
+  int no = 0;
+  while (std::getline(in, line)) {
+    ++no;
+    std::string clean = line;
+    for (char& c : clean)
+      if (c == '\t' || c == '\r' || c == ';') c = ' ';
+    std::istringstream ls(clean);
+    std::vector<std::string> toks;
+    std::string tok;
+    while (ls >> tok) toks.push_back(tok);
+    if (toks.empty() || toks[0][0] == '#') continue;
+    const std::string at = file.string() + ":" + std::to_string(no) + ": ";
+    std::vector<Vec3> points;
+    for (const std::string& t : toks) {
+      Vec3 p;
+      std::istringstream ps(t);
+      std::string part;
+      int k = 0;
+      bool ok = true;
+      while (ok && std::getline(ps, part, ',')) {
+        double d = 0.0;
+        ok = k < 3 && parse_double(part, &d) && std::isfinite(d);
+        if (ok) p[k++] = d;
+      }
+      if (!ok || k != 3) throw InputError(at + "'" + t + "' is not a point x,y,z");
+      points.push_back(p);
     }
+    if (points.size() < 3) {
+      throw InputError(at + "a closed curve needs at least 3 points x,y,z (found " +
+                       std::to_string(points.size()) + ")");
+    }
+    BatchCurve c;
+    c.line = no;
+    c.points = static_cast<int>(points.size());
+    try {
+      c.init = path_from_curve(mesh, graph, points, true, tolerance);
+    } catch (const Error& e) {
+      throw InputError(at + e.what());
+    }
+    curves.push_back(std::move(c));
   }
-  if (args.has("-o")) {
-    write_text_atomically(args.value("-o"), out.str());
-    std::cerr << "windplan geodesic: " << n << " pairs in " << solve_ms << " ms on up to "
-              << max_threads() << " threads (setup " << s.setup_ms << " ms); written: "
-              << args.value("-o") << "\n";
-  } else {
-    std::cout << out.str();
+  if (curves.empty()) throw InputError(file.string() + ": no curves (one closed curve per line)");
+  return curves;
+}
+
+int run_loop_batch(const Args& args, Setup& s) {
+  if (args.has("--init")) throw UsageError("give --init or --curves, not both");
+  const std::filesystem::path file = args.value("--curves");
+  const auto t1 = Clock::now();
+  const EdgeGraph graph = build_edge_graph(s.mesh, s.metric);
+  s.setup_ms += ms_since(t1);
+  const std::vector<BatchCurve> curves = read_curves(file, s.mesh, graph, s.tolerance);
+  const int n = static_cast<int>(curves.size());
+  std::vector<GeodesicResult> results(n);
+  std::vector<double> times(n, 0.0);
+  const auto t2 = Clock::now();
+  parallel_for_index(n, [&](int i) {
+    const auto t = Clock::now();
+    results[i] = refine_path(s.mesh, curves[i].init, s.metric, s.options);
+    times[i] = ms_since(t);
+  });
+  const double solve_ms = ms_since(t2);
+  std::vector<BatchRow> rows(n);
+  for (int i = 0; i < n; ++i) {
+    rows[i] = {curves[i].line, {{"points", std::to_string(curves[i].points)}},
+               results[i].summary, results[i].path.num_crossings(), times[i]};
   }
-  return 0;
+  return write_batch(args, "loop", "curves", rows, solve_ms, s.setup_ms);
 }
 
 const std::set<std::string> kFlags = {"--json"};
@@ -557,9 +673,14 @@ int run_geodesic(const std::vector<std::string>& argv) {
 int run_loop(const std::vector<std::string>& argv) {
   const auto t0 = Clock::now();
   const Args args(argv, kFlags,
-                  {"--init", "--density", "--metric", "--solver", "-o", "--snap-tolerance"});
+                  {"--init", "--density", "--metric", "--solver", "-o", "--snap-tolerance",
+                   "--curves"});
   args.expect_positional(1, "one mesh file or job file");
-  if (!args.has("--init")) throw UsageError("--init curve.csv is required");
+  if (args.has("--curves")) {
+    Setup s = setup(args, t0);
+    return run_loop_batch(args, s);
+  }
+  if (!args.has("--init")) throw UsageError("--init curve.csv is required (or --curves FILE)");
   Setup s = setup(args, t0);
   const std::vector<Vec3> curve = read_curve(args.value("--init"));
   const auto t1 = Clock::now();

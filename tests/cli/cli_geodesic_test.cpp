@@ -440,5 +440,62 @@ TEST_F(CliGeodesic, PairsBadLineIsExitOneWithTheLineAndNoOutput) {
   EXPECT_EQ(threads.code, 2);
 }
 
+// Loops in a batch: each row equals the single run of the same curve, whatever the thread count;
+// a bad curve line names the line and writes nothing.
+TEST_F(CliGeodesic, CurvesBatchEqualsSingleLoops) {
+  const int n = 24, m = 10;
+  const double r = 2.0, len = 8.0;
+  const std::string tube = (dir_ / "tube.obj").string();
+  write_mesh(tube, test::open_cylinder(r, len, n, m));
+  std::string batch_text = "# one closed curve per line\n";
+  std::vector<std::string> singles;
+  for (int k = 0; k < 3; ++k) {
+    const std::string csv = oblique_ring_csv(r * std::cos(M_PI / n), 3.0 + k, 0.5 + 0.25 * k, 30);
+    singles.push_back(write("curve" + std::to_string(k) + ".csv", csv));
+    std::istringstream in(csv);
+    std::string line, joined;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#' || line[0] == 'x') continue;
+      std::string pt;
+      std::istringstream ls(line);
+      std::vector<std::string> parts;
+      for (std::string tok; std::getline(ls, tok, ',');) parts.push_back(tok);
+      if (parts.size() != 3) continue;
+      joined += (joined.empty() ? "" : " ") + parts[0] + "," + parts[1] + "," + parts[2];
+    }
+    batch_text += joined + "\n";
+  }
+  const std::string file = write("curves.txt", batch_text);
+  const RunResult one = run({"loop", tube, "--curves", file, "--snap-tolerance", "0.1",
+                             "--threads", "1"});
+  ASSERT_EQ(one.code, 0) << one.err;
+  const RunResult two = run({"loop", tube, "--curves", file, "--snap-tolerance", "0.1",
+                             "--threads", "2", "--json"});
+  ASSERT_EQ(two.code, 0) << two.err;
+  const std::vector<std::string> rows = batch::lines_of(one.out);
+  const std::vector<std::string> objs = batch::lines_of(two.out);
+  ASSERT_EQ(rows.size(), 4u);
+  ASSERT_EQ(objs.size(), 3u);
+  EXPECT_EQ(rows[0].rfind("line,points,length,", 0), 0u) << rows[0];
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<std::string> f = batch::csv_fields(rows[k + 1]);
+    EXPECT_EQ(f[0], std::to_string(k + 2));
+    EXPECT_EQ(f[1], "30");
+    const RunResult single =
+        run({"loop", tube, "--init", singles[k], "--snap-tolerance", "0.1", "--json"});
+    ASSERT_EQ(single.code, 0) << single.err;
+    EXPECT_EQ(std::stod(f[2]), json_length(single)) << "curve " << k;
+    EXPECT_EQ(YAML::Load(objs[k])["length"].as<double>(), std::stod(f[2])) << "curve " << k;
+    EXPECT_NEAR(std::stod(f[2]), n * 2.0 * r * std::sin(M_PI / n), 1e-7);
+  }
+  const fs::path out = dir_ / "loops.csv";
+  const std::string bad = write("bad.txt", batch::lines_of(batch_text)[1] + "\n1,2 3,4,5\n");
+  const RunResult r1 =
+      run({"loop", tube, "--curves", bad, "-o", out.string(), "--snap-tolerance", "0.1"});
+  EXPECT_EQ(r1.code, 1);
+  EXPECT_EQ(has(r1.err, "bad.txt:2:"), "");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace
 }  // namespace windplan
