@@ -78,6 +78,17 @@ SurfacePath initial_open_path(const Mesh& mesh, const EdgeGraph& graph, const Su
 SurfacePath path_from_curve(const Mesh& mesh, const EdgeGraph& graph,
                             const std::vector<Vec3>& points, bool closed, double max_distance);
 
+/// The open path `first` (ending at vertex q) continued by `second` (starting at q): a rotation
+/// around q from first's last strip face to second's first, on the side of the smaller angle (a
+/// boundary vertex has one side only), with the crossings on q (lambda 0 or 1).
+/// Returns a path with start_face -1 when neither side reaches second's face.
+SurfacePath join_at_vertex(const Mesh& mesh, const SurfacePath& first, const SurfacePath& second,
+                           int q);
+
+/// A vertex chain without repeats (u, u) and back-and-forth spurs (u, w, u), which a face strip
+/// cannot represent.
+std::vector<int> remove_spurs(const std::vector<int>& chain);
+
 /// The vertex a surface point sits on (within kOnVertex of a corner), or -1.
 int as_vertex(const Mesh& mesh, const SurfacePoint& p);
 

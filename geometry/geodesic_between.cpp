@@ -18,57 +18,6 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-// The strip of leg `first` (ending at vertex q) continued by leg `second` (starting at q): a
-// rotation around q from first's last face to second's first face, on the side of the smaller
-// angle, with the crossings on q. Empty when the rotation meets the boundary on both sides.
-SurfacePath join_at_vertex(const Mesh& mesh, const SurfacePath& first, const SurfacePath& second,
-                           int q) {
-  SurfacePath joined;
-  const int f1 = strip_face(mesh, first, first.num_crossings());
-  const int f2 = strip_face(mesh, second, 0);
-  std::vector<int> best;
-  double best_angle = std::numeric_limits<double>::infinity();
-  if (f1 != f2) {
-    for (const bool ccw : {true, false}) {
-      int hv = -1;
-      for (int k = 0; k < 3; ++k)
-        if (mesh.from(3 * f1 + k) == q) hv = 3 * f1 + k;
-      if (hv < 0) return joined;
-      std::vector<int> crossings;
-      double angle = 0.0;
-      bool reached = false;
-      for (int step = 0; step < 4 * mesh.valence(q) + 4 && !reached; ++step) {
-        angle += mesh.corner_angle(hv);
-        const int c = ccw ? mesh.prev(hv) : hv;
-        const int t = mesh.twin(c);
-        if (mesh.is_boundary_halfedge(t)) break;
-        crossings.push_back(c);
-        hv = ccw ? t : mesh.next(t);
-        reached = mesh.face(t) == f2;
-      }
-      if (reached && angle < best_angle) {
-        best_angle = angle;
-        best = std::move(crossings);
-      }
-    }
-    if (best.empty()) return joined;
-  }
-  joined.start = first.start;
-  joined.end = second.end;
-  joined.halfedges = first.halfedges;
-  joined.lambdas = first.lambdas;
-  for (const int c : best) {
-    joined.halfedges.push_back(c);
-    joined.lambdas.push_back(mesh.from(c) == q ? 0.0 : 1.0);
-  }
-  joined.halfedges.insert(joined.halfedges.end(), second.halfedges.begin(),
-                          second.halfedges.end());
-  joined.lambdas.insert(joined.lambdas.end(), second.lambdas.begin(), second.lambdas.end());
-  joined.start_face = joined.halfedges.empty() ? first.start_face
-                                               : mesh.face(joined.halfedges.front());
-  return joined;
-}
-
 // The refinements of the start corridors (see GeodesicOptions), the best one kept.
 OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfacePoint& a,
                                   const SurfacePoint& b, const GeodesicOptions& options,

@@ -395,52 +395,8 @@ SurfacePath GirthContext::refined_halves(int p, const std::vector<int>& cycle) c
   } catch (const Error&) {
     return joined;  // the direct refinement is the fallback
   }
-  // Rotate around q from the last face of the first half to the first face of the second, on
-  // the side of the smaller angle (a boundary vertex has one side only); the crossings sit on q.
-  const int f1 = strip_face(mesh, a.path, a.path.num_crossings());
-  const int f2 = strip_face(mesh, b.path, 0);
-  std::vector<int> best;
-  double best_angle = kInf;
-  if (f1 != f2) {
-    for (bool ccw : {true, false}) {
-      int hv = -1;
-      for (int k = 0; k < 3; ++k)
-        if (mesh.from(3 * f1 + k) == q) hv = 3 * f1 + k;
-      if (hv < 0) return joined;
-      std::vector<int> crossings;
-      double angle = 0.0;
-      bool ok = false;
-      for (int step = 0; step < 4 * mesh.valence(q) + 4; ++step) {
-        angle += mesh.corner_angle(hv);
-        const int c = ccw ? mesh.prev(hv) : hv;
-        const int t = mesh.twin(c);
-        if (mesh.is_boundary_halfedge(t)) break;
-        crossings.push_back(c);
-        hv = ccw ? t : mesh.next(t);
-        if (mesh.face(t) == f2) {
-          ok = true;
-          break;
-        }
-      }
-      if (ok && angle < best_angle) {
-        best_angle = angle;
-        best = crossings;
-      }
-    }
-    if (best.empty()) return joined;
-  }
-  joined.closed = false;
-  joined.start = joined.end = SurfacePoint::at_vertex(p);
-  joined.halfedges = a.path.halfedges;
-  joined.lambdas = a.path.lambdas;
-  for (int c : best) {
-    joined.halfedges.push_back(c);
-    joined.lambdas.push_back(mesh.from(c) == q ? 0.0 : 1.0);
-  }
-  joined.halfedges.insert(joined.halfedges.end(), b.path.halfedges.begin(), b.path.halfedges.end());
-  joined.lambdas.insert(joined.lambdas.end(), b.path.lambdas.begin(), b.path.lambdas.end());
-  joined.start_face =
-      joined.halfedges.empty() ? a.path.start_face : mesh.face(joined.halfedges.front());
+  joined = join_at_vertex(mesh, a.path, b.path, q);
+  if (joined.start_face < 0) return SurfacePath{};
   std::string why;
   if (!is_valid_path(mesh, joined, &why) || std::abs(winding_number(joined)) != 1) {
     return SurfacePath{};

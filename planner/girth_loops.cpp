@@ -72,16 +72,7 @@ std::vector<std::vector<int>> alternative_edge_loops(const Mesh& mesh, const Edg
     // back is q ... p already (walked from (q,1) to (p,0)).
     std::vector<int> cycle = there;
     cycle.insert(cycle.end(), back.begin() + 1, back.end() - 1);  // without q again and p
-    // Spurs (u, w, u) and repeats cannot be turned into a strip.
-    std::vector<int> clean;
-    for (int v : cycle) {
-      if (!clean.empty() && clean.back() == v) continue;
-      if (clean.size() >= 2 && clean[clean.size() - 2] == v) {
-        clean.pop_back();
-        continue;
-      }
-      clean.push_back(v);
-    }
+    std::vector<int> clean = remove_spurs(cycle);
     // A spur at p (p, x, ..., x) means p is not on the loop proper.
     if (clean.size() < 3 || clean.front() != p || clean.back() == clean[1]) continue;
     take(clean);

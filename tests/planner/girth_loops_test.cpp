@@ -51,14 +51,7 @@ double exact_girth(const std::function<double(double)>& r, double z0, double z1,
                                  SurfacePoint::at_vertex(j * cols + 2 * n + i));
 }
 
-std::array<std::vector<int>, 2> ring_loops(int n, int m) {
-  std::array<std::vector<int>, 2> loops;
-  for (int i = 0; i < n; ++i) {
-    loops[0].push_back(i);
-    loops[1].push_back(m * n + i);
-  }
-  return loops;
-}
+std::array<std::vector<int>, 2> ring_loops(int n, int m) { return test::revolution_loops(n, m); }
 
 // A neck (r = 3 at z = 10) next to a bulge (r = 8.3 at z = 30). Through p on the bulge's widest
 // ring, that ring is a locally shortest loop (a geodesic parallel, 2 pi 8.3 = 52 mm), but the
