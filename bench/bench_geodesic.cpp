@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
   int repeat = 1;  // solves per pair; the fastest init and refine are kept
   int steiner = GeodesicContext::kDefaultSteinerPoints;
   bool edge_starts = false, lbfgs = false, split = true;
+  bool steiner_start = GeodesicOptions{}.steiner_start;
   std::filesystem::path write_pairs, reference;
   std::vector<std::filesystem::path> files;
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress shows when redirected to a file
@@ -110,6 +111,8 @@ int main(int argc, char** argv) {
       steiner = next();
     else if (a == "--edge-starts")
       edge_starts = next() != 0;
+    else if (a == "--steiner-start")
+      steiner_start = next() != 0;
     else if (a == "--split")
       split = next() != 0;
     else if (a == "--write-pairs" && i + 1 < argc)
@@ -256,8 +259,8 @@ int main(int argc, char** argv) {
       row.solver = solver == GeodesicSolver::Newton ? "Newton" : "L-BFGS";
       GeodesicOptions options;
       options.solver = solver;
-      options.steiner_start = steiner > 0;
-      options.two_starts = edge_starts || steiner <= 0;
+      options.steiner_start = steiner > 0 && steiner_start;
+      options.two_starts = edge_starts || !options.steiner_start;
       options.split_at_vertices = split;
       for (std::size_t i = 0; i < pairs.size(); ++i) {
         double cpu = thread_cpu_ms();

@@ -50,10 +50,12 @@ struct GeodesicOptions {
   /// in the strip (funnel algorithm on the unfolded strip, alternated with reroutes; loops are
   /// straightened with one crossing held at a time, alternating between two of them).
   bool funnel_start = true;
-  /// geodesic_between: refine from the shortest path in the context's Steiner-point graph
-  /// (geometry/edge_path_steiner.h), which lies in the corridor of the globally shortest geodesic
-  /// far more often than an edge path. Ignored when the context has no Steiner graph.
-  bool steiner_start = true;
+  /// geodesic_between: also refine whole paths from the shortest path in the context's
+  /// Steiner-point graph (geometry/edge_path_steiner.h). It would start in the globally right
+  /// corridor if the graph's excess were below the gaps between competing geodesics; it is not
+  /// (see GeodesicContext::kDefaultSteinerPoints), so this is off by default. Ignored when the
+  /// context has no Steiner graph.
+  bool steiner_start = false;
   /// geodesic_between: also refine from two edge paths (shortest paths in the plain edge graph
   /// and in the graph with unfolded diagonals) and keep the shortest result. Local methods
   /// settle on the geodesic of the corridor they start in; more corridors find the global one
@@ -63,6 +65,10 @@ struct GeodesicOptions {
   /// their own (a geodesic through a saddle vertex may leave it into another corridor) and keep
   /// the joined, refined legs when they are shorter.
   bool split_at_vertices = true;
+  /// geodesic_between: the legs of split_at_vertices also start from the Steiner graph (when
+  /// the context has one), whatever steiner_start says: legs are short, so their Steiner
+  /// search is cheap.
+  bool steiner_legs = true;
   /// Upper bound on strip changes (reroutes) before giving up (0: 20 + 4 * crossings).
   int max_reroutes = 0;
   /// L-BFGS memory (pairs).
@@ -152,11 +158,13 @@ std::vector<VertexPassage> vertex_passages(const Mesh& mesh, const SurfacePath& 
 /// may run on several threads at once.
 class GeodesicContext {
  public:
-  /// Steiner points per edge of the start graph by default: none. Measured on the 20K bunny
-  /// (bench/README.md, session 4): the Steiner start alone finds the exact geodesic less often
-  /// than the two edge starts (k = 1, 2, 3: 34, 36, 35 of 50 against 41) at 2-6x their time; its
-  /// graph excess (~1e-3) is larger than the gaps between competing geodesics (1e-6 to 1e-4).
-  static constexpr int kDefaultSteinerPoints = 0;
+  /// Steiner points per edge of the start graph by default. Measured on the 20K bunny
+  /// (bench/README.md, session 4): as the start of whole paths the Steiner graph finds the exact
+  /// geodesic less often than the two edge starts (k = 1, 2, 3: 34, 36, 35 of 50 against 41) at
+  /// 2-6x their time (its excess, ~1e-3, exceeds the gaps between competing geodesics, 1e-6 to
+  /// 1e-4); as an extra start for the legs between the vertices a path passes (short, so cheap)
+  /// it adds 2 of 50 (k = 2).
+  static constexpr int kDefaultSteinerPoints = 2;
   /// \param steiner_points_per_edge k of the Steiner graph (0: none; ignored, i.e. none, under
   ///        an anisotropic metric).
   GeodesicContext(const Mesh& mesh, PathMetric metric = {},

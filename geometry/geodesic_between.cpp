@@ -23,6 +23,9 @@ OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfaceP
                                   const SurfacePoint& b, const GeodesicOptions& options,
                                   const EdgePathOptions& edge_options);
 
+// Rounds of split_at_vertices (each one only while the path gets shorter).
+constexpr int kSplitRounds = 3;
+
 }  // namespace
 
 GeodesicContext::GeodesicContext(const Mesh& mesh, PathMetric metric, int steiner_points_per_edge)
@@ -99,31 +102,36 @@ OpenGeodesicResult geodesic_between(const GeodesicContext& context, const Surfac
   // geodesic in another corridor than the one the whole path's strip fixed. Solve the legs
   // between the vertices passed on their own; when they add up to less, join them at the
   // vertices and refine the joined path (it lifts off vertices it need not touch).
+  // The joined path may pass other vertices: split again while it gets shorter.
   const Mesh& mesh = context.mesh();
-  const std::vector<VertexPassage> passages = vertex_passages(mesh, result.path);
-  if (passages.empty()) return result;
-  std::vector<SurfacePoint> points{a};
-  for (const VertexPassage& p : passages) points.push_back(SurfacePoint::at_vertex(p.vertex));
-  points.push_back(b);
-  double legs_length = 0.0;
-  SurfacePath joined;
-  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
-    const OpenGeodesicResult leg = best_of_starts(context, points[i], points[i + 1], options,
-                                                  edge_options);
-    result.init_ms += leg.init_ms;
-    result.refine_ms += leg.refine_ms;
-    result.summary.time_ms += leg.summary.time_ms;
-    if (!leg.summary.converged()) return result;
-    legs_length += leg.summary.final_length;
-    joined = i == 0 ? leg.path : join_at_vertex(mesh, joined, leg.path, points[i].element);
-    if (i > 0 && joined.start_face < 0) return result;
-  }
-  if (!(legs_length < result.summary.final_length * (1.0 - 1e-14))) return result;
-  const auto t0 = Clock::now();
-  GeodesicResult r = refine_path(mesh, joined, context.metric(), options);
-  result.refine_ms += ms_since(t0);
-  result.summary.time_ms += r.summary.time_ms;
-  if (r.summary.converged() && r.summary.final_length < result.summary.final_length) {
+  for (int round = 0; round < kSplitRounds; ++round) {
+    const std::vector<VertexPassage> passages = vertex_passages(mesh, result.path);
+    if (passages.empty()) break;
+    std::vector<SurfacePoint> points{a};
+    for (const VertexPassage& p : passages) points.push_back(SurfacePoint::at_vertex(p.vertex));
+    points.push_back(b);
+    double legs_length = 0.0;
+    SurfacePath joined;
+    bool legs_ok = true;
+    for (std::size_t i = 0; i + 1 < points.size() && legs_ok; ++i) {
+      GeodesicOptions leg_options = options;
+      leg_options.steiner_start = options.steiner_start || options.steiner_legs;
+      const OpenGeodesicResult leg =
+          best_of_starts(context, points[i], points[i + 1], leg_options, edge_options);
+      result.init_ms += leg.init_ms;
+      result.refine_ms += leg.refine_ms;
+      result.summary.time_ms += leg.summary.time_ms;
+      legs_ok = leg.summary.converged();
+      legs_length += leg.summary.final_length;
+      joined = i == 0 ? leg.path : join_at_vertex(mesh, joined, leg.path, points[i].element);
+      legs_ok = legs_ok && joined.start_face >= 0;
+    }
+    if (!legs_ok || !(legs_length < result.summary.final_length * (1.0 - 1e-14))) break;
+    const auto t0 = Clock::now();
+    GeodesicResult r = refine_path(mesh, joined, context.metric(), options);
+    result.refine_ms += ms_since(t0);
+    result.summary.time_ms += r.summary.time_ms;
+    if (!r.summary.converged() || !(r.summary.final_length < result.summary.final_length)) break;
     const double time = result.summary.time_ms;
     result.path = std::move(r.path);
     result.summary = r.summary;
