@@ -416,24 +416,42 @@ struct BatchPair {
   SurfacePoint a, b;
 };
 
+/// A line of a batch file that holds data: its 1-based number, its text and its tokens
+/// (separated by spaces, tabs or ';'). Blank lines and lines starting with '#' are skipped.
+struct BatchLine {
+  int number = 0;
+  std::string text;
+  std::vector<std::string> tokens;
+};
+std::vector<BatchLine> batch_lines(const std::filesystem::path& file) {
+  const std::string text = read_text_file(file);
+  std::istringstream in(text);
+  std::vector<BatchLine> lines;
+  std::string line;
+  int no = 0;
+  while (std::getline(in, line)) {
+    ++no;
+    std::string clean = line;
+    for (char& c : clean)
+      if (c == '\t' || c == '\r' || c == ';') c = ' ';
+    std::istringstream ls(clean);
+    BatchLine bl{no, line, {}};
+    for (std::string tok; ls >> tok;) bl.tokens.push_back(tok);
+    if (bl.tokens.empty() || bl.tokens[0][0] == '#') continue;
+    lines.push_back(std::move(bl));
+  }
+  return lines;
+}
+
 /// Reads and checks every line of a pairs file before anything is solved.
 /// \throw InputError "FILE:LINE: ..." for the first bad line.
 std::vector<BatchPair> read_pairs(const std::filesystem::path& file, const Mesh& mesh,
                                   const ClosestPointQuery& query, double tolerance) {
-  const std::string text = read_text_file(file);
-  std::istringstream in(text);
-  std::string line;
   std::vector<BatchPair> pairs;
-  int no = 0;
-  while (std::getline(in, line)) {
-    ++no;
-    for (char& c : line)
-      if (c == '\t' || c == '\r' || c == ';') c = ' ';
-    std::istringstream ls(line);
-    std::vector<std::string> toks;
-    std::string tok;
-    while (ls >> tok) toks.push_back(tok);
-    if (toks.empty() || toks[0][0] == '#') continue;
+  for (const BatchLine& bl : batch_lines(file)) {
+    const int no = bl.number;
+    const std::string& line = bl.text;
+    const std::vector<std::string>& toks = bl.tokens;
     const std::string at = file.string() + ":" + std::to_string(no) + ": ";
     if (toks.size() != 2) {
       throw InputError(at + "expected two points 'FROM TO' (a vertex index or x,y,z each), got '" +
@@ -560,21 +578,10 @@ struct BatchCurve {
 
 std::vector<BatchCurve> read_curves(const std::filesystem::path& file, const Mesh& mesh,
                                     const EdgeGraph& graph, double tolerance) {
-  const std::string text = read_text_file(file);
-  std::istringstream in(text);
-  std::string line;
   std::vector<BatchCurve> curves;
-  int no = 0;
-  while (std::getline(in, line)) {
-    ++no;
-    std::string clean = line;
-    for (char& c : clean)
-      if (c == '\t' || c == '\r' || c == ';') c = ' ';
-    std::istringstream ls(clean);
-    std::vector<std::string> toks;
-    std::string tok;
-    while (ls >> tok) toks.push_back(tok);
-    if (toks.empty() || toks[0][0] == '#') continue;
+  for (const BatchLine& bl : batch_lines(file)) {
+    const int no = bl.number;
+    const std::vector<std::string>& toks = bl.tokens;
     const std::string at = file.string() + ":" + std::to_string(no) + ": ";
     std::vector<Vec3> points;
     for (const std::string& t : toks) {
