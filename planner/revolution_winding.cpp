@@ -42,7 +42,9 @@ std::vector<Vec2> clip_meridian(const std::vector<Vec2>& m, double x0, double x1
 std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<int>& face_map,
                                          const SpindleAxis& axis, const ClairautPass& pass,
                                          const PatternCandidate& pattern,
-                                         const WindingOptions& options, double* projection_max) {
+                                         const WindingOptions& options, double* projection_max,
+                                         const std::array<std::vector<PassSample>, 2>*
+                                             turnarounds) {
   const std::array<Vec3, 2> frame = axis_frame(axis);
   const std::vector<Vec3> vn = vertex_normals(annulus);
   const ClosestPointQuery query(annulus);
@@ -79,8 +81,21 @@ std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<
     std::vector<FibrePoint> out;
     for (const PassSample& s : smp) out.push_back(place(s.x, s.r, phi0 + s.phi));
     append_circuit_segment(&c, std::move(out), CircuitSegment::Kind::Pass, axis, window);
-    const double d1 = pattern.dwell[1], d0 = pattern.dwell[0];
-    if (d1 > 0.0) {
+    const std::vector<PassSample>* ft[2] = {nullptr, nullptr};
+    for (int e : {0, 1}) {
+      if (turnarounds && !(*turnarounds)[e].empty()) ft[e] = &(*turnarounds)[e];
+    }
+    // A friction turnaround: fibre on the mandrel, laid like a pass.
+    auto friction = [&](const std::vector<PassSample>& t, double phi) {
+      std::vector<FibrePoint> pts;
+      for (const PassSample& q : t) pts.push_back(place(q.x, q.r, phi + q.phi));
+      append_circuit_segment(&c, std::move(pts), CircuitSegment::Kind::Pass, axis, window);
+    };
+    const double d1 = ft[1] ? ft[1]->back().phi : pattern.dwell[1];
+    const double d0 = ft[0] ? ft[0]->back().phi : pattern.dwell[0];
+    if (ft[1]) {
+      friction(*ft[1], phi0 + Phi);
+    } else if (d1 > 0.0) {
       append_circuit_segment(&c, dwell(smp.back().x, smp.back().r, phi0 + Phi, d1),
                              CircuitSegment::Kind::Turnaround, axis, window);
     }
@@ -89,7 +104,9 @@ std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<
       back.push_back(place(it->x, it->r, phi0 + Phi + d1 + (Phi - it->phi)));
     }
     append_circuit_segment(&c, std::move(back), CircuitSegment::Kind::Pass, axis, window);
-    if (d0 > 0.0) {
+    if (ft[0]) {
+      friction(*ft[0], phi0 + 2.0 * Phi + d1);
+    } else if (d0 > 0.0) {
       append_circuit_segment(&c, dwell(smp.front().x, smp.front().r, phi0 + 2.0 * Phi + d1, d0),
                              CircuitSegment::Kind::Turnaround, axis, window);
     }
@@ -112,11 +129,24 @@ RevolutionWinding plan_revolution_winding(const Mesh& annulus, const std::vector
   w.problem = pattern_problem(w.meridian, o);
   if (!w.problem.reachable) return w;
   w.planned = true;
-  w.pattern = choose_pattern(w.problem, o);
-  w.pass = clairaut_pass(w.meridian, w.pattern.c, {fibre_step(o)});
+  if (wants_friction_turnarounds(w.problem, o)) {
+    w.friction = true;
+    w.friction_plan = plan_friction_winding(w.problem, o);
+    w.pattern = w.friction_plan.pattern;
+    w.pass = w.friction_plan.pass;
+  } else {
+    w.pattern = choose_pattern(w.problem, o);
+    w.pass = clairaut_pass(w.meridian, w.pattern.c, {fibre_step(o)});
+  }
   w.geodesic_end = w.pass.turns_around;
+  std::array<std::vector<PassSample>, 2> turns;
+  for (int e : {0, 1}) {
+    if (w.friction && w.friction_plan.friction_end[e]) {
+      turns[e] = w.friction_plan.turnarounds[e].samples;
+    }
+  }
   w.circuits = revolution_circuits(annulus, face_map, axis, w.pass, w.pattern, o,
-                                   &w.projection_max);
+                                   &w.projection_max, &turns);
   return w;
 }
 

@@ -1,0 +1,143 @@
+// Friction turnarounds (planner/friction_winding.h): on a cylinder the joins, turns and the
+// closing slippage against the closed forms of planner/semi_geodesic.h; the shipped
+// configs/pipe_friction.yaml wound end to end with no pins, full measured coverage and every
+// laid point's |k_g/k_n| <= mu; bad input names winding.slippage.
+#include "planner/friction_winding.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "geometry/errors.h"
+#include "planner/pipeline.h"
+#include "tests/test_data.h"
+
+namespace windplan {
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+// The circuit advance on a cylinder of radius R wound between x = 0 and L at angle a0, with the
+// apexes half a band in from the ends, at slippage lambda (closed forms).
+double cylinder_advance(double R, double L, double B, double a0, double lambda) {
+  const double axial = R * (1.0 / std::sin(a0) - 1.0) / lambda;  // join to apex
+  const double pass = L - B - 2.0 * axial;
+  const double turn = -2.0 * std::log(std::tan(0.5 * a0)) / lambda;
+  return 2.0 * std::tan(a0) * pass / R + 2.0 * turn;
+}
+
+TEST(FrictionWinding, CylinderClosesAtTheLargestSlippageBelowTheBound) {
+  const double R = 50, L = 500, B = 12;
+  WindingOptions o;
+  o.angle = 55;
+  o.band_width = B;
+  o.slippage = 0.15;
+  const std::vector<Vec2> m{{0, R}, {L, R}};
+  const PatternProblem pr = pattern_problem(m, o);
+  ASSERT_TRUE(wants_friction_turnarounds(pr, o));
+  const FrictionWinding w = plan_friction_winding(pr, o);
+  const double a0 = 55.0 * M_PI / 180.0, lambda = w.slippage;
+  ASSERT_TRUE(w.friction_end[0] && w.friction_end[1]);
+  EXPECT_LE(lambda, 0.15);
+  EXPECT_GE(lambda, 0.15 / 4.0);
+  const double axial = R * (1.0 / std::sin(a0) - 1.0) / lambda;
+  EXPECT_NEAR(w.turnarounds[0].join_x, B / 2 + axial, 1e-6);
+  EXPECT_NEAR(w.turnarounds[1].join_x, L - B / 2 - axial, 1e-6);
+  EXPECT_NEAR(w.turnarounds[1].apex_x, L - B / 2, 1e-9);
+  EXPECT_NEAR(w.pass.angle, std::tan(a0) * (L - B - 2 * axial) / R, 1e-6);
+  // The advance closes the pattern: K circuits move on by p bands.
+  const int K = w.pattern.circuits, p = w.pattern.skip;
+  const double A = cylinder_advance(R, L, B, a0, lambda);
+  EXPECT_NEAR(w.pattern.advance, A, 1e-6);
+  const double frac = std::fmod(A, kTwoPi) / kTwoPi * K;
+  EXPECT_NEAR(frac, std::round(frac), 1e-6);
+  EXPECT_EQ(static_cast<int>(std::lround(frac)) % K, p);
+  // ... at the largest lambda <= the bound that closes it: the advance at the bound is below
+  // the target, and no target lies between.
+  const double A_bound = cylinder_advance(R, L, B, a0, 0.15);
+  EXPECT_LE(A_bound, A + 1e-9);
+  const double base = kTwoPi * p / K;
+  const double first = base + kTwoPi * std::ceil((A_bound - base) / kTwoPi - 1e-12);
+  EXPECT_NEAR(A, first, 1e-6);
+}
+
+TEST(FrictionWinding, ShippedPipeWindsWithoutPins) {
+  Job job = load_job(test::source_dir() / "configs" / "pipe_friction.yaml");
+  const PipelineResult r = plan_job(job);
+  ASSERT_TRUE(r.clairaut);
+  const PlanMetrics& m = r.plan.metrics;
+  const double mu = job.winding.mu;
+  ASSERT_TRUE(m.friction_turnarounds.planned);
+  EXPECT_LE(r.revolution.friction_plan.slippage, job.winding.slippage);
+  EXPECT_EQ(m.turnarounds.length, 0.0);  // no dwell arc anywhere
+  ASSERT_TRUE(m.coverage.measured());
+  EXPECT_EQ(m.coverage.bare_fraction, 0.0);
+  EXPECT_EQ(m.bridging_length, 0.0);
+  const SpindleAxis& ax = r.plan.axis;
+  const double B = job.winding.band_width, L = 500;
+  int worst_circuit = -1;
+  double worst = 0.0;
+  for (const Circuit& c : r.plan.circuits) {
+    for (const CircuitSegment& s : c.segments) EXPECT_EQ(s.kind, CircuitSegment::Kind::Pass);
+    double x_lo = 1e9, x_hi = -1e9, top = 0.0;
+    for (const FibrePoint& q : c.points) {
+      if (q.slippage > worst) worst = q.slippage, worst_circuit = c.index;
+      const double x = ax.axial(q.position);
+      x_lo = std::min(x_lo, x);
+      x_hi = std::max(x_hi, x);
+      top = std::max(top, q.winding_angle);
+    }
+    // Turns around on the mandrel, the band inside it.
+    EXPECT_NEAR(x_lo, B / 2, 0.5);
+    EXPECT_NEAR(x_hi, L - B / 2, 0.5);
+    EXPECT_GT(top, 89.0);
+  }
+  EXPECT_LE(worst, mu) << "circuit " << worst_circuit;
+  // One continuous fibre: each circuit starts where the previous one ended, and the last ends
+  // where the first began.
+  const int K = static_cast<int>(r.plan.circuits.size());
+  for (int k = 0; k < K; ++k) {
+    const Vec3& end = r.plan.circuits[k].points.back().position;
+    const Vec3& next = r.plan.circuits[(k + 1) % K].points.front().position;
+    EXPECT_LT((end - next).norm(), 0.05) << k;
+  }
+  for (const std::string& w : m.warnings) {
+    EXPECT_EQ(w.find("slippage"), std::string::npos) << w;
+    EXPECT_EQ(w.find("coverage"), std::string::npos) << w;
+  }
+}
+
+TEST(FrictionWinding, BadSlippageNamesTheKey) {
+  const std::string head =
+      "name: p\nmandrel:\n  source: pipe\n  pipe: {radius: 50, length: 300}\n"
+      "winding:\n  angle: 55\n  band_width: 12\n  mu: 0.2\n";
+  for (const char* bad : {"  slippage: -0.1\n", "  slippage: 0.3\n"}) {
+    try {
+      load_job_from_string(head + bad, "/tmp/p.yaml");
+      FAIL() << bad;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("slippage"), std::string::npos) << e.what();
+    }
+  }
+  // At 0.02 each turnaround needs R (1/sin 55 - 1) / 0.02 = 552 mm: not in 300 mm.
+  const Job job = load_job_from_string(head + "  slippage: 0.02\n", "/tmp/p.yaml");
+  try {
+    plan_job(job);
+    FAIL() << "a turnaround longer than the pipe was planned";
+  } catch (const ConfigError& e) {
+    const std::string w = e.what();
+    EXPECT_EQ(w.rfind("winding.slippage = 0.020: ", 0), 0u) << w;
+    const double need = 2.0 * (50.0 * (1.0 / std::sin(55.0 * M_PI / 180.0) - 1.0) / 0.02 + 6.0);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "need %.1f mm", need);
+    EXPECT_NE(w.find(buf), std::string::npos) << w << " / " << buf;
+    EXPECT_NE(w.find("300.0 mm long"), std::string::npos) << w;
+  }
+  // Slippage 0 keeps the dwells (pins).
+  const PipelineResult r = plan_job(load_job_from_string(head, "/tmp/p.yaml"));
+  EXPECT_FALSE(r.plan.metrics.friction_turnarounds.planned);
+  EXPECT_GT(r.plan.metrics.turnarounds.length, 0.0);
+}
+
+}  // namespace
+}  // namespace windplan
