@@ -81,9 +81,9 @@ Trial evaluate(const Setup& su, double lambda) {
     throw ConfigError(head + "friction cannot turn the fibre around at the " + end_name(e) +
                       " end (apex at " + num(tr.t[e].apex_x, 1) + " mm along the axis): the " +
                       "mandrel widens there faster than |k_g/k_n| <= " + num(o.slippage, 3) +
-                      " can turn a fibre at " + num(std::asin(su.c / tr.t[e].apex_r) * 180.0 / M_PI, 2) +
-                      " deg; " + raise + ", raise the winding angle, or wind that end on pins " +
-                      "(slippage 0)");
+                      " can turn a fibre at " +
+                      num(std::asin(su.c / tr.t[e].apex_r) * 180.0 / M_PI, 2) + " deg; " + raise +
+                      ", raise the winding angle, or wind that end on pins " + "(slippage 0)");
   }
   double need = 0.0;
   std::ostringstream per;
@@ -94,8 +94,8 @@ Trial evaluate(const Setup& su, double lambda) {
     per << (per.tellp() > 0 ? ", " : "") << num(ext, 1) << " mm at the " << end_name(e) << " end";
   }
   const double region = pr.meridian.back().x() - pr.meridian.front().x();
-  throw ConfigError(head + "the friction turnarounds need " + num(need, 1) + " mm along the axis (" +
-                    per.str() + ": from the pass angle " +
+  throw ConfigError(head + "the friction turnarounds need " + num(need, 1) +
+                    " mm along the axis (" + per.str() + ": from the pass angle " +
                     num(std::asin(std::min(1.0, su.c / pr.largest_radius)) * 180.0 / M_PI, 2) +
                     " deg to 90 deg at |k_g/k_n| <= " + num(o.slippage, 3) + ", apex half a " +
                     "band in from the end) and a geodesic pass between them, but the wound " +
@@ -113,7 +113,8 @@ std::vector<PatternCandidate> candidates(const PatternProblem& pr, const Winding
               all.end());
     if (all.empty()) {
       for (int p = K == 1 ? 0 : 1; p < std::max(1, K); ++p) {
-        if (std::gcd(p, K) == 1) all.push_back(pattern_for(pr, K, p, pr.c_lo, pr.c_hi, pr.requested_c));
+        if (std::gcd(p, K) == 1)
+          all.push_back(pattern_for(pr, K, p, pr.c_lo, pr.c_hi, pr.requested_c));
       }
     }
   }

@@ -74,6 +74,67 @@ std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<
   };
   const int K = pattern.circuits;
   std::vector<Circuit> circuits(K);
+  const bool friction_ends =
+      turnarounds && (!(*turnarounds)[0].empty() || !(*turnarounds)[1].empty());
+  if (friction_ends) {
+    // Friction turnarounds: the fibre is one smooth curve from circuit to circuit, so each
+    // circuit is annotated as a whole, padded with a window of its neighbours (the circuit
+    // turned by -+ the advance), and the segment ends are no ends of the annotation.
+    std::vector<std::array<double, 3>> cs;  // circuit 0: (x, r, phi)
+    std::vector<int> ends;                  // the last sample of each segment
+    auto add = [&](const std::vector<PassSample>& v, double phi, bool reverse) {
+      for (std::size_t i = cs.empty() ? 0 : 1; i < v.size(); ++i) {
+        const PassSample& q = reverse ? v[v.size() - 1 - i] : v[i];
+        cs.push_back({q.x, q.r, reverse ? phi + (Phi - q.phi) : phi + q.phi});
+      }
+      ends.push_back(static_cast<int>(cs.size()) - 1);
+    };
+    const double d1 = (*turnarounds)[1].empty() ? 0.0 : (*turnarounds)[1].back().phi;
+    add(smp, 0.0, false);
+    if (!(*turnarounds)[1].empty()) add((*turnarounds)[1], Phi, false);
+    add(smp, Phi + d1, true);
+    if (!(*turnarounds)[0].empty()) add((*turnarounds)[0], 2.0 * Phi + d1, false);
+    const double A = pattern.advance;
+    auto planned = [&](const std::array<double, 3>& q, double shift) {
+      return point_on_axis_frame(axis, frame, q[0], q[1], q[2] + shift);
+    };
+    // How many samples of padding hold a window of fibre at each end.
+    int pad_head = 0, pad_tail = 0;
+    for (double run = 0.0; pad_head + 1 < static_cast<int>(cs.size()) && run < window;) {
+      run += (planned(cs[pad_head + 1], 0) - planned(cs[pad_head], 0)).norm();
+      ++pad_head;
+    }
+    for (double run = 0.0; pad_tail + 1 < static_cast<int>(cs.size()) && run < window;) {
+      const std::size_t i = cs.size() - 1 - pad_tail;
+      run += (planned(cs[i], 0) - planned(cs[i - 1], 0)).norm();
+      ++pad_tail;
+    }
+    const int n = static_cast<int>(cs.size());
+    for (int k = 0; k < K; ++k) {
+      Circuit& c = circuits[k];
+      c.index = k;
+      const double phi0 = std::fmod(k * A, kTwoPi);
+      std::vector<FibrePoint> pts;
+      for (int i = n - 1 - pad_tail; i < n - 1; ++i) {
+        pts.push_back(place(cs[i][0], cs[i][1], phi0 - A + cs[i][2]));
+      }
+      for (const auto& q : cs) pts.push_back(place(q[0], q[1], phi0 + q[2]));
+      for (int i = 1; i <= pad_head; ++i) {
+        pts.push_back(place(cs[i][0], cs[i][1], phi0 + A + cs[i][2]));
+      }
+      annotate_fibre_points(&pts, axis, window);
+      const double s0 = pts[pad_tail].s;
+      c.points.assign(pts.begin() + pad_tail, pts.begin() + pad_tail + n);
+      for (FibrePoint& q : c.points) q.s -= s0;
+      int first = 0;
+      for (int e : ends) {
+        c.segments.push_back({CircuitSegment::Kind::Pass, first, e});
+        first = e;
+      }
+    }
+    if (projection_max) *projection_max = worst;
+    return circuits;
+  }
   for (int k = 0; k < K; ++k) {
     Circuit& c = circuits[k];
     c.index = k;
@@ -81,21 +142,8 @@ std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<
     std::vector<FibrePoint> out;
     for (const PassSample& s : smp) out.push_back(place(s.x, s.r, phi0 + s.phi));
     append_circuit_segment(&c, std::move(out), CircuitSegment::Kind::Pass, axis, window);
-    const std::vector<PassSample>* ft[2] = {nullptr, nullptr};
-    for (int e : {0, 1}) {
-      if (turnarounds && !(*turnarounds)[e].empty()) ft[e] = &(*turnarounds)[e];
-    }
-    // A friction turnaround: fibre on the mandrel, laid like a pass.
-    auto friction = [&](const std::vector<PassSample>& t, double phi) {
-      std::vector<FibrePoint> pts;
-      for (const PassSample& q : t) pts.push_back(place(q.x, q.r, phi + q.phi));
-      append_circuit_segment(&c, std::move(pts), CircuitSegment::Kind::Pass, axis, window);
-    };
-    const double d1 = ft[1] ? ft[1]->back().phi : pattern.dwell[1];
-    const double d0 = ft[0] ? ft[0]->back().phi : pattern.dwell[0];
-    if (ft[1]) {
-      friction(*ft[1], phi0 + Phi);
-    } else if (d1 > 0.0) {
+    const double d1 = pattern.dwell[1], d0 = pattern.dwell[0];
+    if (d1 > 0.0) {
       append_circuit_segment(&c, dwell(smp.back().x, smp.back().r, phi0 + Phi, d1),
                              CircuitSegment::Kind::Turnaround, axis, window);
     }
@@ -104,9 +152,7 @@ std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<
       back.push_back(place(it->x, it->r, phi0 + Phi + d1 + (Phi - it->phi)));
     }
     append_circuit_segment(&c, std::move(back), CircuitSegment::Kind::Pass, axis, window);
-    if (ft[0]) {
-      friction(*ft[0], phi0 + 2.0 * Phi + d1);
-    } else if (d0 > 0.0) {
+    if (d0 > 0.0) {
       append_circuit_segment(&c, dwell(smp.front().x, smp.front().r, phi0 + 2.0 * Phi + d1, d0),
                              CircuitSegment::Kind::Turnaround, axis, window);
     }

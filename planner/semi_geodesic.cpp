@@ -116,8 +116,8 @@ FrictionTurnaround friction_turnaround(const MeridianLine& m, int end, double ap
   t.apex_r = apex.y();
   if (!(c > 0.0 && c < apex.y())) {
     std::ostringstream s;
-    s << "friction_turnaround: the Clairaut constant " << c << " mm must be in (0, "
-      << apex.y() << " mm), the apex radius";
+    s << "friction_turnaround: the Clairaut constant " << c << " mm must be in (0, " << apex.y()
+      << " mm), the apex radius";
     throw InputError(s.str());
   }
   SemiGeodesicOptions o;
@@ -126,11 +126,10 @@ FrictionTurnaround friction_turnaround(const MeridianLine& m, int end, double ap
   o.step = step;
   o.max_length = 200.0 * std::max(m.length(), apex.y());
   // Leaving half: from the apex until r sin a falls to c.
-  const SemiGeodesicPath half = semi_geodesic(
-      m, MeridianState{apex_s, 0.5 * M_PI, 0.0}, o,
-      [c](const MeridianLine& ml, const MeridianState& y) {
-        return ml.point(y.s).y() * std::sin(y.a) - c;
-      });
+  const SemiGeodesicPath half = semi_geodesic(m, MeridianState{apex_s, 0.5 * M_PI, 0.0}, o,
+                                              [c](const MeridianLine& ml, const MeridianState& y) {
+                                                return ml.point(y.s).y() * std::sin(y.a) - c;
+                                              });
   t.reached = half.event;
   const Vec2 join = m.point(half.end.s);
   t.join_s = half.end.s;

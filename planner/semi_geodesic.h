@@ -9,8 +9,9 @@
 // dr/ds = sin psi):
 //   ds/dl   = cos a,
 //   dphi/dl = sin a / r,
-//   k_g     = da/dl + sin(a) sin(psi) / r          (Liouville's formula for a surface of revolution)
-//   k_n     = k_m cos^2 a + sin^2 a |cos psi| / r  (Euler / Meusnier; k_m the meridian's curvature)
+//   k_g     = da/dl + sin(a) sin(psi) / r          (Liouville's formula for a surface of
+//   revolution) k_n     = k_m cos^2 a + sin^2 a |cos psi| / r  (Euler / Meusnier; k_m the
+//   meridian's curvature)
 // A geodesic has k_g = 0: da/dl = -sin a sin psi / r, i.e. d(r sin a)/dl = r cos a k_g = 0, which
 // is Clairaut's r sin a = c. A path that leans on friction with slippage lambda = |k_g / k_n|
 // on the side sigma = +-1 (sigma k_g > 0) obeys
@@ -52,9 +53,9 @@
 namespace windplan {
 
 struct SemiGeodesicOptions {
-  double slippage = 0.0;   ///< lambda = |k_g / k_n| held along the path (>= 0; 0: a geodesic)
-  int side = 1;            ///< sigma: +1 friction turns a towards pi, -1 towards 0
-  double step = 2.0;       ///< longest fibre length per step, also between samples (mm, > 0)
+  double slippage = 0.0;     ///< lambda = |k_g / k_n| held along the path (>= 0; 0: a geodesic)
+  int side = 1;              ///< sigma: +1 friction turns a towards pi, -1 towards 0
+  double step = 2.0;         ///< longest fibre length per step, also between samples (mm, > 0)
   double tolerance = 1e-10;  ///< per-step error of the step-doubling estimate (rad, > 0)
   /// Stop after this much fibre (mm, > 0): a path that never meets its event.
   double max_length = 1e5;
@@ -97,10 +98,10 @@ std::array<double, 3> semi_geodesic_rate(const MeridianLine& m, const MeridianSt
 /// with `angle` the winding angle a in (0, pi) and `phi` from start.phi.
 struct SemiGeodesicPath {
   std::vector<PassSample> samples;
-  std::vector<double> s;   ///< meridian length of each sample (mm)
-  bool event = false;      ///< false: stopped at max_length
+  std::vector<double> s;  ///< meridian length of each sample (mm)
+  bool event = false;     ///< false: stopped at max_length
   MeridianState end;
-  double length = 0.0;     ///< fibre length (mm)
+  double length = 0.0;  ///< fibre length (mm)
   int steps = 0, rejected = 0;
 };
 
@@ -111,18 +112,18 @@ SemiGeodesicPath semi_geodesic(const MeridianLine& m, const MeridianState& start
 /// A friction turnaround (see the header comment): from where the pass meets it, through the
 /// apex, back to the same parallel.
 struct FrictionTurnaround {
-  int end = 1;                 ///< 0: at the meridian's start, 1: at its far end
-  double slippage = 0.0;       ///< lambda used (the same at every point)
-  double c = 0.0;              ///< the pass's Clairaut constant (mm)
+  int end = 1;            ///< 0: at the meridian's start, 1: at its far end
+  double slippage = 0.0;  ///< lambda used (the same at every point)
+  double c = 0.0;         ///< the pass's Clairaut constant (mm)
   double apex_s = 0.0, apex_x = 0.0, apex_r = 0.0;  ///< apex on the meridian (mm)
   double join_s = 0.0, join_x = 0.0, join_r = 0.0;  ///< where the geodesic pass joins (mm)
-  double pass_angle = 0.0;     ///< winding angle where the pass joins, asin(c / join_r) (rad)
-  double length = 0.0;         ///< fibre length carried by friction, both halves (mm)
-  double angle = 0.0;          ///< Theta: the mandrel's turn over the turnaround (rad)
+  double pass_angle = 0.0;  ///< winding angle where the pass joins, asin(c / join_r) (rad)
+  double length = 0.0;      ///< fibre length carried by friction, both halves (mm)
+  double angle = 0.0;       ///< Theta: the mandrel's turn over the turnaround (rad)
   /// Samples from the join through the apex back to the join, phi from 0 to angle; `angle` in
   /// (0, pi) as the fibre runs (towards the end, then back).
   std::vector<PassSample> samples;
-  bool reached = true;         ///< false: friction never brought r sin a down to c
+  bool reached = true;  ///< false: friction never brought r sin a down to c
 };
 
 /// The turnaround at `end` of `m` with its apex at meridian length apex_s, slippage lambda > 0
@@ -134,8 +135,7 @@ FrictionTurnaround friction_turnaround(const MeridianLine& m, int end, double ap
 // ---- template implementation ----
 
 namespace semi_geodesic_detail {
-MeridianState rk4(const MeridianLine& m, const MeridianState& y, double h, double lambda,
-                  int side);
+MeridianState rk4(const MeridianLine& m, const MeridianState& y, double h, double lambda, int side);
 PassSample sample_of(const MeridianLine& m, const MeridianState& y, double length);
 }  // namespace semi_geodesic_detail
 
@@ -157,8 +157,8 @@ SemiGeodesicPath semi_geodesic(const MeridianLine& m, const MeridianState& start
   while (l < o.max_length) {
     h = std::min({h, o.step, o.max_length - l});
     const MeridianState full = rk4(m, y, h, o.slippage, o.side);
-    const MeridianState half = rk4(m, rk4(m, y, 0.5 * h, o.slippage, o.side), 0.5 * h,
-                                   o.slippage, o.side);
+    const MeridianState half =
+        rk4(m, rk4(m, y, 0.5 * h, o.slippage, o.side), 0.5 * h, o.slippage, o.side);
     const double err = std::max({std::abs(full.a - half.a), std::abs(full.phi - half.phi),
                                  std::abs(full.s - half.s) / std::max(1.0, m.point(y.s).y())});
     if (err > o.tolerance && h > 1e-6) {
@@ -172,8 +172,8 @@ SemiGeodesicPath semi_geodesic(const MeridianLine& m, const MeridianState& start
       double lo = 0.0, hi = h;
       for (int it = 0; it < 60; ++it) {
         const double mid = 0.5 * (lo + hi);
-        const MeridianState t = rk4(m, rk4(m, y, 0.5 * mid, o.slippage, o.side), 0.5 * mid,
-                                    o.slippage, o.side);
+        const MeridianState t =
+            rk4(m, rk4(m, y, 0.5 * mid, o.slippage, o.side), 0.5 * mid, o.slippage, o.side);
         ((event(m, t) < 0.0) != neg0 ? hi : lo) = mid;
       }
       hn = hi;

@@ -61,49 +61,68 @@ TEST(FrictionWinding, CylinderClosesAtTheLargestSlippageBelowTheBound) {
   EXPECT_NEAR(A, first, 1e-6);
 }
 
+// The shipped pipe, the shipped cone (its pin rings replaced by friction at mu 0.3) and a pipe
+// wound between stations: no pins, no dwell arc, full cover, one continuous fibre, every laid
+// point's measured |k_g/k_n| <= mu.
 TEST(FrictionWinding, ShippedPipeWindsWithoutPins) {
-  Job job = load_job(test::source_dir() / "configs" / "pipe_friction.yaml");
-  const PipelineResult r = plan_job(job);
-  ASSERT_TRUE(r.clairaut);
-  const PlanMetrics& m = r.plan.metrics;
-  const double mu = job.winding.mu;
-  ASSERT_TRUE(m.friction_turnarounds.planned);
-  EXPECT_LE(r.revolution.friction_plan.slippage, job.winding.slippage);
-  EXPECT_EQ(m.turnarounds.length, 0.0);  // no dwell arc anywhere
-  ASSERT_TRUE(m.coverage.measured());
-  EXPECT_EQ(m.coverage.bare_fraction, 0.0);
-  EXPECT_EQ(m.bridging_length, 0.0);
-  const SpindleAxis& ax = r.plan.axis;
-  const double B = job.winding.band_width, L = 500;
-  int worst_circuit = -1;
-  double worst = 0.0;
-  for (const Circuit& c : r.plan.circuits) {
-    for (const CircuitSegment& s : c.segments) EXPECT_EQ(s.kind, CircuitSegment::Kind::Pass);
-    double x_lo = 1e9, x_hi = -1e9, top = 0.0;
-    for (const FibrePoint& q : c.points) {
-      if (q.slippage > worst) worst = q.slippage, worst_circuit = c.index;
-      const double x = ax.axial(q.position);
-      x_lo = std::min(x_lo, x);
-      x_hi = std::max(x_hi, x);
-      top = std::max(top, q.winding_angle);
+  std::vector<std::pair<std::string, Job>> jobs;
+  jobs.emplace_back("pipe_friction",
+                    load_job(test::source_dir() / "configs" / "pipe_friction.yaml"));
+  jobs.emplace_back("cone", load_job(test::source_dir() / "configs" / "cone.yaml"));
+  jobs.back().second.winding.mu = 0.3;
+  jobs.back().second.winding.slippage = 0.25;
+  jobs.emplace_back("stations", jobs.front().second);
+  jobs.back().second.winding.start_station = 40;
+  jobs.back().second.winding.end_station = 460;
+  for (auto& [name, job] : jobs) {
+    SCOPED_TRACE(name);
+    job.cutlines.clear();
+    const PipelineResult r = plan_job(job);
+    ASSERT_TRUE(r.clairaut);
+    const PlanMetrics& m = r.plan.metrics;
+    const double mu = job.winding.mu;
+    ASSERT_TRUE(m.friction_turnarounds.planned);
+    EXPECT_LE(r.revolution.friction_plan.slippage, job.winding.slippage);
+    EXPECT_EQ(m.turnarounds.length, 0.0);  // no dwell arc anywhere
+    ASSERT_TRUE(m.coverage.measured());
+    EXPECT_EQ(m.coverage.bare_fraction, 0.0);
+    EXPECT_EQ(m.bridging_length, 0.0);
+    const SpindleAxis& ax = r.plan.axis;
+    const double B = job.winding.band_width;
+    const double x0 = job.winding.has_start_station() ? job.winding.start_station : 0.0;
+    const double L = job.winding.has_end_station() ? job.winding.end_station
+                     : name == "cone"              ? 400.0
+                                                   : 500.0;
+    int worst_circuit = -1;
+    double worst = 0.0;
+    for (const Circuit& c : r.plan.circuits) {
+      for (const CircuitSegment& s : c.segments) EXPECT_EQ(s.kind, CircuitSegment::Kind::Pass);
+      double x_lo = 1e9, x_hi = -1e9, top = 0.0;
+      for (const FibrePoint& q : c.points) {
+        if (q.slippage > worst) worst = q.slippage, worst_circuit = c.index;
+        const double x = ax.axial(q.position);
+        x_lo = std::min(x_lo, x);
+        x_hi = std::max(x_hi, x);
+        top = std::max(top, q.winding_angle);
+      }
+      // Turns around on the mandrel, the band inside it.
+      EXPECT_NEAR(x_lo, x0 + B / 2, 0.5);
+      EXPECT_NEAR(x_hi, L - B / 2, 0.5);
+      EXPECT_GT(top, 89.0);
     }
-    // Turns around on the mandrel, the band inside it.
-    EXPECT_NEAR(x_lo, B / 2, 0.5);
-    EXPECT_NEAR(x_hi, L - B / 2, 0.5);
-    EXPECT_GT(top, 89.0);
-  }
-  EXPECT_LE(worst, mu) << "circuit " << worst_circuit;
-  // One continuous fibre: each circuit starts where the previous one ended, and the last ends
-  // where the first began.
-  const int K = static_cast<int>(r.plan.circuits.size());
-  for (int k = 0; k < K; ++k) {
-    const Vec3& end = r.plan.circuits[k].points.back().position;
-    const Vec3& next = r.plan.circuits[(k + 1) % K].points.front().position;
-    EXPECT_LT((end - next).norm(), 0.05) << k;
-  }
-  for (const std::string& w : m.warnings) {
-    EXPECT_EQ(w.find("slippage"), std::string::npos) << w;
-    EXPECT_EQ(w.find("coverage"), std::string::npos) << w;
+    EXPECT_LE(worst, mu) << "circuit " << worst_circuit;
+    // One continuous fibre: each circuit starts where the previous one ended, and the last ends
+    // where the first began.
+    const int K = static_cast<int>(r.plan.circuits.size());
+    for (int k = 0; k < K; ++k) {
+      const Vec3& end = r.plan.circuits[k].points.back().position;
+      const Vec3& next = r.plan.circuits[(k + 1) % K].points.front().position;
+      EXPECT_LT((end - next).norm(), 0.05) << k;
+    }
+    for (const std::string& w : m.warnings) {
+      EXPECT_EQ(w.find("slippage"), std::string::npos) << w;
+      EXPECT_EQ(w.find("coverage"), std::string::npos) << w;
+    }
   }
 }
 

@@ -22,12 +22,12 @@ TEST(SemiGeodesic, CylinderFollowsTheClosedForm) {
   SemiGeodesicOptions o;
   o.slippage = lambda;
   o.step = 1.0;
-  const SemiGeodesicPath p = semi_geodesic(
-      m, {10.0, a0, 0.0}, o,
-      [](const MeridianLine&, const MeridianState& y) { return y.a - 0.5 * M_PI; });
+  const SemiGeodesicPath p =
+      semi_geodesic(m, {10.0, a0, 0.0}, o,
+                    [](const MeridianLine&, const MeridianState& y) { return y.a - 0.5 * M_PI; });
   ASSERT_TRUE(p.event);
   EXPECT_NEAR(p.end.a, 0.5 * M_PI, 1e-9);
-  EXPECT_NEAR(p.length, R * cot(a0) / lambda, 1e-6);                       // fibre length
+  EXPECT_NEAR(p.length, R * cot(a0) / lambda, 1e-6);                           // fibre length
   EXPECT_NEAR(p.end.s - 10.0, R * (1.0 / std::sin(a0) - 1.0) / lambda, 1e-6);  // axial
   EXPECT_NEAR(p.end.phi, -std::log(std::tan(0.5 * a0)) / lambda, 1e-6);
   ASSERT_GT(p.samples.size(), 100u);
