@@ -69,7 +69,7 @@ int run_patterns(const std::vector<std::string>& argv) {
   co.band_width = wo.band_width;
   co.stations = wo.coverage_stations;
   for (const PatternCandidate& k : all) {
-    const ClairautPass pass = clairaut_pass(meridian, k.c, {std::clamp(0.125 * wo.band_width, 0.25, 2.0)});
+    const ClairautPass pass = clairaut_pass(meridian, k.c, {fibre_step(wo)});
     const std::vector<Circuit> circuits =
         revolution_circuits(md.winding.mesh, {}, md.axis, pass, k, wo);
     rows.push_back({k, measure_coverage(md.winding.mesh, md.axis, circuits, co)});
@@ -127,7 +127,7 @@ int run_patterns(const std::vector<std::string>& argv) {
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     std::snprintf(buf, sizeof buf,
-                  "%s %4d %4d  %10.3f  %14.3f  %9.3f  %10.4f  %5.3f  %7.2f  %7.2f  %11.2f  %5d  "
+                  "%s %4d %4d  %10.3f  %14.3f  %9.3f  %10.4f  %5.3f  %7.2f  %7.2f  %11.2f %9.2f  %5d  "
                   "%5.2f\n",
                   i == 0 ? "*" : " ", r.k.circuits, r.k.skip, r.k.angle_deg, r.k.c, r.k.moved,
                   r.k.turns_per_pass, r.k.cover_factor, 100.0 * r.cov.bare_fraction,

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <memory>
 
+#include "geometry/closest_point.h"
 #include "geometry/errors.h"
 #include "planner/cutlines.h"
 
@@ -50,6 +53,64 @@ double locate(const Loop& l, const Vec3& q, Vec3* tangent) {
     }
   }
   return u;
+}
+
+// The longest closed contour {h = level} of a per-vertex field on a triangle mesh (empty when
+// none closes): one segment per face the level crosses, chained through the crossed edges.
+std::vector<Vec3> level_loop(const Mesh& m, const std::vector<double>& h, double level) {
+  auto above = [&](int v) { return h[v] >= level; };
+  auto key = [](int a, int b) { return a < b ? std::make_pair(a, b) : std::make_pair(b, a); };
+  std::map<std::pair<int, int>, std::vector<int>> faces_of_edge;  // crossed edge -> faces
+  std::map<int, std::array<std::pair<int, int>, 2>> face_edges;   // face -> its two crossed edges
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const Tri& t = m.triangle(f);
+    std::vector<std::pair<int, int>> crossed;
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      if (above(a) != above(b)) crossed.push_back(key(a, b));
+    }
+    if (crossed.size() != 2) continue;
+    face_edges[f] = {crossed[0], crossed[1]};
+    for (const auto& e : crossed) faces_of_edge[e].push_back(f);
+  }
+  auto point = [&](const std::pair<int, int>& e) {
+    const double t = (level - h[e.first]) / (h[e.second] - h[e.first]);
+    return Vec3(m.position(e.first) + t * (m.position(e.second) - m.position(e.first)));
+  };
+  std::vector<Vec3> best;
+  double best_len = 0.0;
+  std::map<int, bool> used;
+  for (const auto& [f0, edges] : face_edges) {
+    if (used[f0]) continue;
+    std::vector<Vec3> loop;
+    int f = f0;
+    std::pair<int, int> e = edges[0];
+    bool closed = false;
+    while (true) {
+      used[f] = true;
+      const auto& fe = face_edges[f];
+      const std::pair<int, int> next = fe[0] == e ? fe[1] : fe[0];
+      loop.push_back(point(next));
+      const std::vector<int>& nb = faces_of_edge[next];
+      int g = -1;
+      for (int x : nb) {
+        if (x != f) g = x;
+      }
+      if (g < 0) break;  // the mesh boundary: an open contour
+      if (g == f0) {
+        closed = true;
+        break;
+      }
+      if (used[g]) break;
+      f = g;
+      e = next;
+    }
+    if (!closed || loop.size() < 3) continue;
+    double len = 0.0;
+    for (std::size_t i = 0; i < loop.size(); ++i) len += (loop[(i + 1) % loop.size()] - loop[i]).norm();
+    if (len > best_len) best_len = len, best = std::move(loop);
+  }
+  return best;
 }
 
 struct Sweep {
@@ -182,8 +243,40 @@ CoverageReport measure_coverage(const Mesh& surface, const SpindleAxis& axis,
   }
   CoverageReport rep;
   if (passes.empty()) return rep;
-  const double margin = std::isnan(options.end_margin) ? options.band_width : options.end_margin;
-  const double lo = xa + margin, hi = xb - margin;
+  // The station coordinate of a point: its axial position, or the height field's value at its
+  // closest point on the surface.
+  const std::vector<double>* hf = options.height;
+  if (hf && static_cast<int>(hf->size()) != surface.num_vertices()) {
+    throw InputError("coverage: the height field has " + std::to_string(hf->size()) +
+                     " values for " + std::to_string(surface.num_vertices()) + " vertices");
+  }
+  std::unique_ptr<ClosestPointQuery> cpq;
+  std::vector<std::vector<double>> coord(passes.size());
+  double lo = 0.0, hi = 0.0;
+  if (hf) {
+    cpq = std::make_unique<ClosestPointQuery>(surface);
+    double ha = std::numeric_limits<double>::infinity(), hb = -ha;
+    for (std::size_t k = 0; k < passes.size(); ++k) {
+      for (const Vec3& p : passes[k]) {
+        const ClosestPointQuery::Hit hit = cpq->closest(p);
+        const Tri& t = surface.triangle(hit.point.element);
+        const Vec3& b = hit.point.bary;
+        coord[k].push_back(b[0] * (*hf)[t[0]] + b[1] * (*hf)[t[1]] + b[2] * (*hf)[t[2]]);
+        ha = std::min(ha, coord[k].back());
+        hb = std::max(hb, coord[k].back());
+      }
+    }
+    lo = ha + 0.05 * (hb - ha);
+    hi = hb - 0.05 * (hb - ha);
+  } else {
+    for (std::size_t k = 0; k < passes.size(); ++k) {
+      for (const Vec3& p : passes[k]) coord[k].push_back(axis.axial(p));
+    }
+    const double margin =
+        std::isnan(options.end_margin) ? options.band_width : options.end_margin;
+    lo = xa + margin;
+    hi = xb - margin;
+  }
   if (!(hi > lo)) return rep;
   const double B = options.band_width;
   double plies_sum = 0.0;
@@ -191,21 +284,31 @@ CoverageReport measure_coverage(const Mesh& surface, const SpindleAxis& axis,
   for (int k = 0; k < options.stations; ++k) {
     const double x = lo + (hi - lo) * (k + 0.5) / options.stations;
     Loop loop;
-    try {
-      loop = make_loop(
-          axial_plane_section(surface, d, d.dot(axis.origin) + x, axis, "coverage station").points);
-    } catch (const InputError&) {
-      ++rep.skipped;
-      continue;
+    if (hf) {
+      const std::vector<Vec3> pts = level_loop(surface, *hf, x);
+      if (pts.empty()) {
+        ++rep.skipped;
+        continue;
+      }
+      loop = make_loop(pts);
+    } else {
+      try {
+        loop = make_loop(axial_plane_section(surface, d, d.dot(axis.origin) + x, axis,
+                                             "coverage station").points);
+      } catch (const InputError&) {
+        ++rep.skipped;
+        continue;
+      }
     }
     if (!(loop.length > 0.0)) {
       ++rep.skipped;
       continue;
     }
     std::array<std::vector<Band>, 2> fam;
-    for (const std::vector<Vec3>& p : passes) {
+    for (std::size_t k = 0; k < passes.size(); ++k) {
+      const std::vector<Vec3>& p = passes[k];
       for (std::size_t i = 1; i < p.size(); ++i) {
-        const double fa = axis.axial(p[i - 1]) - x, fb = axis.axial(p[i]) - x;
+        const double fa = coord[k][i - 1] - x, fb = coord[k][i] - x;
         if (!((fa < 0.0 && fb >= 0.0) || (fa >= 0.0 && fb < 0.0))) continue;
         const double t = fa / (fa - fb);
         const Vec3 q = p[i - 1] + t * (p[i] - p[i - 1]);
@@ -215,7 +318,7 @@ CoverageReport measure_coverage(const Mesh& surface, const SpindleAxis& axis,
         b.u = locate(loop, q, &tau);
         b.sin = std::max(1e-3, dir.cross(tau).norm());
         b.trace = B / b.sin;
-        fam[dir.dot(d) > 0.0 ? 0 : 1].push_back(b);
+        fam[fb > fa ? 0 : 1].push_back(b);  // running up the station coordinate, or back
       }
     }
     StationCoverage st;

@@ -24,6 +24,9 @@
 // - spacing: the distances between neighbouring band centres of a family, across the band; its
 //   coefficient of variation is 0 for evenly spread bands.
 // Stations whose plane does not cut the mandrel in a loop around the axis are skipped (counted).
+// Off a shape of revolution a plane normal to the axis cuts a bent tube obliquely, so there the
+// stations are the level sets of a height field of the wound region (CoverageOptions::height),
+// its natural cross-sections; StationCoverage::station is then the level (dimensionless).
 // Units: mm.
 #include <array>
 #include <string>
@@ -41,6 +44,11 @@ struct CoverageOptions {
   /// Distance of the first and last station from the axial extremes of the passes (mm, >= 0;
   /// NaN: one band width).
   double end_margin = std::nan("");
+  /// Off shapes of revolution: a per-vertex field of `surface` rising from one end of the wound
+  /// region to the other (the harmonic height h in [0, 1], planner/harmonic.h, a property of the
+  /// mandrel, not of the paths); the stations are then its level sets, spread over the range of
+  /// h on the passes (5% in from each end), instead of planes normal to the axis. null: planes.
+  const std::vector<double>* height = nullptr;
   bool is_valid(std::string* why) const;
 };
 

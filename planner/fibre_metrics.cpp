@@ -153,6 +153,21 @@ void add_stability_warnings(PlanMetrics* metrics, double pass_slip_length,
   }
 }
 
+// A pass's length, end angles and radii and largest slippage, read off its circuit segment.
+void fill_pass_figures(const Circuit& c, const CircuitSegment& seg, const SpindleAxis& axis,
+                       PassReport* r) {
+  const FibrePoint& a = c.points[seg.first];
+  const FibrePoint& b = c.points[seg.last];
+  r->length = b.s - a.s;
+  r->angle_start = a.winding_angle;
+  r->angle_end = b.winding_angle;
+  r->radius_start = axis.radius(a.position);
+  r->radius_end = axis.radius(b.position);
+  for (int j = seg.first; j <= seg.last; ++j) {
+    r->max_slippage = std::max(r->max_slippage, c.points[j].slippage);
+  }
+}
+
 }  // namespace
 
 Vec3 point_normal(const Mesh& m, const std::vector<Vec3>& vn, const SurfacePoint& p) {
@@ -390,17 +405,7 @@ std::vector<PassReport> pass_reports(const HelixPlan& plan, const std::vector<Ci
     const Circuit& c = circuits[p.circuit];
     int seg_index = p.hand == 1 ? 0 : 2;
     if (seg_index < static_cast<int>(c.segments.size())) {
-      const CircuitSegment& seg = c.segments[seg_index];
-      const FibrePoint& a = c.points[seg.first];
-      const FibrePoint& b = c.points[seg.last];
-      r.length = b.s - a.s;
-      r.angle_start = a.winding_angle;
-      r.angle_end = b.winding_angle;
-      r.radius_start = axis.radius(a.position);
-      r.radius_end = axis.radius(b.position);
-      for (int j = seg.first; j <= seg.last; ++j) {
-        r.max_slippage = std::max(r.max_slippage, c.points[j].slippage);
-      }
+      fill_pass_figures(c, c.segments[seg_index], axis, &r);
     }
     out.push_back(r);
   }
@@ -512,16 +517,7 @@ std::vector<PassReport> circuit_pass_reports(const std::vector<Circuit>& circuit
       r.hand = hand;
       hand = -hand;
       r.termination = how;
-      const FibrePoint& a = c.points[seg.first];
-      const FibrePoint& b = c.points[seg.last];
-      r.length = b.s - a.s;
-      r.angle_start = a.winding_angle;
-      r.angle_end = b.winding_angle;
-      r.radius_start = axis.radius(a.position);
-      r.radius_end = axis.radius(b.position);
-      for (int j = seg.first; j <= seg.last; ++j) {
-        r.max_slippage = std::max(r.max_slippage, c.points[j].slippage);
-      }
+      fill_pass_figures(c, seg, axis, &r);
       out.push_back(r);
     }
   }

@@ -168,6 +168,7 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
   CoverageOptions co;
   co.band_width = wo.band_width;
   co.stations = wo.coverage_stations;
+  if (!md.revolution && !r.clairaut) co.height = &r.helices.coords.height;
   PlanMetrics& pm = plan.metrics;
   pm.coverage = measure_coverage(ws.mesh, md.axis, plan.circuits, co);
   pm.cover_factor = pm.coverage.cover_factor;
@@ -185,8 +186,10 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
     }
     pm.warnings.push_back(
         "coverage: the laid bands leave " + fixed(100.0 * worst->bare_fraction, 2) +
-        "% of the circumference bare at " + fixed(worst->station, 1) +
-        " mm along the axis (widest gap " + fixed(pm.coverage.widest_gap, 1) + " mm over " +
+        "% of the circumference bare at " +
+        (co.height ? "height " + fixed(worst->station, 3) + " of the wound region"
+                   : fixed(worst->station, 1) + " mm along the axis") +
+        " (widest gap " + fixed(pm.coverage.widest_gap, 1) + " mm over " +
         std::to_string(pm.coverage.stations.size()) + " stations): " +
         (r.clairaut ? "choose a pattern with more circuits (windplan patterns JOB)"
                     : "more circuits, a wider band or beta = 0 on a shape of revolution"));

@@ -14,9 +14,9 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 
-double fibre_step(const WindingOptions& o) { return std::clamp(0.125 * o.band_width, 0.25, 2.0); }
-
 }  // namespace
+
+double fibre_step(const WindingOptions& o) { return std::clamp(0.125 * o.band_width, 0.25, 2.0); }
 
 std::vector<Vec2> clip_meridian(const std::vector<Vec2>& m, double x0, double x1) {
   const double lo = std::isfinite(x0) ? x0 : -std::numeric_limits<double>::infinity();

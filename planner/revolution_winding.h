@@ -49,6 +49,10 @@ struct RevolutionWinding {
   double projection_max = 0.0;
 };
 
+/// The largest fibre length between the planned points of a pass (mm): an eighth of the band,
+/// within [0.25, 2].
+double fibre_step(const WindingOptions& options);
+
 /// The meridian clipped to the axial range [x0, x1] (NaN: no clip at that end), the end points
 /// interpolated.
 std::vector<Vec2> clip_meridian(const std::vector<Vec2>& meridian, double x0, double x1);

@@ -124,6 +124,36 @@ TEST_F(CliRun, ConeBeyondTheTurnLimitIsWarnedWithASuggestion) {
   EXPECT_NE(r.out.find("use turns <= 2.68, beta > 0"), std::string::npos) << r.out;
 }
 
+// windplan patterns: the table's first row is what `pattern: auto` winds, every row measured
+// on its own laid bands; off a shape of revolution it is refused.
+TEST_F(CliRun, PatternsTableStartsWithWhatAutoWinds) {
+  const fs::path job = dir_ / "hemi.yaml";
+  std::ofstream(job) << "name: hemi\nmandrel:\n  source: vessel\n  vessel:\n    radius: 100\n"
+                        "    length: 300\n    dome: {type: hemispherical, polar_opening: 30}\n"
+                        "winding:\n  band_width: 16\n";
+  const Proc t = run({"patterns", job.string(), "--json", "--top", "4"});
+  ASSERT_EQ(t.code, 0) << t.err;
+  const YAML::Node table = YAML::Load(t.out);
+  ASSERT_GE(table["patterns"].size(), 2u);
+  ASSERT_LE(table["patterns"].size(), 4u);
+  const YAML::Node first = table["patterns"][0];
+  const Proc h = run({"helices", job.string(), "--json"});
+  ASSERT_EQ(h.code, 0) << h.err;
+  const YAML::Node plan = YAML::Load(h.out);
+  EXPECT_EQ(plan["metrics"]["pattern_info"]["circuits"].as<int>(), first["circuits"].as<int>());
+  EXPECT_EQ(plan["metrics"]["pattern_info"]["skip"].as<int>(), first["skip"].as<int>());
+  EXPECT_NEAR(plan["metrics"]["pattern_info"]["turnaround_radius"].as<double>(),
+              first["turnaround_radius"].as<double>(), 1e-9);
+  EXPECT_EQ(plan["metrics"]["coverage"]["bare_fraction"].as<double>(), first["bare_fraction"].as<double>());
+  for (const YAML::Node& row : table["patterns"]) {
+    EXPECT_GE(row["turnaround_radius"].as<double>(), table["window_lo"].as<double>());
+    EXPECT_LE(row["turnaround_radius"].as<double>(), table["window_hi"].as<double>());
+  }
+  const Proc bent = run({"patterns", config("bent_tube.yaml").string()});
+  EXPECT_EQ(bent.code, 1);
+  EXPECT_NE(bent.err.find("not a shape of revolution"), std::string::npos) << bent.err;
+}
+
 TEST_F(CliRun, EveryShippedConfigRunsEndToEnd) {
   int n = 0;
   for (const auto& e : fs::directory_iterator(test::source_dir() / "configs")) {
@@ -158,6 +188,23 @@ TEST_F(CliRun, BadWindingInputIsExitOneWithTheKey) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("turns"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("bad.yaml"), std::string::npos) << r.err;
+  // Patterns and turnarounds on a vessel (issue 12): one line naming the key, exit 1.
+  for (const auto& [winding, key] :
+       {std::pair<std::string, std::string>{"turnaround: 10", "winding.turnaround = 10.00 mm"},
+        {"turnaround: 150", "winding.turnaround = 150.00 mm"},
+        {"pattern: {circuits: 12, skip: 4}", "coprime"},
+        {"pattern: {circuits: 7, skip: 3}\n  turnaround_window: 0", "winding.pattern: K=7, p=3"}}) {
+    std::ofstream(job) << "mandrel:\n  source: vessel\n  vessel:\n    radius: 100\n"
+                          "    length: 300\n    dome: {type: hemispherical, polar_opening: 30}\n"
+                          "winding:\n  band_width: 16\n  " << winding << "\n";
+    const Proc v = run({"run", job.string(), "--out", (dir_ / "o").string()});
+    EXPECT_EQ(v.code, 1) << winding;
+    EXPECT_NE(v.err.find(key), std::string::npos) << v.err;
+    std::istringstream lines(v.err);  // one error line (besides the stage progress lines)
+    int errors = 0;
+    for (std::string l; std::getline(lines, l);) errors += l.find("error:") != std::string::npos;
+    EXPECT_EQ(errors, 1) << v.err;
+  }
   const Proc u = run({"run"});
   EXPECT_EQ(u.code, 2) << u.err;
   const Proc h = run({"helices"});

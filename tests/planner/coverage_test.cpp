@@ -68,6 +68,28 @@ TEST(Coverage, KnownGapsAndOverlap) {
   EXPECT_NEAR(r.widest_gap, gap, 1e-9);
 }
 
+// Off shapes of revolution the stations are level sets of a height field; on the tube with
+// h = z / L they are the same loops as the planes normal to the axis, and so are the figures.
+TEST(Coverage, LevelSetsOfAHeightFieldAreStationsToo) {
+  std::vector<Circuit> cs;
+  for (int q = 0; q < 4; ++q) cs.push_back(axial_circuit(q, q * kN / 4));
+  cs.push_back(axial_circuit(4, 16));
+  std::vector<double> h;
+  for (int v = 0; v < tube().num_vertices(); ++v) h.push_back(tube().position(v).z() / kL);
+  CoverageOptions o;
+  o.band_width = 60;
+  o.stations = 8;
+  const CoverageReport planes = measure_coverage(tube(), SpindleAxis{}, cs, o);
+  o.height = &h;
+  const CoverageReport levels = measure_coverage(tube(), SpindleAxis{}, cs, o);
+  ASSERT_EQ(levels.stations.size(), 8u);
+  EXPECT_NEAR(levels.bare_fraction, planes.bare_fraction, 1e-9);
+  EXPECT_NEAR(levels.widest_gap, planes.widest_gap, 1e-9);
+  EXPECT_NEAR(levels.widest_overlap, planes.widest_overlap, 1e-9);
+  EXPECT_EQ(levels.max_stack, planes.max_stack);
+  EXPECT_NEAR(levels.stations[0].loop_length, planes.stations[0].loop_length, 1e-9);
+}
+
 TEST(Coverage, FullCoverAndAMissingFamily) {
   const double L = kN * 2 * kR * std::sin(M_PI / kN);
   std::vector<Circuit> cs;
