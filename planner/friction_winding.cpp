@@ -28,7 +28,7 @@ const char* end_name(int e) { return e == 0 ? "start" : "far"; }
 
 // The turnarounds, pass angle and circuit advance at one lambda.
 struct Trial {
-  double lambda = 0.0;
+  double lambda = 0.0, c = 0.0;
   int unreached = -1;  // an end where friction never turns the fibre back to c
   bool fits = true;    // the joins leave a geodesic pass between them
   std::array<FrictionTurnaround, 2> t;
@@ -43,12 +43,13 @@ struct Setup {
   double c, step;
 };
 
-Trial evaluate(const Setup& su, double lambda) {
+Trial evaluate(const Setup& su, double lambda, double c) {
   Trial tr;
   tr.lambda = lambda;
+  tr.c = c;
   for (int e : {0, 1}) {
     if (!su.fe[e]) continue;
-    tr.t[e] = friction_turnaround(su.line, e, su.apex_s[e], su.c, lambda, su.step);
+    tr.t[e] = friction_turnaround(su.line, e, su.apex_s[e], c, lambda, su.step);
     if (!tr.t[e].reached) {
       tr.unreached = e;
       return tr;
@@ -63,7 +64,7 @@ Trial evaluate(const Setup& su, double lambda) {
   try {
     const std::vector<Vec2> m = clip_meridian(su.pr->meridian, x0, x1);
     if (m.size() < 2) throw InputError("no pass");
-    tr.phi = clairaut_pass_angle(m, su.c);
+    tr.phi = clairaut_pass_angle(m, c);
   } catch (const InputError&) {
     tr.fits = false;
     return tr;
@@ -77,13 +78,13 @@ Trial evaluate(const Setup& su, double lambda) {
   const std::string head = "winding.slippage = " + num(o.slippage, 3) + ": ";
   const std::string raise = "raise winding.slippage (<= winding.mu = " + num(o.mu, 3) + ")";
   if (tr.unreached >= 0) {
-    const int e = tr.unreached;
-    throw ConfigError(head + "friction cannot turn the fibre around at the " + end_name(e) +
-                      " end (apex at " + num(tr.t[e].apex_x, 1) + " mm along the axis): the " +
-                      "mandrel widens there faster than |k_g/k_n| <= " + num(o.slippage, 3) +
-                      " can turn a fibre at " +
-                      num(std::asin(su.c / tr.t[e].apex_r) * 180.0 / M_PI, 2) + " deg; " + raise +
-                      ", raise the winding angle, or wind that end on pins " + "(slippage 0)");
+    const FrictionTurnaround& t = tr.t[tr.unreached];
+    throw ConfigError(head + "at the " + end_name(tr.unreached) + " end friction turns the " +
+                      "fibre around on the parallel r = " + num(t.apex_r, 2) + " mm (apex half a " +
+                      "band in from the end) but brings r sin a only down to " + num(t.lowest, 2) +
+                      " mm within the wound region, not to the passes' " + "Clairaut constant " +
+                      num(su.c, 2) + " mm (" + pr.requested_by + "); " + raise +
+                      ", raise the winding angle, or wind that end on pins (slippage 0)");
   }
   double need = 0.0;
   std::ostringstream per;
@@ -126,6 +127,28 @@ std::vector<PatternCandidate> candidates(const PatternProblem& pr, const Winding
   return all;
 }
 
+FrictionWinding result(const Setup& su, const PatternCandidate& cand, const Trial& best,
+                       double bound) {
+  const PatternProblem& pr = *su.pr;
+  FrictionWinding w;
+  w.friction_end = su.fe;
+  w.turnarounds = best.t;
+  w.slippage = best.lambda;
+  w.bound = bound;
+  const double x0 = su.fe[0] ? best.t[0].join_x : kNaN;
+  const double x1 = su.fe[1] ? best.t[1].join_x : kNaN;
+  w.pass = clairaut_pass(clip_meridian(pr.meridian, x0, x1), best.c, {su.step});
+  w.pattern = cand;
+  w.pattern.c = best.c;
+  w.pattern.moved = best.c - pr.requested_c;
+  const double sa = std::min(1.0, best.c / pr.largest_radius);
+  w.pattern.angle_deg = std::asin(sa) * 180.0 / M_PI;
+  w.pattern.dwell = {0.0, 0.0};
+  w.pattern.advance = best.advance;
+  w.pattern.turns_per_pass = best.phi / kTwoPi;
+  return w;
+}
+
 }  // namespace
 
 bool wants_friction_turnarounds(const PatternProblem& pr, const WindingOptions& o) {
@@ -153,7 +176,7 @@ FrictionWinding plan_friction_winding(const PatternProblem& pr, const WindingOpt
   std::vector<Trial> grid;
   for (int i = 0; i <= kGrid; ++i) {
     const double u = (1.0 + 3.0 * i / kGrid) / bound;
-    Trial tr = evaluate(su, 1.0 / u);
+    Trial tr = evaluate(su, 1.0 / u, su.c);
     if (tr.unreached >= 0 || !tr.fits) {
       if (i == 0) refuse(su, tr, o);
       break;
@@ -174,34 +197,66 @@ FrictionWinding plan_friction_winding(const PatternProblem& pr, const WindingOpt
       const bool rising = b >= a;
       for (int it = 0; it < 60 && i > 0; ++it) {
         const double um = 0.5 * (u0 + u1);
-        const Trial t = evaluate(su, 1.0 / um);
+        const Trial t = evaluate(su, 1.0 / um, su.c);
         ((t.advance < T) == rising ? u0 : u1) = um;
       }
-      const Trial best = evaluate(su, 1.0 / (i == 0 ? u0 : 0.5 * (u0 + u1)));
+      const Trial best = evaluate(su, 1.0 / (i == 0 ? u0 : 0.5 * (u0 + u1)), su.c);
       if (best.unreached >= 0 || !best.fits) continue;
-      FrictionWinding w;
-      w.friction_end = su.fe;
-      w.turnarounds = best.t;
-      w.slippage = best.lambda;
-      w.bound = bound;
-      const double x0 = su.fe[0] ? best.t[0].join_x : kNaN;
-      const double x1 = su.fe[1] ? best.t[1].join_x : kNaN;
-      w.pass = clairaut_pass(clip_meridian(pr.meridian, x0, x1), su.c, {step});
-      w.pattern = cand;
-      w.pattern.c = su.c;
-      w.pattern.moved = 0.0;
-      w.pattern.dwell = {0.0, 0.0};
-      w.pattern.advance = best.advance;
-      w.pattern.turns_per_pass = best.phi / kTwoPi;
-      return w;
+      return result(su, cand, best, bound);
     }
+  }
+  // No lambda closes it (on domes friction moves r sin a slowly, so the turnarounds soon
+  // outgrow the region as lambda falls): at lambda = bound, move the passes' c within
+  // winding.turnaround_window, keeping it below the friction ends' radii.
+  const double win =
+      std::isfinite(o.turnaround_window) ? o.turnaround_window : 0.25 * pr.band_width;
+  double c_lo = std::max(1e-3 * su.c, su.c - win), c_hi = su.c + win;
+  for (int e : {0, 1}) {
+    if (su.fe[e]) c_hi = std::min(c_hi, pr.end_radius[e] * (1.0 - 1e-9));
+  }
+  std::vector<Trial> cg;
+  for (int i = 0; i <= kGrid && c_hi > c_lo; ++i) {
+    Trial tr = evaluate(su, bound, c_lo + (c_hi - c_lo) * i / kGrid);
+    if (tr.unreached < 0 && tr.fits)
+      cg.push_back(std::move(tr));
+    else
+      cg.push_back(Trial{});  // a hole: no bracket across it
+  }
+  for (const PatternCandidate& cand : candidates(pr, o)) {
+    const int K = cand.circuits, p = cand.skip;
+    const double base = kTwoPi * p / std::max(1, K);
+    double best_c = kNaN;
+    for (std::size_t i = 1; i < cg.size(); ++i) {
+      if (cg[i - 1].c == 0.0 || cg[i].c == 0.0) continue;
+      const double a = cg[i - 1].advance, b = cg[i].advance;
+      const double lo = std::min(a, b), hi = std::max(a, b);
+      for (double m = std::ceil((lo - base) / kTwoPi - 1e-12); base + kTwoPi * m <= hi; m += 1.0) {
+        const double T = base + kTwoPi * m;
+        double x0 = cg[i - 1].c, x1 = cg[i].c;
+        const bool rising = b >= a;
+        for (int it = 0; it < 60; ++it) {
+          const double xm = 0.5 * (x0 + x1);
+          const Trial t = evaluate(su, bound, xm);
+          if (t.unreached >= 0 || !t.fits) break;
+          ((t.advance < T) == rising ? x0 : x1) = xm;
+        }
+        const double root = 0.5 * (x0 + x1);
+        if (std::isnan(best_c) || std::abs(root - su.c) < std::abs(best_c - su.c)) best_c = root;
+      }
+    }
+    if (std::isnan(best_c)) continue;
+    const Trial best = evaluate(su, bound, best_c);
+    if (best.unreached >= 0 || !best.fits) continue;
+    return result(su, cand, best, bound);
   }
   throw ConfigError("winding.slippage = " + num(bound, 3) + ": no pattern" +
                     (o.circuits > 0 ? " with circuits " + std::to_string(o.circuits) : "") +
                     (o.skip > 0 ? " and skip " + std::to_string(o.skip) : "") +
                     " closes with a friction turnaround at |k_g/k_n| in " + num(bound / 4.0, 3) +
-                    " .. " + num(bound, 3) + " that fits the wound region; raise " +
-                    "winding.slippage (<= winding.mu) or change winding.pattern");
+                    " .. " + num(bound, 3) + " (nor at " + num(bound, 3) + " with the turnaround " +
+                    "radius within winding.turnaround_window) that fits the wound region; raise " +
+                    "winding.slippage (<= winding.mu), widen winding.turnaround_window or change " +
+                    "winding.pattern");
 }
 
 FrictionFigures friction_figures(const FrictionWinding& w, const std::vector<Circuit>& circuits,

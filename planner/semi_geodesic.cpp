@@ -131,6 +131,11 @@ FrictionTurnaround friction_turnaround(const MeridianLine& m, int end, double ap
                                                 return ml.point(y.s).y() * std::sin(y.a) - c;
                                               });
   t.reached = half.event;
+  t.lowest = apex.y();
+  for (std::size_t i = 0; i < half.samples.size(); ++i) {
+    if (half.s[i] < 0.0 || half.s[i] > m.length()) break;  // off the meridian's ends
+    t.lowest = std::min(t.lowest, half.samples[i].r * std::sin(half.samples[i].angle));
+  }
   const Vec2 join = m.point(half.end.s);
   t.join_s = half.end.s;
   t.join_x = join.x();

@@ -124,6 +124,8 @@ struct FrictionTurnaround {
   /// (0, pi) as the fibre runs (towards the end, then back).
   std::vector<PassSample> samples;
   bool reached = true;  ///< false: friction never brought r sin a down to c
+  /// The smallest r sin a the leaving half reached on the meridian (mm; c when reached).
+  double lowest = 0.0;
 };
 
 /// The turnaround at `end` of `m` with its apex at meridian length apex_s, slippage lambda > 0

@@ -89,10 +89,10 @@ struct WindingOptions {
       return fail("mu must be >= 0 (got " + std::to_string(mu) + ")");
     }
     if (!(slippage >= 0.0) || !std::isfinite(slippage)) {
-      return fail("slippage must be >= 0 (got " + std::to_string(slippage) + ")");
+      return fail("slippage must be >= 0 (got " + format_turns(slippage) + ")");
     }
     if (slippage > mu) {
-      return fail("slippage " + std::to_string(slippage) + " exceeds mu " + std::to_string(mu) +
+      return fail("slippage " + format_turns(slippage) + " exceeds mu " + format_turns(mu) +
                   ": friction holds the fibre only while |k_g / k_n| <= mu");
     }
     if (!(curvature_window >= 0.0) || !std::isfinite(curvature_window)) {

@@ -9,7 +9,10 @@
 #include <cmath>
 
 #include "geometry/errors.h"
+#include "planner/coverage.h"
 #include "planner/pipeline.h"
+#include "planner/revolution_winding.h"
+#include "tests/planner/winding_fixtures.h"
 #include "tests/test_data.h"
 
 namespace windplan {
@@ -156,6 +159,82 @@ TEST(FrictionWinding, BadSlippageNamesTheKey) {
   const PipelineResult r = plan_job(load_job_from_string(head, "/tmp/p.yaml"));
   EXPECT_FALSE(r.plan.metrics.friction_turnarounds.planned);
   EXPECT_GT(r.plan.metrics.turnarounds.length, 0.0);
+}
+
+}  // namespace
+}  // namespace windplan
+
+namespace windplan {
+namespace {
+
+// Beyond the geodesic reach of the domes: a pass at a winding angle whose Clairaut constant is
+// below the polar opening turns around by friction on both domes; with unequal openings a
+// pass whose c lies between them turns around geodesically on the small opening's dome and by
+// friction on the large one. Every laid point within mu, no bare band.
+TEST(FrictionWinding, DomesBeyondTheGeodesicReachAndUnequalOpenings) {
+  // Friction moves r sin a slowly on a vessel (d(r sin a)/ds = -lambda r sin^2 a / R on the
+  // cylinder): the apexes half a (narrow) band in from the openings, c a little below.
+  const double R = 100, L = 1000;
+  const std::vector<Vec2> small = test::capsule_meridian(R, L, 20, 120, 30);
+  const std::vector<Vec2> large = test::capsule_meridian(R, L, 30, 120, 30);
+  std::vector<Vec2> unequal(small.begin(), small.begin() + 120 + 31);  // dome r0 20, cylinder
+  unequal.insert(unequal.end(), large.end() - 120, large.end());       // dome r1 30
+  struct Case {
+    const char* name;
+    std::vector<Vec2> meridian;
+    double c;
+    std::array<bool, 2> friction;
+  };
+  for (const Case& k : {Case{"openings 20, c 18.5", small, 18.5, {true, true}},
+                        Case{"openings 20 / 30, c 28.5", unequal, 28.5, {false, true}}}) {
+    SCOPED_TRACE(k.name);
+    const Mesh mesh = test::revolve(k.meridian, 128);
+    WindingOptions o;
+    o.band_width = 4;
+    o.mu = 0.25;
+    o.turnaround = k.c;
+    o.circuits = 5;  // few circuits keep the test short (no full cover); skip: auto
+    o.turnaround_window = 6;
+    // At 10 deg a fibre crosses a 4.9 mm facet of this mesh over 26 mm: measure the curvatures
+    // over more than that, or the flat facets read as k_n = 0.
+    o.curvature_window = 40;  // mm: the pattern closes by moving c (lambda alone cannot)
+    EXPECT_THROW(plan_revolution_winding(mesh, {}, SpindleAxis{}, o), ConfigError);
+    o.slippage = 0.2;
+    const RevolutionWinding w = plan_revolution_winding(mesh, {}, SpindleAxis{}, o);
+    ASSERT_TRUE(w.friction);
+    EXPECT_EQ(w.friction_plan.friction_end, k.friction);
+    EXPECT_EQ(w.geodesic_end[0], !k.friction[0]);
+    EXPECT_LE(w.friction_plan.slippage, 0.2);
+    double worst = 0.0, top = 0.0;
+    for (const Circuit& c : w.circuits) {
+      for (const FibrePoint& q : c.points) {
+        if (q.slippage > o.mu) {
+          ADD_FAILURE() << "circuit " << c.index << " at " << q.position.transpose() << " s " << q.s
+                        << " k_n " << q.k_n << " k_g " << q.k_g << " of " << c.points.back().s;
+        }
+        worst = std::max(worst, q.slippage);
+        top = std::max(top, q.winding_angle);
+      }
+    }
+    EXPECT_LE(worst, o.mu);
+    EXPECT_GT(top, 89.0);
+    // The far end's apex stays half a band in from the opening, above it.
+    EXPECT_GT(w.friction_plan.turnarounds[1].apex_r, k.meridian.back().y());
+  }
+  // Too far below the opening for the bound: the error names the key and the reach.
+  const Mesh mesh = test::revolve(small, 128);
+  WindingOptions o;
+  o.band_width = 4;
+  o.mu = 0.25;
+  o.slippage = 0.2;
+  o.turnaround = 12;
+  try {
+    plan_revolution_winding(mesh, {}, SpindleAxis{}, o);
+    FAIL() << "c 12 accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("winding.slippage = 0.200: ", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("only down to"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
