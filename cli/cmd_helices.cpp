@@ -43,6 +43,7 @@ int run_helices(const std::vector<std::string>& argv) {
     OutputOptions o = job.output;
     o.gcode = false;
     o.svg = false;
+    o.viewer = false;
     export_plan(plan, r.mandrel.mesh, job.machine, o, out);
   }
 

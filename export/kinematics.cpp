@@ -165,6 +165,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts) {
   if (!opts.is_valid(&why)) throw ConfigError("machine: " + why);
   Motion m;
   m.inverse_time = uses_inverse_time(opts.gcode);
+  m.layers = plan.layers;
   const AxisFrame frame = make_axis_frame(plan.axis);
   const Envelope env = make_envelope(plan.profile, opts.envelope);
   const bool lathe2 = opts.kind == "lathe2";

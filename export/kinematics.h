@@ -115,6 +115,9 @@ struct Motion {
   double max_chord_deviation = 0.0;  ///< mm (fibre and eye polylines)
   Range a, x, y, b, free_length;     ///< deg, mm, mm, deg, mm
   int max_eye_iterations = 0;
+  /// The plan's layers (WindingPlan::layers; empty for a one-layer job): the G-code comments
+  /// each layer and pauses between layers (export/gcode.h).
+  std::vector<LayerSummary> layers;
 };
 
 /// True when the G-code feed convention is inverse time (G93).

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "export/layup_report.h"
 #include "geometry/json.h"
 #include "planner/winding_options.h"
 #include "windplan_version.h"
@@ -270,6 +271,7 @@ std::string report_json(const WindingPlan& plan, const ExportResult& r) {
     j.end_object();
   }
   j.end_array();
+  layers_json(j, plan, r.motion);  // layups only (export/layup_report.h)
   j.key("warnings").begin_array();
   for (const std::string& w : m.warnings) j.value(w);
   j.end_array();
@@ -408,6 +410,7 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
         << fmt("%.2e", c.residual) << " |\n";
     }
   }
+  o << layers_markdown(plan, mo);  // layups only (export/layup_report.h)
   if (!m.warnings.empty()) {
     o << "\n## Warnings\n\n";
     for (const std::string& w : m.warnings) o << "- " << w << "\n";
@@ -474,6 +477,7 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
     << "  axis B           " << fmt("%.2f", mo.b.min) << " .. " << fmt("%.2f", mo.b.max) << " deg\n"
     << "  machine points   " << mo.states.size() << " of " << mo.dense_points
     << " (chord deviation " << fmt("%.4f", mo.max_chord_deviation) << " mm)\n";
+  o << layers_summary(plan, mo);  // layups only (export/layup_report.h)
   for (const StageTiming& t : m.timings) {
     o << "  time " << t.stage << std::string(t.stage.size() < 12 ? 12 - t.stage.size() : 1, ' ')
       << fmt("%.3f", t.seconds) << " s\n";

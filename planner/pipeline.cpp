@@ -67,12 +67,26 @@ std::string turn_limit_warning(const ClairautLimit& lim, const WindingOptions& w
 }  // namespace
 
 PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
+  PlanMetrics timings;
+  Stage mandrel("mandrel", &timings, options);
+  Mandrel md = build_mandrel(job);
+  mandrel.done();
+  PipelineResult r = plan_winding(std::move(md), job, job.winding, options);
+  std::vector<StageTiming>& t = r.plan.metrics.timings;
+  t.insert(t.begin(), timings.timings.begin(), timings.timings.end());
+  if (!job.cutlines.empty()) {
+    Stage cut("cutlines", &r.plan.metrics, options);
+    r.plan.cutlines = compute_cutlines(r.mandrel, job.cutlines);
+    cut.done();
+  }
+  return r;
+}
+
+PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOptions& wo,
+                            const PipelineOptions& options) {
   PipelineResult r;
   PlanMetrics timings;  // collected here, moved into the plan at the end
-
-  Stage mandrel("mandrel", &timings, options);
-  r.mandrel = build_mandrel(job);
-  mandrel.done();
+  r.mandrel = std::move(mandrel);
   const Mandrel& md = r.mandrel;
   const WindingSurface& ws = md.winding;
   const std::array<std::vector<int>, 2> loops{ws.loops[0].vertices, ws.loops[1].vertices};
@@ -80,7 +94,6 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
   // Girth: needed for the density (beta > 0) and, off a shape of revolution, for the spacing
   // normalisation; on a shape of revolution with beta = 0, 2 pi r is the exact girth.
   Stage girth("girth", &timings, options);
-  const WindingOptions& wo = job.winding;
   if (wo.beta > 0.0 || !md.revolution) {
     r.girth = compute_girth_field(ws.mesh, loops, job.girth);
     r.face_girth = r.girth.face_girth(ws.mesh);
@@ -213,12 +226,6 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
   }
   for (const std::string& w : md.warnings) plan.metrics.warnings.push_back("mandrel: " + w);
   metrics.done();
-
-  if (!job.cutlines.empty()) {
-    Stage cut("cutlines", &timings, options);
-    plan.cutlines = compute_cutlines(md, job.cutlines);
-    cut.done();
-  }
 
   plan.metrics.timings = std::move(timings.timings);
   return r;

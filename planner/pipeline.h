@@ -56,4 +56,11 @@ struct PipelineResult {
 /// \throw what the stages throw: IoError/InputError/TopologyError/ConfigError for bad input.
 PipelineResult plan_job(const Job& job, const PipelineOptions& options = {});
 
+/// The winding stages of plan_job (girth, helices, metrics and coverage, the turn limit; not the
+/// mandrel, not the cut-lines) on a mandrel already built, with `winding` in place of
+/// job.winding: the helical layers of a layup (planner/layup.h) run it on the surfaces built by
+/// the layers under them.
+PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOptions& winding,
+                            const PipelineOptions& options = {});
+
 }  // namespace windplan

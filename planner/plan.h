@@ -12,6 +12,7 @@
 
 #include "geometry/axis.h"
 #include "geometry/mesh.h"
+#include "planner/layer_summary.h"
 
 namespace windplan {
 
@@ -191,6 +192,9 @@ struct WindingPlan {
   std::vector<Circuit> circuits;
   std::vector<CutLine> cutlines;
   PlanMetrics metrics;
+  /// A layup (planner/layup.h): its layers in winding order, each naming its circuits; empty for
+  /// a job without `layers:`.
+  std::vector<LayerSummary> layers;
 };
 
 }  // namespace windplan
