@@ -5,7 +5,7 @@
 // The page holds three scripts: three.js r111 (Debian's libjs-three, embedded at build time by
 // export/CMakeLists.txt), the plan's data as JSON (id "windplan-data") and the viewer's own script
 // (export/viewer_app.js, also embedded at build time). It shows the mandrel (shaded), the circuits
-// as bands of the plan's band width (coloured by circuit, layer, winding angle or slippage
+// as bands of their band width (coloured by circuit, layer, winding angle or slippage
 // |k_g/k_n| / mu, with a legend), the cut-lines, the payout eye, its path and the free fibre at a
 // chosen time (a slider plays the winding in order; the machine axes' values beside it), per layer
 // show/hide, and a panel with the report's headline figures and warnings.

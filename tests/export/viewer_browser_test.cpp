@@ -171,7 +171,7 @@ class ViewerBrowser : public ::testing::Test {
   fs::path check_job(const std::string& config, const std::string& name) {
     const fs::path page = run_job(config);
     render_plots(page.parent_path(), name);
-    ASSERT_TRUE(fs::exists(page));
+    EXPECT_TRUE(fs::exists(page));
     EXPECT_LT(fs::file_size(page), 5000000u);
     const Shot early = shoot(page, "t=0.02", name + "_t0.02");
     const Shot full = shoot(page, "t=1", name + "_t1");
@@ -197,7 +197,7 @@ class ViewerBrowser : public ::testing::Test {
     EXPECT_GT(ce.grey, ce.view / 20);
     // The bands are drawn at the end, over a good part of the mandrel's grey.
     EXPECT_GT(cf.colour, ce.view / 50);
-    EXPECT_GT(cf.colour, 3 * ce.colour + 1000);
+    EXPECT_GT(cf.colour, ce.colour + ce.view / 50);  // (a layup winds a whole hoop layer first)
     EXPECT_LT(cf.grey, ce.grey);
     // The slider changed the picture.
     EXPECT_GT(differing_pixels(early.image, full.image), ce.view / 50);
