@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include <time.h>
+
 #include "geometry/exact_geodesic.h"
 #include "geometry/geodesic.h"
 #include "geometry/mesh.h"
@@ -28,6 +30,13 @@ using namespace windplan;
 using Clock = std::chrono::steady_clock;
 
 namespace {
+
+/// CPU time of the calling thread (ms): the machine is shared, so wall time measures the load.
+double thread_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e3 * static_cast<double>(ts.tv_sec) + 1e-6 * static_cast<double>(ts.tv_nsec);
+}
 
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
@@ -47,7 +56,7 @@ struct Pair {
 };
 
 struct SolverRun {
-  std::vector<double> init, refine, total, iterations, length;
+  std::vector<double> init, refine, total, cpu, iterations, length, settled;
   int not_converged = 0;
   std::vector<std::string> failures;
 };
@@ -71,6 +80,10 @@ int main(int argc, char** argv) {
   int num_pairs = 50, per_source = 5, exact_sources = 1, exact_sources_small = -1;
   unsigned seed = 20240611;
   int repeat = 1;  // solves per pair; the fastest init and refine are kept
+  int steiner = GeodesicContext::kDefaultSteinerPoints;
+  bool edge_starts = false, lbfgs = false, split = true;
+  bool steiner_start = GeodesicOptions{}.steiner_start;
+  std::filesystem::path write_pairs, reference;
   std::vector<std::filesystem::path> files;
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress shows when redirected to a file
   for (int i = 1; i < argc; ++i) {
@@ -94,6 +107,20 @@ int main(int argc, char** argv) {
       seed = static_cast<unsigned>(next());
     else if (a == "--repeat")
       repeat = std::max(1, next());
+    else if (a == "--steiner")
+      steiner = next();
+    else if (a == "--edge-starts")
+      edge_starts = next() != 0;
+    else if (a == "--steiner-start")
+      steiner_start = next() != 0;
+    else if (a == "--split")
+      split = next() != 0;
+    else if (a == "--write-pairs" && i + 1 < argc)
+      write_pairs = argv[++i];
+    else if (a == "--reference" && i + 1 < argc)
+      reference = argv[++i];
+    else if (a == "--lbfgs")
+      lbfgs = true;
     else if (a == "--quick") {
       num_pairs = 10;
       exact_sources = 0;
@@ -101,7 +128,15 @@ int main(int argc, char** argv) {
     } else if (a == "-h" || a == "--help") {
       std::printf(
           "usage: bench_geodesic [--pairs N] [--targets-per-source K] [--exact-sources S]\n"
-          "       [--exact-sources-small S] [--seed N] [--repeat R] [--quick] [mesh files...]\n"
+          "       [--exact-sources-small S] [--seed N] [--repeat R] [--quick] [--steiner K]\n"
+          "       [--edge-starts 0|1] [--lbfgs] [mesh files...]\n"
+          "--steiner K: Steiner points per edge of the start graph (0: edge-graph starts only)\n"
+          "--edge-starts 1: also refine from the two edge-graph starts\n"
+          "--lbfgs: also run the paper's L-BFGS solver\n"
+          "--write-pairs DIR: write DIR/<mesh file name>.pairs ('source target' per line)\n"
+          "--reference DIR: read DIR/<mesh file name>.ref ('source target exact other_length\n"
+          "  other_cpu_ms' per pair, e.g. an exact MMP distance and FlipOut's length and time on\n"
+          "  the same pairs) instead of running CGAL, and print the side-by-side table\n"
           "--repeat R: each pair is solved R times and its fastest init and refine are kept\n"
           "(the machine is shared: this removes scheduling noise, not work).\n"
           "Pairs are drawn as sources with K targets each; the CGAL exact distance is\n"
@@ -138,6 +173,7 @@ int main(int argc, char** argv) {
   };
   std::vector<Row> rows;
   std::vector<std::string> notes;
+  std::vector<std::string> side;  // the side-by-side table with --reference
 
   for (const auto& file : files) {
     if (!std::filesystem::exists(file)) {
@@ -148,11 +184,16 @@ int main(int argc, char** argv) {
     const Mesh mesh = build_mesh(read_mesh(file), false);
     const double load_ms = ms_since(t);
     t = Clock::now();
-    const GeodesicContext ctx(mesh);
+    double context_cpu = thread_cpu_ms();
+    const GeodesicContext ctx(mesh, PathMetric{}, steiner);
+    context_cpu = thread_cpu_ms() - context_cpu;
     const double context_ms = ms_since(t);
     const std::string name = file.filename().string();
-    std::printf("## %s: V=%d F=%d, load %.0f ms, edge graph %.1f ms\n", name.c_str(),
-                mesh.num_vertices(), mesh.num_faces(), load_ms, context_ms);
+    std::printf(
+        "## %s: V=%d F=%d, load %.0f ms, context (edge graphs, Steiner k=%d) %.1f ms wall, "
+        "%.1f ms thread CPU\n",
+        name.c_str(), mesh.num_vertices(), mesh.num_faces(), load_ms, steiner, context_ms,
+        context_cpu);
 
     std::mt19937 rng(seed);
     std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
@@ -167,11 +208,31 @@ int main(int argc, char** argv) {
       }
     }
 
+    if (!write_pairs.empty()) {
+      std::ofstream out(write_pairs / (name + ".pairs"));
+      for (const Pair& p : pairs) out << p.source << " " << p.target << "\n";
+    }
+    std::vector<double> other_length(pairs.size(), std::nan("")), other_ms = other_length;
+    std::vector<double> exact(pairs.size(), std::nan(""));
+    if (!reference.empty()) {
+      std::ifstream in(reference / (name + ".ref"));
+      if (!in) {
+        std::fprintf(stderr, "%s: missing\n", (reference / (name + ".ref")).c_str());
+        return 1;
+      }
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        int s0 = -1, t0 = -1;
+        if (!(in >> s0 >> t0 >> exact[i] >> other_length[i] >> other_ms[i]) ||
+            s0 != pairs[i].source || t0 != pairs[i].target) {
+          std::fprintf(stderr, "%s: pair %zu does not match\n", name.c_str(), i);
+          return 1;
+        }
+      }
+    }
     // Exact distances: one CGAL tree per source, for the first sources.
-    const int sources_exact = mesh.num_faces() <= 50000
+    const int sources_exact = !reference.empty() ? 0 : mesh.num_faces() <= 50000
                                   ? (exact_sources_small < 0 ? num_sources : exact_sources_small)
                                   : exact_sources;
-    std::vector<double> exact(pairs.size(), std::nan(""));
     if (sources_exact > 0) {
       t = Clock::now();
       ExactGeodesic cgal(mesh);
@@ -189,24 +250,35 @@ int main(int argc, char** argv) {
       std::printf("   CGAL exact total: %.0f ms\n", ms_since(t));
     }
 
-    for (const GeodesicSolver solver : {GeodesicSolver::Newton, GeodesicSolver::Lbfgs}) {
+    std::vector<GeodesicSolver> solvers = {GeodesicSolver::Newton};
+    if (lbfgs) solvers.push_back(GeodesicSolver::Lbfgs);
+    for (const GeodesicSolver solver : solvers) {
       Row row;
       row.mesh = name;
       row.faces = mesh.num_faces();
       row.solver = solver == GeodesicSolver::Newton ? "Newton" : "L-BFGS";
       GeodesicOptions options;
       options.solver = solver;
+      options.steiner_start = steiner > 0 && steiner_start;
+      options.two_starts = edge_starts || !options.steiner_start;
+      options.split_at_vertices = split;
       for (std::size_t i = 0; i < pairs.size(); ++i) {
+        double cpu = thread_cpu_ms();
         OpenGeodesicResult r =
             geodesic_between(ctx, SurfacePoint::at_vertex(pairs[i].source),
                              SurfacePoint::at_vertex(pairs[i].target), options);
+        cpu = thread_cpu_ms() - cpu;
         for (int rep = 1; rep < repeat; ++rep) {
+          double cpu2 = thread_cpu_ms();
           const OpenGeodesicResult again =
               geodesic_between(ctx, SurfacePoint::at_vertex(pairs[i].source),
                                SurfacePoint::at_vertex(pairs[i].target), options);
+          cpu = std::min(cpu, thread_cpu_ms() - cpu2);
           r.init_ms = std::min(r.init_ms, again.init_ms);
           r.refine_ms = std::min(r.refine_ms, again.refine_ms);
         }
+        row.run.cpu.push_back(cpu);
+        row.run.settled.push_back(r.steiner_settled);
         row.run.init.push_back(r.init_ms);
         row.run.refine.push_back(r.refine_ms);
         row.run.total.push_back(r.init_ms + r.refine_ms);
@@ -221,12 +293,14 @@ int main(int argc, char** argv) {
         if (std::isfinite(exact[i])) {
           const double e = (r.summary.final_length - exact[i]) / exact[i];
           row.excess.push_back(e);
-          if (e > 1e-4) {
+          if (e > 1e-9) {
             notes.push_back(name + " " + row.solver + " " + std::to_string(pairs[i].source) + "->" +
                             std::to_string(pairs[i].target) + ": excess " + fmt(e) + " (" +
                             fmt(r.summary.final_length, "%.9g") + " vs exact " +
                             fmt(exact[i], "%.9g") + ", " + to_string(r.summary.termination) + ", " +
-                            std::to_string(r.summary.reroutes) + " reroutes)");
+                            std::to_string(r.summary.reroutes) + " reroutes, " +
+                            std::to_string(r.summary.pinned_vertices) + " vertices passed, start " +
+                            std::to_string(r.start) + ")");
           } else if (e < -1e-9) {
             notes.push_back(name + " " + row.solver + " " + std::to_string(pairs[i].source) + "->" +
                             std::to_string(pairs[i].target) + ": SHORTER than exact, excess " +
@@ -235,6 +309,20 @@ int main(int argc, char** argv) {
         }
       }
       row.pairs = static_cast<int>(pairs.size());
+      if (!reference.empty()) {
+        std::vector<double> ours_equal_cpu;
+        int ours_equal = 0, other_equal = 0;
+        for (std::size_t i = 0; i < pairs.size(); ++i) {
+          if ((row.run.length[i] - exact[i]) / exact[i] <= 1e-9) ++ours_equal;
+          if ((other_length[i] - exact[i]) / exact[i] <= 1e-9) ++other_equal;
+        }
+        const double ours_med = quantile(row.run.cpu, 0.5), other_med = quantile(other_ms, 0.5);
+        side.push_back("| " + name + " | " + std::to_string(mesh.num_faces()) + " | " +
+                       fmt(ours_med) + " ms | " + fmt(other_med) + " ms | " +
+                       fmt(ours_med / other_med, "%.2f") + " | " + std::to_string(ours_equal) +
+                       " / " + std::to_string(pairs.size()) + " | " +
+                       std::to_string(other_equal) + " / " + std::to_string(pairs.size()) + " |");
+      }
       for (const std::string& f : row.run.failures)
         notes.push_back(name + " " + row.solver + " not converged " + f);
       rows.push_back(std::move(row));
@@ -243,32 +331,41 @@ int main(int argc, char** argv) {
 
   std::printf(
       "\n| mesh | faces | solver | init ms (med / p90) | refine ms (med / p90) | "
-      "total ms (med / p90) | iterations (med / p90) | not conv. | exact pairs | "
-      "excess median | excess max | within 1e-4 | other geodesic |\n");
-  std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "total ms (med / p90) | thread CPU ms per path (med / mean) | Steiner nodes settled (med) | "
+      "iterations (med / p90) | not conv. | exact pairs | "
+      "excess median | excess max | equal to exact (1e-9) | within 1e-4 |\n");
+  std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows) {
-    int within = 0, other = 0;
+    int within = 0, equal = 0;
     for (double e : r.excess) {
-      if (e <= 1e-4)
-        ++within;
-      else
-        ++other;
+      if (e <= 1e-4) ++within;
+      if (e <= 1e-9) ++equal;
     }
+    double mean_cpu = 0.0;
+    for (double c : r.run.cpu) mean_cpu += c / std::max<std::size_t>(1, r.run.cpu.size());
     const bool have = !r.excess.empty();
     std::printf(
-        "| %s | %d | %s | %s / %s | %s / %s | %s / %s | %s / %s | %d | %d | %s | %s | "
+        "| %s | %d | %s | %s / %s | %s / %s | %s / %s | %s / %s | %s | %s / %s | %d | %d | %s | %s | "
         "%s | %s |\n",
         r.mesh.c_str(), r.faces, r.solver.c_str(), fmt(quantile(r.run.init, 0.5)).c_str(),
         fmt(quantile(r.run.init, 0.9)).c_str(), fmt(quantile(r.run.refine, 0.5)).c_str(),
         fmt(quantile(r.run.refine, 0.9)).c_str(), fmt(quantile(r.run.total, 0.5)).c_str(),
-        fmt(quantile(r.run.total, 0.9)).c_str(),
+        fmt(quantile(r.run.total, 0.9)).c_str(), fmt(quantile(r.run.cpu, 0.5)).c_str(),
+        fmt(mean_cpu).c_str(), fmt(quantile(r.run.settled, 0.5), "%.0f").c_str(),
         fmt(quantile(r.run.iterations, 0.5), "%.0f").c_str(),
         fmt(quantile(r.run.iterations, 0.9), "%.0f").c_str(), r.run.not_converged,
         static_cast<int>(r.excess.size()),
         have ? fmt(quantile(r.excess, 0.5), "%.1e").c_str() : "-",
         have ? fmt(quantile(r.excess, 1.0), "%.1e").c_str() : "-",
-        have ? (std::to_string(within) + "/" + std::to_string(r.excess.size())).c_str() : "-",
-        have ? (std::to_string(other) + "/" + std::to_string(r.excess.size())).c_str() : "-");
+        have ? (std::to_string(equal) + "/" + std::to_string(r.excess.size())).c_str() : "-",
+        have ? (std::to_string(within) + "/" + std::to_string(r.excess.size())).c_str() : "-");
+  }
+  if (!side.empty()) {
+    std::printf(
+        "\n| mesh | faces | windplan thread CPU per path (median) | reference (FlipOut) | ratio | "
+        "windplan equal to exact (1e-9) | reference equal to exact |\n|---|---:|---:|---:|---:|"
+        "---:|---:|\n");
+    for (const std::string& l : side) std::printf("%s\n", l.c_str());
   }
   if (!notes.empty()) {
     std::printf("\nnotes:\n");

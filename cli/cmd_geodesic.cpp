@@ -1,9 +1,11 @@
 // windplan geodesic / windplan loop: the geodesic core (geometry/geodesic.h) on the command line.
 // A geodesic between two surface points, or a closed geodesic loop refined from a curve, under
 // the Euclidean, a density or an anisotropic metric; the result as text, JSON or CSV.
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <set>
@@ -21,6 +23,7 @@
 #include "geometry/json.h"
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_validation.h"
+#include "geometry/parallel.h"
 #include "planner/job.h"
 #include "planner/mandrel_builder.h"
 
@@ -53,12 +56,26 @@ const char* const kGeodesicHelp =
     "usage: windplan geodesic <mesh | job.yaml> --from <vertex | x,y,z> --to <vertex | x,y,z>\n"
     "                         [--density faces.txt | --metric faces.txt] [--solver newton|lbfgs]\n"
     "                         [--json] [-o path.csv]\n"
+    "       windplan geodesic <mesh | job.yaml> --pairs pairs.txt [--json] [-o table]\n"
+    "                         [--threads N] [--density ... | --metric ...] [--solver ...]\n"
     "\n"
     "Computes a locally shortest path between two surface points: the shortest path along mesh\n"
     "edges (A*), turned into a strip of faces, then refined over its edge crossings (Liu et al.,\n"
     "an optimization-driven approach for geodesic paths on triangle meshes). A point is a vertex\n"
     "index (0-based) or x,y,z (mm), projected to the closest surface point.\n"
     "\n"
+    "  --pairs FILE       batch: one pair per line, 'FROM TO' separated by spaces or a tab, each a\n"
+    "                     vertex index or x,y,z (no spaces inside); blank lines and lines\n"
+    "                     starting with '#' are skipped. The mesh is loaded once and the pairs\n"
+    "                     are solved in parallel (--threads N, default all cores). One row per\n"
+    "                     pair, in file order: CSV (header line, from, to, length, ...) or with\n"
+    "                     --json one JSON object per line; to stdout or to -o FILE. Columns /\n"
+    "                     keys: line (of the pairs file), from, to, length (17 significant\n"
+    "                     digits), euclidean_length, converged, termination, iterations,\n"
+    "                     reroutes, pinned_vertices, crossings, time_ms (that pair's solve, wall\n"
+    "                     time; the only column that differs between runs). A bad line (text,\n"
+    "                     a vertex out of range, a point off the mesh) names the file and line,\n"
+    "                     exits 1 and writes nothing.\n"
     "  --exact            also compute the exact polyhedral geodesic distance (CGAL, Euclidean\n"
     "                     metric only; seconds and GBs above 100K faces) and the relative\n"
     "                     excess (length - exact) / exact; JSON keys exact_length, excess\n"
@@ -68,11 +85,21 @@ const char* const kLoopHelp =
     "usage: windplan loop <mesh | job.yaml> --init curve.csv\n"
     "                     [--density faces.txt | --metric faces.txt] [--solver newton|lbfgs]\n"
     "                     [--json] [-o loop.csv]\n"
+    "       windplan loop <mesh | job.yaml> --curves curves.txt [--json] [-o table]\n"
+    "                     [--threads N] [--density ... | --metric ...] [--solver ...]\n"
     "\n"
     "Refines a closed curve into a closed geodesic loop. The curve file holds one point x,y,z\n"
     "(mm) per line, comma or space separated, first point not repeated at the end; an optional\n"
     "header line and lines starting with '#' are skipped. Each point is snapped to the surface,\n"
     "consecutive points are joined by shortest edge paths, and the closed strip is refined.\n"
+    "\n"
+    "  --curves FILE      batch: one closed curve per line, its points x,y,z separated by spaces\n"
+    "                     (at least 3); blank lines and lines starting with '#' are skipped. The\n"
+    "                     mesh is loaded once and the loops are refined in parallel (--threads N,\n"
+    "                     default all cores). One row per curve, in file order, as for\n"
+    "                     'windplan geodesic --pairs' (CSV or --json lines, to stdout or -o\n"
+    "                     FILE), with the column points (the curve's point count) instead of\n"
+    "                     from, to. A bad line names the file and line, exits 1, writes nothing.\n"
     "\n" WINDPLAN_GEODESIC_COMMON_HELP;
 
 namespace {
@@ -81,6 +108,13 @@ using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/// %.17g: every double prints back to itself.
+std::string full(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
 }
 
 std::string lower(std::string s) {
@@ -322,7 +356,7 @@ int report(const Args& args, const Setup& s, const GeodesicResult& r, double ini
   }
   const GeodesicSummary& m = r.summary;
   if (args.flag("--json")) {
-    JsonWriter j;
+    JsonWriter j(2, 17);
     j.begin_object();
     j.field("closed", closed);
     j.field("metric", metric_name(s.metric));
@@ -358,8 +392,8 @@ int report(const Args& args, const Setup& s, const GeodesicResult& r, double ini
   }
   std::cout << (closed ? "loop" : "geodesic") << ": " << metric_name(s.metric) << " metric, "
             << (s.options.solver == GeodesicSolver::Newton ? "newton" : "lbfgs") << " solver\n"
-            << "  length " << m.final_length << " mm (initial " << m.initial_length
-            << ", euclidean " << m.euclidean_length << ")\n"
+            << "  length " << full(m.final_length) << " mm (initial " << full(m.initial_length)
+            << ", euclidean " << full(m.euclidean_length) << ")\n"
             << "  " << r.path.num_crossings() << " edge crossings, " << points.size() << " points, "
             << m.iterations << " iterations, " << m.reroutes << " reroutes, " << m.pinned_vertices
             << " pinned vertices\n"
@@ -368,11 +402,243 @@ int report(const Args& args, const Setup& s, const GeodesicResult& r, double ini
             << "  time: init " << init_ms << " ms, refine " << refine_ms << " ms (setup "
             << s.setup_ms << " ms)\n";
   if (exact) {
-    std::cout << "  exact (CGAL) " << *exact << " mm, relative excess "
+    std::cout << "  exact (CGAL) " << full(*exact) << " mm, relative excess "
               << (m.final_length - *exact) / *exact << "\n";
   }
   if (args.has("-o")) std::cout << "written: " << args.value("-o") << "\n";
   return 0;
+}
+
+/// One pair of `--pairs`, as given and as parsed.
+struct BatchPair {
+  int line = 0;
+  std::string from, to;
+  SurfacePoint a, b;
+};
+
+/// A line of a batch file that holds data: its 1-based number, its text and its tokens
+/// (separated by spaces, tabs or ';'). Blank lines and lines starting with '#' are skipped.
+struct BatchLine {
+  int number = 0;
+  std::string text;
+  std::vector<std::string> tokens;
+};
+std::vector<BatchLine> batch_lines(const std::filesystem::path& file) {
+  const std::string text = read_text_file(file);
+  std::istringstream in(text);
+  std::vector<BatchLine> lines;
+  std::string line;
+  int no = 0;
+  while (std::getline(in, line)) {
+    ++no;
+    std::string clean = line;
+    for (char& c : clean)
+      if (c == '\t' || c == '\r' || c == ';') c = ' ';
+    std::istringstream ls(clean);
+    BatchLine bl{no, line, {}};
+    for (std::string tok; ls >> tok;) bl.tokens.push_back(tok);
+    if (bl.tokens.empty() || bl.tokens[0][0] == '#') continue;
+    lines.push_back(std::move(bl));
+  }
+  return lines;
+}
+
+/// Reads and checks every line of a pairs file before anything is solved.
+/// \throw InputError "FILE:LINE: ..." for the first bad line.
+std::vector<BatchPair> read_pairs(const std::filesystem::path& file, const Mesh& mesh,
+                                  const ClosestPointQuery& query, double tolerance) {
+  std::vector<BatchPair> pairs;
+  for (const BatchLine& bl : batch_lines(file)) {
+    const int no = bl.number;
+    const std::string& line = bl.text;
+    const std::vector<std::string>& toks = bl.tokens;
+    const std::string at = file.string() + ":" + std::to_string(no) + ": ";
+    if (toks.size() != 2) {
+      throw InputError(at + "expected two points 'FROM TO' (a vertex index or x,y,z each), got '" +
+                       line + "'");
+    }
+    BatchPair p;
+    p.line = no;
+    p.from = toks[0];
+    p.to = toks[1];
+    try {
+      p.a = parse_point(mesh, query, tolerance, "from", toks[0]);
+      p.b = parse_point(mesh, query, tolerance, "to", toks[1]);
+    } catch (const Error& e) {
+      throw InputError(at + e.what());
+    }
+    pairs.push_back(std::move(p));
+  }
+  if (pairs.empty()) throw InputError(file.string() + ": no pairs (one 'FROM TO' per line)");
+  return pairs;
+}
+
+/// One row of a batch: the input line, its identifying text columns, the result.
+struct BatchRow {
+  int line = 0;
+  std::vector<std::pair<std::string, std::string>> ids;
+  GeodesicSummary summary;
+  int crossings = 0;
+  double time_ms = 0.0;
+};
+
+/// The batch table (CSV with a header, or JSON lines), to -o FILE (atomically) or stdout.
+int write_batch(const Args& args, const char* command, const char* what,
+                const std::vector<BatchRow>& rows, double solve_ms, double setup_ms) {
+  std::ostringstream out;
+  const bool json = args.flag("--json");
+  auto quoted = [](const std::string& t) {
+    return t.find(',') == std::string::npos ? t : "\"" + t + "\"";
+  };
+  if (!json && !rows.empty()) {
+    out << "line";
+    for (const auto& id : rows.front().ids) out << "," << id.first;
+    out << ",length,euclidean_length,converged,termination,iterations,reroutes,"
+           "pinned_vertices,crossings,time_ms\n";
+  }
+  for (const BatchRow& row : rows) {
+    const GeodesicSummary& m = row.summary;
+    if (json) {
+      JsonWriter j(0, 17);
+      j.begin_object();
+      j.field("line", row.line);
+      for (const auto& id : row.ids) j.field(id.first, id.second);
+      j.field("length", m.final_length);
+      j.field("euclidean_length", m.euclidean_length);
+      j.field("converged", m.converged());
+      j.field("termination", to_string(m.termination));
+      j.field("iterations", m.iterations);
+      j.field("reroutes", m.reroutes);
+      j.field("pinned_vertices", m.pinned_vertices);
+      j.field("crossings", row.crossings);
+      j.field("time_ms", row.time_ms);
+      j.end_object();
+      std::string text = j.str();
+      for (char& c : text)
+        if (c == '\n') c = ' ';
+      out << text << "\n";
+    } else {
+      out << row.line;
+      for (const auto& id : row.ids) out << "," << quoted(id.second);
+      out << "," << full(m.final_length) << "," << full(m.euclidean_length) << ","
+          << (m.converged() ? "true" : "false") << "," << to_string(m.termination) << ","
+          << m.iterations << "," << m.reroutes << "," << m.pinned_vertices << ","
+          << row.crossings << "," << full(row.time_ms) << "\n";
+    }
+  }
+  if (args.has("-o")) {
+    write_text_atomically(args.value("-o"), out.str());
+    std::cerr << "windplan " << command << ": " << rows.size() << " " << what << " in "
+              << solve_ms << " ms on up to " << max_threads() << " threads (setup " << setup_ms
+              << " ms); written: " << args.value("-o") << "\n";
+  } else {
+    std::cout << out.str();
+  }
+  return 0;
+}
+
+int run_geodesic_batch(const Args& args, Setup& s) {
+  if (args.has("--from") || args.has("--to") || args.flag("--exact")) {
+    throw UsageError("--pairs replaces --from/--to; --exact is for single pairs");
+  }
+  const std::filesystem::path file = args.value("--pairs");
+  const ClosestPointQuery query(s.mesh);
+  const std::vector<BatchPair> pairs = read_pairs(file, s.mesh, query, s.tolerance);
+  const auto t1 = Clock::now();
+  const GeodesicContext ctx(s.mesh, s.metric);
+  s.setup_ms += ms_since(t1);
+  const int n = static_cast<int>(pairs.size());
+  std::vector<OpenGeodesicResult> results(n);
+  std::vector<double> times(n, 0.0);
+  const auto t2 = Clock::now();
+  parallel_for_index(n, [&](int i) {
+    const auto t = Clock::now();
+    try {
+      results[i] = geodesic_between(ctx, pairs[i].a, pairs[i].b, s.options);
+    } catch (const InputError& e) {
+      throw InputError(file.string() + ":" + std::to_string(pairs[i].line) + ": " + e.what());
+    }
+    times[i] = ms_since(t);
+  });
+  const double solve_ms = ms_since(t2);
+  std::vector<BatchRow> rows(n);
+  for (int i = 0; i < n; ++i) {
+    rows[i] = {pairs[i].line, {{"from", pairs[i].from}, {"to", pairs[i].to}},
+               results[i].summary, results[i].path.num_crossings(), times[i]};
+  }
+  return write_batch(args, "geodesic", "pairs", rows, solve_ms, s.setup_ms);
+}
+
+/// `loop --curves`: one closed curve per line, points x,y,z separated by spaces.
+struct BatchCurve {
+  int line = 0;
+  int points = 0;
+  SurfacePath init;
+};
+
+std::vector<BatchCurve> read_curves(const std::filesystem::path& file, const Mesh& mesh,
+                                    const EdgeGraph& graph, double tolerance) {
+  std::vector<BatchCurve> curves;
+  for (const BatchLine& bl : batch_lines(file)) {
+    const int no = bl.number;
+    const std::vector<std::string>& toks = bl.tokens;
+    const std::string at = file.string() + ":" + std::to_string(no) + ": ";
+    std::vector<Vec3> points;
+    for (const std::string& t : toks) {
+      Vec3 p;
+      std::istringstream ps(t);
+      std::string part;
+      int k = 0;
+      bool ok = true;
+      while (ok && std::getline(ps, part, ',')) {
+        double d = 0.0;
+        ok = k < 3 && parse_double(part, &d) && std::isfinite(d);
+        if (ok) p[k++] = d;
+      }
+      if (!ok || k != 3) throw InputError(at + "'" + t + "' is not a point x,y,z");
+      points.push_back(p);
+    }
+    if (points.size() < 3) {
+      throw InputError(at + "a closed curve needs at least 3 points x,y,z (found " +
+                       std::to_string(points.size()) + ")");
+    }
+    BatchCurve c;
+    c.line = no;
+    c.points = static_cast<int>(points.size());
+    try {
+      c.init = path_from_curve(mesh, graph, points, true, tolerance);
+    } catch (const Error& e) {
+      throw InputError(at + e.what());
+    }
+    curves.push_back(std::move(c));
+  }
+  if (curves.empty()) throw InputError(file.string() + ": no curves (one closed curve per line)");
+  return curves;
+}
+
+int run_loop_batch(const Args& args, Setup& s) {
+  if (args.has("--init")) throw UsageError("give --init or --curves, not both");
+  const std::filesystem::path file = args.value("--curves");
+  const auto t1 = Clock::now();
+  const EdgeGraph graph = build_edge_graph(s.mesh, s.metric);
+  s.setup_ms += ms_since(t1);
+  const std::vector<BatchCurve> curves = read_curves(file, s.mesh, graph, s.tolerance);
+  const int n = static_cast<int>(curves.size());
+  std::vector<GeodesicResult> results(n);
+  std::vector<double> times(n, 0.0);
+  const auto t2 = Clock::now();
+  parallel_for_index(n, [&](int i) {
+    const auto t = Clock::now();
+    results[i] = refine_path(s.mesh, curves[i].init, s.metric, s.options);
+    times[i] = ms_since(t);
+  });
+  const double solve_ms = ms_since(t2);
+  std::vector<BatchRow> rows(n);
+  for (int i = 0; i < n; ++i) {
+    rows[i] = {curves[i].line, {{"points", std::to_string(curves[i].points)}},
+               results[i].summary, results[i].path.num_crossings(), times[i]};
+  }
+  return write_batch(args, "loop", "curves", rows, solve_ms, s.setup_ms);
 }
 
 const std::set<std::string> kFlags = {"--json"};
@@ -384,9 +650,15 @@ int run_geodesic(const std::vector<std::string>& argv) {
   const auto t0 = Clock::now();
   const Args args(
       argv, kGeodesicFlags,
-      {"--from", "--to", "--density", "--metric", "--solver", "-o", "--snap-tolerance"});
+      {"--from", "--to", "--density", "--metric", "--solver", "-o", "--snap-tolerance", "--pairs"});
   args.expect_positional(1, "one mesh file or job file");
-  if (!args.has("--from") || !args.has("--to")) throw UsageError("--from and --to are required");
+  if (args.has("--pairs")) {
+    Setup s = setup(args, t0);
+    return run_geodesic_batch(args, s);
+  }
+  if (!args.has("--from") || !args.has("--to")) {
+    throw UsageError("--from and --to are required (or --pairs FILE)");
+  }
   Setup s = setup(args, t0);
   const ClosestPointQuery query(s.mesh);
   const SurfacePoint a = parse_point(s.mesh, query, s.tolerance, "--from", args.value("--from"));
@@ -408,9 +680,14 @@ int run_geodesic(const std::vector<std::string>& argv) {
 int run_loop(const std::vector<std::string>& argv) {
   const auto t0 = Clock::now();
   const Args args(argv, kFlags,
-                  {"--init", "--density", "--metric", "--solver", "-o", "--snap-tolerance"});
+                  {"--init", "--density", "--metric", "--solver", "-o", "--snap-tolerance",
+                   "--curves"});
   args.expect_positional(1, "one mesh file or job file");
-  if (!args.has("--init")) throw UsageError("--init curve.csv is required");
+  if (args.has("--curves")) {
+    Setup s = setup(args, t0);
+    return run_loop_batch(args, s);
+  }
+  if (!args.has("--init")) throw UsageError("--init curve.csv is required (or --curves FILE)");
   Setup s = setup(args, t0);
   const std::vector<Vec3> curve = read_curve(args.value("--init"));
   const auto t1 = Clock::now();

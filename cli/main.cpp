@@ -3,9 +3,11 @@
 #include <cstring>
 #include <string>
 #include <iostream>
+#include <memory>
 
 #include "cli/commands.h"
 #include "geometry/errors.h"
+#include "geometry/parallel.h"
 #include "windplan_version.h"
 
 namespace {
@@ -54,6 +56,8 @@ void print_help() {
               << c.summary << "\n";
   }
   std::cout << "\n'windplan <command> --help' describes a command.\n"
+               "Every command takes --threads N: at most N threads (default: all cores); the\n"
+               "files written are the same whatever N is.\n"
                "Exit codes: 0 ok, 1 bad input, 2 usage error, 3 internal error.\n";
 }
 
@@ -82,6 +86,23 @@ int main(int argc, char** argv) {
         std::cout << c.help;
         return 0;
       }
+    }
+    // --threads N, common to every command: a process-wide limit (geometry/parallel.h).
+    std::unique_ptr<windplan::ThreadLimit> limit;
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+      if (rest[i] != "--threads") continue;
+      char* end = nullptr;
+      const long n = i + 1 < rest.size() ? std::strtol(rest[i + 1].c_str(), &end, 10) : 0;
+      if (i + 1 >= rest.size() || end == rest[i + 1].c_str() || *end != '\0' || n < 1 ||
+          n > 4096) {
+        std::cerr << "windplan " << c.name << ": --threads expects an integer >= 1"
+                  << (i + 1 < rest.size() ? ", got '" + rest[i + 1] + "'" : std::string()) << "\n"
+                  << "run 'windplan " << c.name << " --help' for usage\n";
+        return 2;
+      }
+      limit = std::make_unique<windplan::ThreadLimit>(static_cast<int>(n));
+      rest.erase(rest.begin() + static_cast<long>(i), rest.begin() + static_cast<long>(i) + 2);
+      --i;
     }
     try {
       return c.run(rest);

@@ -93,6 +93,34 @@ void turnarounds_json(JsonWriter& j, const PlanMetrics& m, bool mm_keys) {
   j.end_array();
 }
 
+void friction_json(JsonWriter& j, const FrictionFigures& f) {
+  j.begin_object();
+  j.field("slippage_bound", f.bound);
+  j.field("mu", f.mu);
+  j.key("pass").begin_object();
+  j.field("planned_slippage", f.pass_lambda);
+  j.field("measured_max_slippage", f.pass_measured);
+  j.field("length_mm", f.pass_length);
+  j.end_object();
+  j.key("ends").begin_array();
+  for (int e = 0; e < 2; ++e) {
+    j.begin_object();
+    j.field("end", kEndName[e]);
+    j.field("friction", f.at_end[e]);
+    if (f.at_end[e]) {
+      j.field("planned_slippage", f.lambda[e]);
+      j.field("measured_max_slippage", f.measured[e]);
+      j.field("friction_length_mm", f.length[e]);
+      j.field("axial_length_mm", f.axial[e]);
+      j.field("turn_deg", f.angle_deg[e]);
+      j.field("pass_angle_deg", f.pass_angle_deg[e]);
+    }
+    j.end_object();
+  }
+  j.end_array();
+  j.end_object();
+}
+
 void coverage_json(JsonWriter& j, const CoverageReport& c, bool mm_keys) {
   const std::string mm = mm_keys ? "_mm" : "";
   j.begin_object();
@@ -190,6 +218,10 @@ std::string report_json(const WindingPlan& plan, const ExportResult& r) {
   if (m.pattern_info.geodesic) {  // planned from Clairaut's integral (shapes of revolution)
     j.key("pattern");
     pattern_json(j, m.pattern_info, true);
+  }
+  if (m.friction_turnarounds.planned) {
+    j.key("friction_turnarounds");
+    friction_json(j, m.friction_turnarounds);
   }
   j.key("coverage");
   coverage_json(j, m.coverage, true);
@@ -306,8 +338,26 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
       o << "| " << kEndName[e] << " | "
         << (pi.geodesic_end[e] ? "geodesic, tangent to r = " + fmt("%.3f", pi.turnaround_radius) +
                                      " mm"
-                               : std::string("dwell (fibre held by pins or a ring)"))
+                               : m.friction_turnarounds.at_end[e]
+                                   ? "friction, |k_g/k_n| " +
+                                         fmt("%.4f", m.friction_turnarounds.lambda[e])
+                                   : std::string("dwell (fibre held by pins or a ring)"))
         << " | " << fmt("%.2f", pi.dwell_deg[e]) << " |\n";
+    }
+  }
+  const FrictionFigures& ff = m.friction_turnarounds;
+  if (ff.planned) {
+    o << "\n## Friction turnarounds\n\nwinding.slippage " << fmt("%.4f", ff.bound) << ", mu "
+      << fmt("%.4f", ff.mu) << "; |k_g/k_n| planned and measured on the laid points.\n\n"
+      << "| where | planned | measured max | friction length [mm] | along the axis [mm] | "
+         "turn [deg] |\n|---|---|---|---|---|---|\n"
+      << "| passes (geodesic) | " << fmt("%.4f", ff.pass_lambda) << " | "
+      << fmt("%.4f", ff.pass_measured) << " | 0 | - | - |\n";
+    for (int e = 0; e < 2; ++e) {
+      if (!ff.at_end[e]) continue;
+      o << "| " << kEndName[e] << " turnaround | " << fmt("%.4f", ff.lambda[e]) << " | "
+        << fmt("%.4f", ff.measured[e]) << " | " << fmt("%.1f", ff.length[e]) << " | "
+        << fmt("%.1f", ff.axial[e]) << " | " << fmt("%.2f", ff.angle_deg[e]) << " |\n";
     }
   }
   const CoverageReport& cv = m.coverage;
@@ -390,7 +440,13 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
     << "  spacing CV       " << fmt("%.4f", m.spacing_cv) << "\n"
     << "  max slippage     " << fmt("%.4f", m.max_slippage) << "\n";
   const PatternInfo& pi = m.pattern_info;
-  if (pi.geodesic && pi.geodesic_end[0] && pi.geodesic_end[1]) {
+  const FrictionFigures& ff = m.friction_turnarounds;
+  if (ff.planned) {
+    o << "  turnarounds      friction, no pins: |k_g/k_n| planned " << fmt("%.4f", std::max(ff.lambda[0], ff.lambda[1]))
+      << ", measured <= " << fmt("%.4f", std::max(ff.measured[0], ff.measured[1])) << " (mu "
+      << fmt("%.3f", ff.mu) << "), " << fmt("%.1f", std::max(ff.length[0], ff.length[1]))
+      << " mm of fibre each\n";
+  } else if (pi.geodesic && pi.geodesic_end[0] && pi.geodesic_end[1]) {
     o << "  turnarounds      geodesic at both ends, tangent to r = "
       << fmt("%.2f", pi.turnaround_radius) << " mm: no dwell arc\n";
   } else {

@@ -29,6 +29,9 @@ void turnarounds_json(JsonWriter& j, const PlanMetrics& m, bool mm_keys);
 /// The measured coverage (planner/coverage.h) as a JSON object: the figures over all stations
 /// and one object per station; lengths with an "_mm" suffix when mm_keys.
 void coverage_json(JsonWriter& j, const CoverageReport& c, bool mm_keys);
+/// The friction turnarounds (FrictionFigures: winding.slippage > 0) as a JSON object: the bound,
+/// mu, the passes' and each end's planned and measured |k_g/k_n| and friction lengths (mm).
+void friction_json(JsonWriter& j, const FrictionFigures& f);
 /// How the circuits were planned on a shape of revolution (PatternInfo) as a JSON object.
 void pattern_json(JsonWriter& j, const PatternInfo& p, bool mm_keys);
 

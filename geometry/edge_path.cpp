@@ -71,7 +71,8 @@ Rotation rotate(const Mesh& mesh, int u, int face, bool ccw, const Vec3& d_in, c
   return r;
 }
 
-// Appends the rotation around u from *face to a face satisfying stop, on the smaller side.
+}  // namespace
+
 void turn_at(const Mesh& mesh, int u, int* face, const Vec3& prev_point, const Vec3& next_point,
              const std::function<bool(int)>& stop, SurfacePath* path) {
   if (stop(*face)) return;
@@ -88,6 +89,8 @@ void turn_at(const Mesh& mesh, int u, int* face, const Vec3& prev_point, const V
   *face = r.end_face;
 }
 
+namespace {
+
 bool face_has_vertex(const Mesh& mesh, int f, int v) {
   const Tri& t = mesh.triangle(f);
   return t[0] == v || t[1] == v || t[2] == v;
@@ -102,7 +105,8 @@ int face_of_edge(const Mesh& mesh, int u, int w) {
   return -1;
 }
 
-// The vertex p sits on, or -1.
+}  // namespace
+
 int as_vertex(const Mesh& mesh, const SurfacePoint& p) {
   switch (p.kind) {
     case SurfacePoint::Kind::Vertex: return p.element;
@@ -118,7 +122,6 @@ int as_vertex(const Mesh& mesh, const SurfacePoint& p) {
   return -1;
 }
 
-// Faces whose closure contains p.
 std::vector<int> faces_containing(const Mesh& mesh, const SurfacePoint& p) {
   std::vector<int> faces;
   switch (p.kind) {
@@ -140,8 +143,6 @@ std::vector<int> faces_containing(const Mesh& mesh, const SurfacePoint& p) {
   }
   return faces;
 }
-
-}  // namespace
 
 EdgeGraph build_edge_graph(const Mesh& mesh, const PathMetric& metric, bool diagonals) {
   EdgeGraph g;
@@ -402,6 +403,67 @@ SurfacePath strip_from_vertex_cycle(const Mesh& mesh, const std::vector<int>& cy
   return path;
 }
 
+SurfacePath join_at_vertex(const Mesh& mesh, const SurfacePath& first, const SurfacePath& second,
+                           int q) {
+  SurfacePath joined;
+  const int f1 = strip_face(mesh, first, first.num_crossings());
+  const int f2 = strip_face(mesh, second, 0);
+  std::vector<int> best;
+  double best_angle = std::numeric_limits<double>::infinity();
+  if (f1 != f2) {
+    for (const bool ccw : {true, false}) {
+      int hv = -1;
+      for (int k = 0; k < 3; ++k)
+        if (mesh.from(3 * f1 + k) == q) hv = 3 * f1 + k;
+      if (hv < 0) return joined;
+      std::vector<int> crossings;
+      double angle = 0.0;
+      bool reached = false;
+      for (int step = 0; step < 4 * mesh.valence(q) + 4 && !reached; ++step) {
+        angle += mesh.corner_angle(hv);
+        const int c = ccw ? mesh.prev(hv) : hv;
+        const int t = mesh.twin(c);
+        if (mesh.is_boundary_halfedge(t)) break;
+        crossings.push_back(c);
+        hv = ccw ? t : mesh.next(t);
+        reached = mesh.face(t) == f2;
+      }
+      if (reached && angle < best_angle) {
+        best_angle = angle;
+        best = std::move(crossings);
+      }
+    }
+    if (best.empty()) return joined;
+  }
+  joined.start = first.start;
+  joined.end = second.end;
+  joined.halfedges = first.halfedges;
+  joined.lambdas = first.lambdas;
+  for (const int c : best) {
+    joined.halfedges.push_back(c);
+    joined.lambdas.push_back(mesh.from(c) == q ? 0.0 : 1.0);
+  }
+  joined.halfedges.insert(joined.halfedges.end(), second.halfedges.begin(),
+                          second.halfedges.end());
+  joined.lambdas.insert(joined.lambdas.end(), second.lambdas.begin(), second.lambdas.end());
+  joined.start_face = joined.halfedges.empty() ? first.start_face
+                                               : mesh.face(joined.halfedges.front());
+  return joined;
+}
+
+std::vector<int> remove_spurs(const std::vector<int>& chain) {
+  std::vector<int> clean;
+  for (int v : chain) {
+    if (!clean.empty() && clean.back() == v) continue;
+    if (clean.size() >= 2 && clean[clean.size() - 2] == v) {
+      clean.pop_back();
+      continue;
+    }
+    clean.push_back(v);
+  }
+  return clean;
+}
+
 SurfacePath initial_open_path(const Mesh& mesh, const EdgeGraph& graph, const SurfacePoint& a,
                               const SurfacePoint& b, const EdgePathOptions& options,
                               EdgePath* diagnostics) {
@@ -473,16 +535,7 @@ SurfacePath path_from_curve(const Mesh& mesh, const EdgeGraph& graph,
       chain.push_back(ep.vertices[j]);
     }
   }
-  // Remove immediate back-and-forth (u, w, u) spurs, which the strip cannot represent well.
-  std::vector<int> clean;
-  for (int v : chain) {
-    if (!clean.empty() && clean.back() == v) continue;
-    if (clean.size() >= 2 && clean[clean.size() - 2] == v) {
-      clean.pop_back();
-      continue;
-    }
-    clean.push_back(v);
-  }
+  std::vector<int> clean = remove_spurs(chain);
   if (closed) {
     while (clean.size() > 1 && clean.back() == clean.front()) clean.pop_back();
     while (clean.size() >= 3 && clean[clean.size() - 1] == clean[1]) {

@@ -3,6 +3,7 @@
 // distance as heuristic, or plain Dijkstra) and their conversion into a face strip with edge
 // crossings (a SurfacePath), for open paths between two surface points, for closed vertex cycles
 // and for curves given as points near the surface.
+#include <functional>
 #include <vector>
 
 #include "geometry/mesh.h"
@@ -76,5 +77,30 @@ SurfacePath initial_open_path(const Mesh& mesh, const EdgeGraph& graph, const Su
 /// \throw InputError naming the first point that is too far, or a curve with < 2 points.
 SurfacePath path_from_curve(const Mesh& mesh, const EdgeGraph& graph,
                             const std::vector<Vec3>& points, bool closed, double max_distance);
+
+/// The open path `first` (ending at vertex q) continued by `second` (starting at q): a rotation
+/// around q from first's last strip face to second's first, on the side of the smaller angle (a
+/// boundary vertex has one side only), with the crossings on q (lambda 0 or 1).
+/// Returns a path with start_face -1 when neither side reaches second's face.
+SurfacePath join_at_vertex(const Mesh& mesh, const SurfacePath& first, const SurfacePath& second,
+                           int q);
+
+/// A vertex chain without repeats (u, u) and back-and-forth spurs (u, w, u), which a face strip
+/// cannot represent.
+std::vector<int> remove_spurs(const std::vector<int>& chain);
+
+/// The vertex a surface point sits on (within kOnVertex of a corner), or -1.
+int as_vertex(const Mesh& mesh, const SurfacePoint& p);
+
+/// Faces whose closure contains p (every face around a vertex, both faces of an edge).
+std::vector<int> faces_containing(const Mesh& mesh, const SurfacePoint& p);
+
+/// Appends to `path` the crossings of a rotation around vertex u from face *face to the first
+/// face for which stop(face) holds, on the side where the angle swept from prev_point to
+/// next_point (points on the path before and after u) is smaller; *face becomes that face.
+/// Crossings sit a quarter of the spoke away from u. Nothing when stop(*face) already holds.
+/// 	hrow InvariantError when neither side reaches such a face.
+void turn_at(const Mesh& mesh, int u, int* face, const Vec3& prev_point, const Vec3& next_point,
+             const std::function<bool(int)>& stop, SurfacePath* path);
 
 }  // namespace windplan

@@ -1741,40 +1741,4 @@ std::vector<VertexPassage> vertex_passages(const Mesh& mesh, const SurfacePath& 
   return out;
 }
 
-GeodesicContext::GeodesicContext(const Mesh& mesh, PathMetric metric)
-    : mesh_(mesh),
-      metric_(std::move(metric)),
-      graph_(build_edge_graph(mesh, metric_, true)),
-      plain_graph_(build_edge_graph(mesh, metric_, false)) {}
-
-OpenGeodesicResult geodesic_between(const GeodesicContext& context, const SurfacePoint& a,
-                                    const SurfacePoint& b, const GeodesicOptions& options,
-                                    const EdgePathOptions& edge_options) {
-  OpenGeodesicResult result;
-  const int starts = options.two_starts && !context.graph().via.empty() ? 2 : 1;
-  for (int s = 0; s < starts; ++s) {
-    const EdgeGraph& graph = s == 0 ? context.graph() : context.plain_graph();
-    const auto t0 = Clock::now();
-    EdgePath edge_path;
-    const SurfacePath init =
-        initial_open_path(context.mesh(), graph, a, b, edge_options, &edge_path);
-    result.init_ms += ms_since(t0);
-    const auto t1 = Clock::now();
-    GeodesicResult r = refine_path(context.mesh(), init, context.metric(), options);
-    result.refine_ms += ms_since(t1);
-    if (s == 0 || (r.summary.converged() && (!result.summary.converged() ||
-                                            r.summary.final_length < result.summary.final_length))) {
-      result.path = std::move(r.path);
-      const double time = result.summary.time_ms;
-      result.summary = r.summary;
-      result.summary.time_ms += time;
-      result.constraint_variables = std::move(r.constraint_variables);
-      result.edge_path = std::move(edge_path);
-    } else {
-      result.summary.time_ms += r.summary.time_ms;
-    }
-  }
-  return result;
-}
-
 }  // namespace windplan

@@ -15,10 +15,12 @@
 // (cyclic for loops; bordered by the constraint's extra variables), so a projected Newton step
 // costs O(k) for k crossings and converges quadratically. Solver::Newton is the default;
 // Solver::Lbfgs is the paper's projected L-BFGS.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "geometry/edge_path.h"
+#include "geometry/edge_path_steiner.h"
 #include "geometry/mesh.h"
 #include "geometry/path_constraint.h"
 #include "geometry/path_metric.h"
@@ -48,10 +50,25 @@ struct GeodesicOptions {
   /// in the strip (funnel algorithm on the unfolded strip, alternated with reroutes; loops are
   /// straightened with one crossing held at a time, alternating between two of them).
   bool funnel_start = true;
-  /// geodesic_between: refine from two initial paths (shortest paths in the plain edge graph and
-  /// in the graph with unfolded diagonals) and keep the shorter result. Local methods settle on
-  /// the geodesic of the corridor they start in; two corridors find the global one more often.
+  /// geodesic_between: also refine whole paths from the shortest path in the context's
+  /// Steiner-point graph (geometry/edge_path_steiner.h). It would start in the globally right
+  /// corridor if the graph's excess were below the gaps between competing geodesics; it is not
+  /// (see GeodesicContext::kDefaultSteinerPoints), so this is off by default. Ignored when the
+  /// context has no Steiner graph.
+  bool steiner_start = false;
+  /// geodesic_between: also refine from two edge paths (shortest paths in the plain edge graph
+  /// and in the graph with unfolded diagonals) and keep the shortest result. Local methods
+  /// settle on the geodesic of the corridor they start in; more corridors find the global one
+  /// more often. Without a Steiner start, the diagonal graph's start is always made.
   bool two_starts = true;
+  /// geodesic_between: when the best path passes vertices, also solve the legs between them on
+  /// their own (a geodesic through a saddle vertex may leave it into another corridor) and keep
+  /// the joined, refined legs when they are shorter.
+  bool split_at_vertices = true;
+  /// geodesic_between: the legs of split_at_vertices also start from the Steiner graph (when
+  /// the context has one), whatever steiner_start says: legs are short, so their Steiner
+  /// search is cheap.
+  bool steiner_legs = true;
   /// Upper bound on strip changes (reroutes) before giving up (0: 20 + 4 * crossings).
   int max_reroutes = 0;
   /// L-BFGS memory (pairs).
@@ -137,30 +154,51 @@ struct VertexPassage {
 };
 std::vector<VertexPassage> vertex_passages(const Mesh& mesh, const SurfacePath& path);
 
-/// Reusable state for many queries on one mesh and metric (precompute / query split).
+/// Reusable state for many queries on one mesh and metric (precompute / query split). Queries
+/// may run on several threads at once.
 class GeodesicContext {
  public:
-  GeodesicContext(const Mesh& mesh, PathMetric metric = {});
+  /// Steiner points per edge of the start graph by default. Measured on the 20K bunny
+  /// (bench/README.md, session 4): as the start of whole paths the Steiner graph finds the exact
+  /// geodesic less often than the two edge starts (k = 1, 2, 3: 34, 36, 35 of 50 against 41) at
+  /// 2-6x their time (its excess, ~1e-3, exceeds the gaps between competing geodesics, 1e-6 to
+  /// 1e-4); as an extra start for the legs between the vertices a path passes (short, so cheap)
+  /// it adds 2 of 50 (k = 2).
+  static constexpr int kDefaultSteinerPoints = 2;
+  /// \param steiner_points_per_edge k of the Steiner graph (0: none; ignored, i.e. none, under
+  ///        an anisotropic metric).
+  GeodesicContext(const Mesh& mesh, PathMetric metric = {},
+                  int steiner_points_per_edge = kDefaultSteinerPoints);
+  ~GeodesicContext();
   const Mesh& mesh() const { return mesh_; }
   const PathMetric& metric() const { return metric_; }
   /// The graph with unfolded diagonals (see build_edge_graph).
   const EdgeGraph& graph() const { return graph_; }
   /// The plain edge graph.
   const EdgeGraph& plain_graph() const { return plain_graph_; }
+  /// The Steiner-point graph, or nullptr.
+  const SteinerGraph* steiner_graph() const { return steiner_.get(); }
 
  private:
   const Mesh& mesh_;
   PathMetric metric_;
   EdgeGraph graph_, plain_graph_;
+  std::unique_ptr<SteinerGraph> steiner_;
 };
 
 struct OpenGeodesicResult : GeodesicResult {
   double init_ms = 0.0;    ///< initial edge path and strip
   double refine_ms = 0.0;  ///< refinement
-  EdgePath edge_path;      ///< diagnostics of the initial search
+  EdgePath edge_path;      ///< diagnostics of the initial search (edge starts)
+  int steiner_settled = 0; ///< nodes settled by the Steiner search (0 without one)
+  /// Which start gave the result: 0 Steiner, 1 diagonal graph, 2 plain graph, 3 the legs
+  /// between the vertices passed (split_at_vertices).
+  int start = 0;
 };
 
-/// Geodesic between two surface points: A* edge path, strip, refinement.
+/// Geodesic between two surface points: start paths (Steiner graph, edge graphs; see
+/// GeodesicOptions::steiner_start, two_starts), their strips, refinement; the shortest
+/// converged result is kept (geometry/geodesic_between.cpp).
 /// \throw InputError if the points lie on different components.
 OpenGeodesicResult geodesic_between(const GeodesicContext& context, const SurfacePoint& a,
                                     const SurfacePoint& b, const GeodesicOptions& options = {},

@@ -3,17 +3,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <functional>
 #include <limits>
 #include <queue>
 #include <set>
-#include <thread>
 #include <utility>
 
 #include "geometry/edge_path.h"
 #include "geometry/errors.h"
 #include "geometry/geodesic.h"
+#include "geometry/parallel.h"
+#include "planner/girth_loops.h"
 
 namespace windplan {
 
@@ -395,58 +395,22 @@ SurfacePath GirthContext::refined_halves(int p, const std::vector<int>& cycle) c
   } catch (const Error&) {
     return joined;  // the direct refinement is the fallback
   }
-  // Rotate around q from the last face of the first half to the first face of the second, on
-  // the side of the smaller angle (a boundary vertex has one side only); the crossings sit on q.
-  const int f1 = strip_face(mesh, a.path, a.path.num_crossings());
-  const int f2 = strip_face(mesh, b.path, 0);
-  std::vector<int> best;
-  double best_angle = kInf;
-  if (f1 != f2) {
-    for (bool ccw : {true, false}) {
-      int hv = -1;
-      for (int k = 0; k < 3; ++k)
-        if (mesh.from(3 * f1 + k) == q) hv = 3 * f1 + k;
-      if (hv < 0) return joined;
-      std::vector<int> crossings;
-      double angle = 0.0;
-      bool ok = false;
-      for (int step = 0; step < 4 * mesh.valence(q) + 4; ++step) {
-        angle += mesh.corner_angle(hv);
-        const int c = ccw ? mesh.prev(hv) : hv;
-        const int t = mesh.twin(c);
-        if (mesh.is_boundary_halfedge(t)) break;
-        crossings.push_back(c);
-        hv = ccw ? t : mesh.next(t);
-        if (mesh.face(t) == f2) {
-          ok = true;
-          break;
-        }
-      }
-      if (ok && angle < best_angle) {
-        best_angle = angle;
-        best = crossings;
-      }
-    }
-    if (best.empty()) return joined;
-  }
-  joined.closed = false;
-  joined.start = joined.end = SurfacePoint::at_vertex(p);
-  joined.halfedges = a.path.halfedges;
-  joined.lambdas = a.path.lambdas;
-  for (int c : best) {
-    joined.halfedges.push_back(c);
-    joined.lambdas.push_back(mesh.from(c) == q ? 0.0 : 1.0);
-  }
-  joined.halfedges.insert(joined.halfedges.end(), b.path.halfedges.begin(), b.path.halfedges.end());
-  joined.lambdas.insert(joined.lambdas.end(), b.path.lambdas.begin(), b.path.lambdas.end());
-  joined.start_face =
-      joined.halfedges.empty() ? a.path.start_face : mesh.face(joined.halfedges.front());
+  joined = join_at_vertex(mesh, a.path, b.path, q);
+  if (joined.start_face < 0) return SurfacePath{};
   std::string why;
   if (!is_valid_path(mesh, joined, &why) || std::abs(winding_number(joined)) != 1) {
     return SurfacePath{};
   }
   return joined;
 }
+
+namespace {
+// Other corridors tried per girth loop, and how much longer (as edge loops) than the shortest
+// edge loop they may be: the edge loops are a few per cent longer than the loops they lead to.
+constexpr int kOtherCorridors = 2;
+constexpr double kCorridorWindow = 1.15;
+bool finite_length(const GeodesicResult& r) { return std::isfinite(r.summary.euclidean_length); }
+}  // namespace
 
 GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) const {
   const Mesh& mesh = mesh_;
@@ -498,10 +462,30 @@ GirthContext::Loop GirthContext::girth(int p, std::vector<double>* distances) co
       winding = winding2;
     }
   }
+  // The shortest loop, not only a locally shortest one: refine also from edge loops in other
+  // corridors (planner/girth_loops.h) and keep the shortest that winds once.
+  bool other_corridor = false;
+  for (const std::vector<int>& other :
+       alternative_edge_loops(mesh, impl_->graph, impl_->shift, p, cycle, kOtherCorridors,
+                              kCorridorWindow)) {
+    const SurfacePath joined = refined_halves(p, other);
+    if (joined.num_crossings() == 0) continue;
+    GeodesicResult ro = refine_path(mesh, joined, PathMetric{}, first);
+    const int wo = winding_number(ro.path);
+    const bool done = ro.summary.converged() ||
+                      ro.summary.termination == GeodesicTermination::LineSearchFailed;
+    if (done && std::abs(wo) == 1 && finite_length(ro) &&
+        ro.summary.euclidean_length < r.summary.euclidean_length * (1.0 - 1e-12)) {
+      r = std::move(ro);
+      winding = wo;
+      other_corridor = true;
+    }
+  }
   loop.summary = r.summary;
   loop.winding = winding;
-  loop.converged = acceptable(r, winding);
-  if (std::abs(winding) == 1 && r.summary.euclidean_length <= loop.edge_length * (1 + 1e-9)) {
+  loop.converged = other_corridor || acceptable(r, winding);
+  if (std::abs(winding) == 1 &&
+      (other_corridor || r.summary.euclidean_length <= loop.edge_length * (1 + 1e-9))) {
     loop.girth = r.summary.euclidean_length;
     loop.path = std::move(r.path);
   } else {
@@ -666,27 +650,11 @@ GirthField compute_girth_field(const Mesh& annulus, const std::array<std::vector
   for (int v = 0; v < nv; ++v)
     field.lipschitz_bound = std::max(field.lipschitz_bound, 2.0 * nearest[v]);
 
-  // 2. The exact loops, independent of each other: spread over the hardware threads.
+  // 2. The exact loops, independent of each other: spread over the threads (geometry/parallel.h;
+  // each loop writes its own slot, so the field does not depend on the thread count).
   const int count = static_cast<int>(chosen.size());
   std::vector<GirthContext::Loop> exact(count);
-  {
-    const int threads =
-        std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, std::min(8, count));
-    std::vector<std::exception_ptr> errors(threads);
-    auto work = [&](int id) {
-      try {
-        for (int k = id; k < count; k += threads) exact[k] = context.girth(chosen[k]);
-      } catch (...) {
-        errors[id] = std::current_exception();
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int id = 1; id < threads; ++id) pool.emplace_back(work, id);
-    work(0);
-    for (std::thread& th : pool) th.join();
-    for (const std::exception_ptr& e : errors)
-      if (e) std::rethrow_exception(e);
-  }
+  parallel_for_index(count, [&](int k) { exact[k] = context.girth(chosen[k]); });
   for (int k = 0; k < count; ++k) {
     const GirthContext::Loop& loop = exact[k];
     if (!loop.converged || std::abs(loop.winding) != 1) ++field.unconverged_samples;

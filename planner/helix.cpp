@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "geometry/errors.h"
+#include "geometry/parallel.h"
 #include "planner/cutlines.h"
 #include "planner/job_limits.h"
 
@@ -600,7 +601,9 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
   const GeodesicOptions& gopt = geodesic;
   const double N = options.turns;
 
-  auto refine = [&](HelixPass* p) {
+  // Refines one pass; writes only to the pass and to `warnings` and `ms`, so that passes can
+  // be refined in parallel (below).
+  auto refine_pass = [&](HelixPass* p, std::vector<std::string>* warnings, double* ms) -> bool {
     const auto t0 = std::chrono::steady_clock::now();
     // Every pass is refined from loop 0 (return passes are reversed and back): measured in
     // session 1, return passes refined as traced took far longer. With beta = 0 (Euclidean) the
@@ -625,21 +628,33 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
       GeodesicOptions direct = go;
       direct.funnel_start = false;
       r = refine_path(m, init, metric, direct);
-      plan.summary.warnings.push_back(which +
+      warnings->push_back(which +
                                       ": the geodesic core's funnel start gave a non-finite path; "
                                       "refined from the traced level set instead");
     }
     const bool finite = finite_path(m, r.path);
     if (!finite) {
       r.path = init;
-      plan.summary.warnings.push_back(which +
+      warnings->push_back(which +
                                       ": the geodesic refinement gave a non-finite path; the "
                                       "traced level set is kept");
     }
-    plan.summary.refine_ms += ms_since(t0);
+    *ms = ms_since(t0);
     p->path = p->hand < 0 ? reversed(m, r.path) : std::move(r.path);
     p->summary = r.summary;
-    if (!finite || !p->summary.converged()) ++plan.summary.not_converged;
+    return finite;
+  };
+  auto count_pass = [&](const HelixPass& p, const std::vector<std::string>& warnings, double ms,
+                        bool finite) {
+    plan.summary.refine_ms += ms;
+    plan.summary.warnings.insert(plan.summary.warnings.end(), warnings.begin(), warnings.end());
+    if (!finite || !p.summary.converged()) ++plan.summary.not_converged;
+  };
+  auto refine = [&](HelixPass* p) {
+    std::vector<std::string> warnings;
+    double ms = 0.0;
+    const bool finite = refine_pass(p, &warnings, &ms);
+    count_pass(*p, warnings, ms, finite);
   };
   // The start of circuit 0: theta of the first loop vertex (or station crossing), nudged off the
   // vertices.
@@ -722,7 +737,7 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
       const auto t0 = std::chrono::steady_clock::now();
       out.initial = trace_helix(m, hc, start, N, +1, to_end);
       plan.summary.trace_ms += ms_since(t0);
-      refine(&out);
+      // (refined below, with the other passes: the refinement keeps the end points)
     }
     out.circuit = k;
     out.hand = +1;
@@ -732,9 +747,9 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
     top.dwell = dwell;
     if (stations[1]) {
       top.station = options.end_station;
-      top.arc = station_arc(m, *stations[1], out.path.end, dwell);
+      top.arc = station_arc(m, *stations[1], out.initial.end, dwell);
     } else {
-      top.arc = loop_arc(m, hc, out.path.end, dwell);
+      top.arc = loop_arc(m, hc, out.initial.end, dwell);
     }
     HelixPass back;
     back.circuit = k;
@@ -744,7 +759,6 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
       back.initial = trace_helix(m, hc, top.arc.end, N, -1, to_start);
       plan.summary.trace_ms += ms_since(t0);
     }
-    refine(&back);
     Turnaround bottom;
     bottom.circuit = k;
     bottom.loop = 0;
@@ -753,21 +767,34 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
       // h is constant on a loop but on a station circle only up to the tessellation, so the two
       // passes advance theta by 4 pi N only nearly: the bottom dwell takes up the difference, so
       // that circuit k + 1 starts exactly (k + 1) advance after circuit 0 and the pattern closes.
-      const double now = surface_point_coordinates(m, hc, back.path.end)[0] + dwell;
+      const double now = surface_point_coordinates(m, hc, back.initial.end)[0] + dwell;
       const double want = theta_first + (k + 1) * advance;
       bottom.dwell = dwell + std::remainder(want - now, kTwoPi);
     }
     if (stations[0]) {
       bottom.station = options.start_station;
-      bottom.arc = station_arc(m, *stations[0], back.path.end, bottom.dwell);
+      bottom.arc = station_arc(m, *stations[0], back.initial.end, bottom.dwell);
     } else {
-      bottom.arc = loop_arc(m, hc, back.path.end, bottom.dwell);
+      bottom.arc = loop_arc(m, hc, back.initial.end, bottom.dwell);
     }
     start = bottom.arc.end;
     plan.passes.push_back(std::move(out));
     plan.passes.push_back(std::move(back));
     plan.turnarounds.push_back(std::move(top));
     plan.turnarounds.push_back(std::move(bottom));
+  }
+  // The passes' refinements are independent (each keeps its traced end points, which the
+  // turnarounds above used): run them in parallel, each writing its own slot, and count them in
+  // pass order, so that the plan does not depend on the thread count.
+  {
+    const int count = static_cast<int>(plan.passes.size());
+    std::vector<std::vector<std::string>> warnings(count);
+    std::vector<double> ms(count, 0.0);
+    std::vector<char> finite(count, 1);
+    parallel_for_index(count - 1, [&](int i) {
+      finite[i + 1] = refine_pass(&plan.passes[i + 1], &warnings[i + 1], &ms[i + 1]);
+    });
+    for (int i = 1; i < count; ++i) count_pass(plan.passes[i], warnings[i], ms[i], finite[i]);
   }
   if (plan.summary.not_converged > 0) {
     plan.summary.warnings.push_back(std::to_string(plan.summary.not_converged) + " of " +

@@ -475,6 +475,7 @@ void decode_winding(ConfigNode n, WindingOptions* w) {
   n.get("band_width", &w->band_width);
   n.get("beta", &w->beta);
   n.get("mu", &w->mu);
+  n.get("slippage", &w->slippage);
   n.get("start_station", &w->start_station);
   n.get("end_station", &w->end_station);
   n.get("curvature_window", &w->curvature_window);

@@ -160,6 +160,13 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
                                          fixed(pc.moved, 2) + " mm to close the pattern)"
                                    : std::string()) +
         ", " + fixed(pc.angle_deg, 2) + " deg on the largest parallel";
+    if (rw.friction) {  // friction turnarounds (planner/friction_winding.h)
+      FrictionFigures& ff = plan.metrics.friction_turnarounds;
+      ff = friction_figures(rw.friction_plan, plan.circuits, wo.mu);
+      plan.metrics.pattern += "; friction turnarounds at |k_g/k_n| = " +
+                              fixed(rw.friction_plan.slippage, 4) + " (winding.slippage " +
+                              fixed(wo.slippage, 3) + "), no pins";
+    }
     r.passes = circuit_pass_reports(plan.circuits, md.axis, "clairaut");
   } else {
     plan.circuits = build_circuits(ws.mesh, r.helices, ws.face_map, md.axis, wo);

@@ -132,6 +132,24 @@ struct PatternInfo {
   double projection_max = 0.0;  ///< largest distance of a planned point from the mesh (mm)
 };
 
+/// Friction turnarounds (winding.slippage > 0, planner/friction_winding.h): the slippage lambda
+/// planned and measured per end and on the passes, and the fibre friction carries.
+struct FrictionFigures {
+  bool planned = false;   ///< the plan has friction turnarounds
+  double bound = 0.0;     ///< winding.slippage
+  double mu = 0.0;        ///< winding.mu
+  double pass_lambda = 0.0;    ///< planned on the passes (0: geodesic)
+  double pass_measured = 0.0;  ///< largest measured |k_g/k_n| on the passes' points
+  double pass_length = 0.0;    ///< mm of pass fibre, all circuits
+  std::array<bool, 2> at_end = {false, false};  ///< per end: a friction turnaround
+  std::array<double, 2> lambda = {0.0, 0.0};    ///< planned lambda per end
+  std::array<double, 2> measured = {0.0, 0.0};  ///< largest measured |k_g/k_n| per end
+  std::array<double, 2> length = {0.0, 0.0};    ///< mm of fibre friction carries, one turnaround
+  std::array<double, 2> axial = {0.0, 0.0};     ///< mm along the axis from the join to the apex
+  std::array<double, 2> angle_deg = {0.0, 0.0}; ///< mandrel turn over one turnaround (deg)
+  std::array<double, 2> pass_angle_deg = {0.0, 0.0};  ///< winding angle where the pass joins
+};
+
 /// Figures of a plan, reported in the summary, report.json and report.md.
 struct PlanMetrics {
   double fibre_length = 0.0;       ///< mm, all circuits
@@ -144,6 +162,7 @@ struct PlanMetrics {
   double cover_factor = 0.0;
   CoverageReport coverage;  ///< measured on the laid bands (planner/coverage.h)
   PatternInfo pattern_info;
+  FrictionFigures friction_turnarounds;  ///< planned with winding.slippage > 0
   std::string pattern;             ///< e.g. "K=12, advance 1/12, coprime" (shapes of revolution)
   double spacing_cv = 0.0;         ///< coefficient of variation of turn spacing along meridians
   double spacing_mean = 0.0;       ///< mm

@@ -42,7 +42,9 @@ std::vector<Vec2> clip_meridian(const std::vector<Vec2>& m, double x0, double x1
 std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<int>& face_map,
                                          const SpindleAxis& axis, const ClairautPass& pass,
                                          const PatternCandidate& pattern,
-                                         const WindingOptions& options, double* projection_max) {
+                                         const WindingOptions& options, double* projection_max,
+                                         const std::array<std::vector<PassSample>, 2>*
+                                             turnarounds) {
   const std::array<Vec3, 2> frame = axis_frame(axis);
   const std::vector<Vec3> vn = vertex_normals(annulus);
   const ClosestPointQuery query(annulus);
@@ -72,6 +74,67 @@ std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<
   };
   const int K = pattern.circuits;
   std::vector<Circuit> circuits(K);
+  const bool friction_ends =
+      turnarounds && (!(*turnarounds)[0].empty() || !(*turnarounds)[1].empty());
+  if (friction_ends) {
+    // Friction turnarounds: the fibre is one smooth curve from circuit to circuit, so each
+    // circuit is annotated as a whole, padded with a window of its neighbours (the circuit
+    // turned by -+ the advance), and the segment ends are no ends of the annotation.
+    std::vector<std::array<double, 3>> cs;  // circuit 0: (x, r, phi)
+    std::vector<int> ends;                  // the last sample of each segment
+    auto add = [&](const std::vector<PassSample>& v, double phi, bool reverse) {
+      for (std::size_t i = cs.empty() ? 0 : 1; i < v.size(); ++i) {
+        const PassSample& q = reverse ? v[v.size() - 1 - i] : v[i];
+        cs.push_back({q.x, q.r, reverse ? phi + (Phi - q.phi) : phi + q.phi});
+      }
+      ends.push_back(static_cast<int>(cs.size()) - 1);
+    };
+    const double d1 = (*turnarounds)[1].empty() ? 0.0 : (*turnarounds)[1].back().phi;
+    add(smp, 0.0, false);
+    if (!(*turnarounds)[1].empty()) add((*turnarounds)[1], Phi, false);
+    add(smp, Phi + d1, true);
+    if (!(*turnarounds)[0].empty()) add((*turnarounds)[0], 2.0 * Phi + d1, false);
+    const double A = pattern.advance;
+    auto planned = [&](const std::array<double, 3>& q, double shift) {
+      return point_on_axis_frame(axis, frame, q[0], q[1], q[2] + shift);
+    };
+    // How many samples of padding hold a window of fibre at each end.
+    int pad_head = 0, pad_tail = 0;
+    for (double run = 0.0; pad_head + 1 < static_cast<int>(cs.size()) && run < window;) {
+      run += (planned(cs[pad_head + 1], 0) - planned(cs[pad_head], 0)).norm();
+      ++pad_head;
+    }
+    for (double run = 0.0; pad_tail + 1 < static_cast<int>(cs.size()) && run < window;) {
+      const std::size_t i = cs.size() - 1 - pad_tail;
+      run += (planned(cs[i], 0) - planned(cs[i - 1], 0)).norm();
+      ++pad_tail;
+    }
+    const int n = static_cast<int>(cs.size());
+    for (int k = 0; k < K; ++k) {
+      Circuit& c = circuits[k];
+      c.index = k;
+      const double phi0 = std::fmod(k * A, kTwoPi);
+      std::vector<FibrePoint> pts;
+      for (int i = n - 1 - pad_tail; i < n - 1; ++i) {
+        pts.push_back(place(cs[i][0], cs[i][1], phi0 - A + cs[i][2]));
+      }
+      for (const auto& q : cs) pts.push_back(place(q[0], q[1], phi0 + q[2]));
+      for (int i = 1; i <= pad_head; ++i) {
+        pts.push_back(place(cs[i][0], cs[i][1], phi0 + A + cs[i][2]));
+      }
+      annotate_fibre_points(&pts, axis, window);
+      const double s0 = pts[pad_tail].s;
+      c.points.assign(pts.begin() + pad_tail, pts.begin() + pad_tail + n);
+      for (FibrePoint& q : c.points) q.s -= s0;
+      int first = 0;
+      for (int e : ends) {
+        c.segments.push_back({CircuitSegment::Kind::Pass, first, e});
+        first = e;
+      }
+    }
+    if (projection_max) *projection_max = worst;
+    return circuits;
+  }
   for (int k = 0; k < K; ++k) {
     Circuit& c = circuits[k];
     c.index = k;
@@ -112,11 +175,24 @@ RevolutionWinding plan_revolution_winding(const Mesh& annulus, const std::vector
   w.problem = pattern_problem(w.meridian, o);
   if (!w.problem.reachable) return w;
   w.planned = true;
-  w.pattern = choose_pattern(w.problem, o);
-  w.pass = clairaut_pass(w.meridian, w.pattern.c, {fibre_step(o)});
+  if (wants_friction_turnarounds(w.problem, o)) {
+    w.friction = true;
+    w.friction_plan = plan_friction_winding(w.problem, o);
+    w.pattern = w.friction_plan.pattern;
+    w.pass = w.friction_plan.pass;
+  } else {
+    w.pattern = choose_pattern(w.problem, o);
+    w.pass = clairaut_pass(w.meridian, w.pattern.c, {fibre_step(o)});
+  }
   w.geodesic_end = w.pass.turns_around;
+  std::array<std::vector<PassSample>, 2> turns;
+  for (int e : {0, 1}) {
+    if (w.friction && w.friction_plan.friction_end[e]) {
+      turns[e] = w.friction_plan.turnarounds[e].samples;
+    }
+  }
   w.circuits = revolution_circuits(annulus, face_map, axis, w.pass, w.pattern, o,
-                                   &w.projection_max);
+                                   &w.projection_max, &turns);
   return w;
 }
 

@@ -22,6 +22,7 @@
 #include "geometry/axis.h"
 #include "geometry/mesh.h"
 #include "planner/clairaut_pass.h"
+#include "planner/friction_winding.h"
 #include "planner/plan.h"
 #include "planner/winding_options.h"
 #include "planner/winding_pattern.h"
@@ -39,6 +40,10 @@ struct RevolutionWinding {
   std::vector<Circuit> circuits;
   /// Per end: true where the passes turn around geodesically (no dwell arc).
   std::array<bool, 2> geodesic_end = {false, false};
+  /// winding.slippage > 0 at a pipe or cone end: friction turnarounds instead of dwells
+  /// (planner/friction_winding.h); `pass` and `pattern` are then friction_plan's.
+  bool friction = false;
+  FrictionWinding friction_plan;
   /// The largest distance from a planned point (before projection) to the mesh (mm): the
   /// tessellation error the circuits carry.
   double projection_max = 0.0;
@@ -54,11 +59,16 @@ std::vector<Vec2> clip_meridian(const std::vector<Vec2>& meridian, double x0, do
 
 /// The circuits of a pattern on the annulus (see the header comment).
 /// \param face_map annulus face -> full-mesh face (empty: keep annulus faces)
+/// \param turnarounds per end, a friction turnaround's samples (phi from 0; planner/
+///        friction_winding.h) laid as a Pass segment instead of that end's dwell arc; null or
+///        empty: the pattern's dwell
 std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<int>& face_map,
                                          const SpindleAxis& axis, const ClairautPass& pass,
                                          const PatternCandidate& pattern,
                                          const WindingOptions& options,
-                                         double* projection_max = nullptr);
+                                         double* projection_max = nullptr,
+                                         const std::array<std::vector<PassSample>, 2>*
+                                             turnarounds = nullptr);
 
 /// Meridian, pattern and circuits of a job's winding on a shape of revolution.
 /// \throw ConfigError naming the winding key for a turnaround, angle, turns or pattern that no

@@ -32,6 +32,11 @@ struct WindingOptions {
   double beta = 0.0;
   /// Friction coefficient between fibre and mandrel for the slippage check (dimensionless, >= 0).
   double mu = 0.2;
+  /// Slippage lambda = |k_g / k_n| the planner may use on purpose (dimensionless, in [0, mu];
+  /// 0: geodesic passes only). On shapes of revolution the passes then turn around by friction
+  /// at ends whose radius is above the turnaround radius (pipes, cones, stations) instead of
+  /// dwelling on pins (planner/friction_winding.h).
+  double slippage = 0.0;
   /// Optional axial stations (mm along the spindle axis) that bound the passes instead of the
   /// boundary loops; NaN = the loop. start_station < end_station when both are set.
   double start_station = std::nan("");
@@ -82,6 +87,13 @@ struct WindingOptions {
     }
     if (!(mu >= 0.0) || !std::isfinite(mu)) {
       return fail("mu must be >= 0 (got " + std::to_string(mu) + ")");
+    }
+    if (!(slippage >= 0.0) || !std::isfinite(slippage)) {
+      return fail("slippage must be >= 0 (got " + format_turns(slippage) + ")");
+    }
+    if (slippage > mu) {
+      return fail("slippage " + format_turns(slippage) + " exceeds mu " + format_turns(mu) +
+                  ": friction holds the fibre only while |k_g / k_n| <= mu");
     }
     if (!(curvature_window >= 0.0) || !std::isfinite(curvature_window)) {
       return fail("curvature_window must be >= 0 mm");

@@ -156,11 +156,14 @@ PatternProblem pattern_problem(const std::vector<Vec2>& meridian, const WindingO
                         "leaves that parallel (the geodesic turn limit); use a turnaround " +
                         "radius below " + mm(c_top) + " mm");
     }
-    if (narrows && c < r_open) {
+    // With winding.slippage the passes reach the dome's end by friction
+    // (planner/friction_winding.h): a Clairaut constant below the opening is then allowed.
+    if (narrows && c < r_open && !(o.slippage > 0.0)) {
       throw ConfigError(key + " = " + value + " puts the turnaround below the polar opening " +
                         "radius " + mm(r_open) + " mm: the pass would run off the dome into the " +
                         "opening; use a turnaround radius >= " + mm(r_open) + " mm (" +
-                        mm(r_open + 0.5 * o.band_width) + " keeps the band's edge off the boss)");
+                        mm(r_open + 0.5 * o.band_width) + " keeps the band's edge off the boss)" +
+                        ", or winding.slippage (<= mu) to turn around by friction");
     }
     if (!(c > 0.0)) throw ConfigError(key + " = " + value + ": must be > 0");
   };

@@ -1,7 +1,9 @@
 #pragma once
 // Meshes made in code, with known counts and closed-form geometry, for the core tests.
+#include <array>
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "geometry/mesh.h"
 
@@ -93,6 +95,17 @@ inline TriangleSoup revolution(const std::function<double(double)>& r, double z0
       s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
   return s;
+}
+
+/// The two boundary rings (vertex indices) of a revolution() / open_cylinder() mesh with n
+/// vertices per ring and m + 1 rings.
+inline std::array<std::vector<int>, 2> revolution_loops(int n, int m) {
+  std::array<std::vector<int>, 2> loops;
+  for (int i = 0; i < n; ++i) {
+    loops[0].push_back(i);
+    loops[1].push_back(m * n + i);
+  }
+  return loops;
 }
 
 /// An open cylinder (a tube without caps) of radius r and length len along z, with n vertices

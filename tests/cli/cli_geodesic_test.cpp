@@ -340,5 +340,162 @@ TEST_F(CliGeodesic, BadCurves) {
   EXPECT_EQ(has(r.err, "none.csv"), "");
 }
 
+// ---- batch queries (--pairs) ----
+
+namespace batch {
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+}  // namespace batch
+
+// A batch gives, pair for pair, the length of single runs (to the last digit), in file order,
+// whatever the thread count; comments and blank lines are skipped and rows name their line.
+TEST_F(CliGeodesic, PairsBatchEqualsSingleRuns) {
+  const std::string cyl = (dir_ / "cylinder.obj").string();
+  write_mesh(cyl, test::open_cylinder(5.0, 20.0, 24, 10));
+  const std::vector<std::pair<std::string, std::string>> pairs = {
+      {"0", "200"}, {"3", "150"}, {"5,0,0", "0,5,20"}, {"17", "0,-5,10"}, {"100", "101"}};
+  std::string text = "# from to\n\n";
+  for (const auto& p : pairs) text += p.first + " " + p.second + "\n";
+  const std::string file = write("pairs.txt", text);
+  const RunResult one = run({"geodesic", cyl, "--pairs", file, "--threads", "1"});
+  ASSERT_EQ(one.code, 0) << one.err;
+  const RunResult two = run({"geodesic", cyl, "--pairs", file, "--threads", "2", "-o",
+                             (dir_ / "batch.csv").string()});
+  ASSERT_EQ(two.code, 0) << two.err;
+  const std::vector<std::string> rows1 = batch::lines_of(one.out);
+  const std::vector<std::string> rows2 = batch::lines_of(slurp(dir_ / "batch.csv"));
+  ASSERT_EQ(rows1.size(), pairs.size() + 1);
+  ASSERT_EQ(rows2.size(), rows1.size());
+  EXPECT_EQ(rows1[0].rfind("line,from,to,length,", 0), 0u) << rows1[0];
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    std::vector<std::string> f1 = batch::csv_fields(rows1[i + 1]);
+    std::vector<std::string> f2 = batch::csv_fields(rows2[i + 1]);
+    ASSERT_EQ(f1.size(), 12u) << rows1[i + 1];
+    EXPECT_EQ(f1[0], std::to_string(i + 3));  // two skipped lines
+    EXPECT_EQ(f1[1], pairs[i].first);
+    EXPECT_EQ(f1[2], pairs[i].second);
+    f1.pop_back();  // time_ms differs between runs
+    f2.pop_back();
+    EXPECT_EQ(f1, f2) << "1 thread and 2 threads differ on pair " << i;
+    const RunResult single =
+        run({"geodesic", cyl, "--from", pairs[i].first, "--to", pairs[i].second, "--json"});
+    ASSERT_EQ(single.code, 0) << single.err;
+    EXPECT_EQ(std::stod(f1[3]), json_length(single)) << "pair " << i;
+    EXPECT_EQ(f1[5], "true");
+  }
+  // JSON lines: one object per pair with the same lengths.
+  const RunResult js = run({"geodesic", cyl, "--pairs", file, "--json"});
+  ASSERT_EQ(js.code, 0) << js.err;
+  const std::vector<std::string> objs = batch::lines_of(js.out);
+  ASSERT_EQ(objs.size(), pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const YAML::Node n = YAML::Load(objs[i]);
+    EXPECT_EQ(n["length"].as<double>(), std::stod(batch::csv_fields(rows1[i + 1])[3]));
+    EXPECT_EQ(n["line"].as<int>(), static_cast<int>(i + 3));
+  }
+}
+
+// A bad line names the file and line, exits 1 and writes nothing (no partial table).
+TEST_F(CliGeodesic, PairsBadLineIsExitOneWithTheLineAndNoOutput) {
+  const fs::path out = dir_ / "batch.csv";
+  for (const char* bad_line : {"0 9999", "zero 5", "3 50,50,50", "1 2 3", "-1 4"}) {
+    const std::string bad = bad_line;
+    const std::string file = write("bad.txt", "0 120\n# ok so far\n" + bad + "\n5 6\n");
+    const RunResult r = run({"geodesic", plane_, "--pairs", file, "-o", out.string()});
+    EXPECT_EQ(r.code, 1) << bad << ": " << r.err;
+    EXPECT_EQ(has(r.err, "bad.txt:3:"), "") << bad;
+    EXPECT_FALSE(fs::exists(out)) << bad;
+    EXPECT_EQ(r.out, "") << bad;
+  }
+  const RunResult empty = run({"geodesic", plane_, "--pairs", write("empty.txt", "# none\n")});
+  EXPECT_EQ(empty.code, 1);
+  const RunResult both = run({"geodesic", plane_, "--pairs", write("p.txt", "0 1\n"), "--from", "0"});
+  EXPECT_EQ(both.code, 2);
+  const RunResult threads = run({"geodesic", plane_, "--pairs", write("p.txt", "0 1\n"),
+                                 "--threads", "0"});
+  EXPECT_EQ(threads.code, 2);
+}
+
+// Loops in a batch: each row equals the single run of the same curve, whatever the thread count;
+// a bad curve line names the line and writes nothing.
+TEST_F(CliGeodesic, CurvesBatchEqualsSingleLoops) {
+  const int n = 24, m = 10;
+  const double r = 2.0, len = 8.0;
+  const std::string tube = (dir_ / "tube.obj").string();
+  write_mesh(tube, test::open_cylinder(r, len, n, m));
+  std::string batch_text = "# one closed curve per line\n";
+  std::vector<std::string> singles;
+  for (int k = 0; k < 3; ++k) {
+    const std::string csv = oblique_ring_csv(r * std::cos(M_PI / n), 3.0 + k, 0.5 + 0.25 * k, 30);
+    singles.push_back(write("curve" + std::to_string(k) + ".csv", csv));
+    std::istringstream in(csv);
+    std::string line, joined;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#' || line[0] == 'x') continue;
+      std::string pt;
+      std::istringstream ls(line);
+      std::vector<std::string> parts;
+      for (std::string tok; std::getline(ls, tok, ',');) parts.push_back(tok);
+      if (parts.size() != 3) continue;
+      joined += (joined.empty() ? "" : " ") + parts[0] + "," + parts[1] + "," + parts[2];
+    }
+    batch_text += joined + "\n";
+  }
+  const std::string file = write("curves.txt", batch_text);
+  const RunResult one = run({"loop", tube, "--curves", file, "--snap-tolerance", "0.1",
+                             "--threads", "1"});
+  ASSERT_EQ(one.code, 0) << one.err;
+  const RunResult two = run({"loop", tube, "--curves", file, "--snap-tolerance", "0.1",
+                             "--threads", "2", "--json"});
+  ASSERT_EQ(two.code, 0) << two.err;
+  const std::vector<std::string> rows = batch::lines_of(one.out);
+  const std::vector<std::string> objs = batch::lines_of(two.out);
+  ASSERT_EQ(rows.size(), 4u);
+  ASSERT_EQ(objs.size(), 3u);
+  EXPECT_EQ(rows[0].rfind("line,points,length,", 0), 0u) << rows[0];
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<std::string> f = batch::csv_fields(rows[k + 1]);
+    EXPECT_EQ(f[0], std::to_string(k + 2));
+    EXPECT_EQ(f[1], "30");
+    const RunResult single =
+        run({"loop", tube, "--init", singles[k], "--snap-tolerance", "0.1", "--json"});
+    ASSERT_EQ(single.code, 0) << single.err;
+    EXPECT_EQ(std::stod(f[2]), json_length(single)) << "curve " << k;
+    EXPECT_EQ(YAML::Load(objs[k])["length"].as<double>(), std::stod(f[2])) << "curve " << k;
+    EXPECT_NEAR(std::stod(f[2]), n * 2.0 * r * std::sin(M_PI / n), 1e-7);
+  }
+  const fs::path out = dir_ / "loops.csv";
+  const std::string bad = write("bad.txt", batch::lines_of(batch_text)[1] + "\n1,2 3,4,5\n");
+  const RunResult r1 =
+      run({"loop", tube, "--curves", bad, "-o", out.string(), "--snap-tolerance", "0.1"});
+  EXPECT_EQ(r1.code, 1);
+  EXPECT_EQ(has(r1.err, "bad.txt:2:"), "");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace
 }  // namespace windplan

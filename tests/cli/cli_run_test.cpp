@@ -65,11 +65,14 @@ class CliRun : public ::testing::Test {
 
 fs::path config(const std::string& name) { return test::source_dir() / "configs" / name; }
 
-TEST_F(CliRun, VesselRunsAndTwoRunsAreByteIdentical) {
+// Two runs, with 2 threads and with 1 (girth samples and pass refinements run in parallel).
+TEST_F(CliRun, VesselRunsAndRunsWithTwoThreadsAndOneAreByteIdentical) {
   const fs::path a = dir_ / "a", b = dir_ / "b";
-  const Proc r1 = run({"run", config("vessel.yaml").string(), "--out", a.string()});
+  const Proc r1 =
+      run({"run", config("vessel.yaml").string(), "--out", a.string(), "--threads", "2"});
   ASSERT_EQ(r1.code, 0) << r1.err;
-  const Proc r2 = run({"run", config("vessel.yaml").string(), "--out", b.string()});
+  const Proc r2 =
+      run({"run", config("vessel.yaml").string(), "--out", b.string(), "--threads", "1"});
   ASSERT_EQ(r2.code, 0) << r2.err;
   EXPECT_NE(r1.out.find("vessel"), std::string::npos) << r1.out;
   // One progress line per stage on stderr.

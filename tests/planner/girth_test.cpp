@@ -19,16 +19,7 @@
 namespace windplan {
 namespace {
 
-// The two boundary rings of a test::revolution()/open_cylinder() mesh with n per ring and m + 1
-// rings.
-std::array<std::vector<int>, 2> ring_loops(int n, int m) {
-  std::array<std::vector<int>, 2> loops;
-  for (int i = 0; i < n; ++i) {
-    loops[0].push_back(i);
-    loops[1].push_back(m * n + i);
-  }
-  return loops;
-}
+std::array<std::vector<int>, 2> ring_loops(int n, int m) { return test::revolution_loops(n, m); }
 
 double polygon_perimeter(double r, int n) { return n * 2.0 * r * std::sin(M_PI / n); }
 

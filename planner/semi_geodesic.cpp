@@ -1,0 +1,158 @@
+#include "planner/semi_geodesic.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "geometry/errors.h"
+
+namespace windplan {
+
+bool SemiGeodesicOptions::is_valid(std::string* why) const {
+  auto fail = [&](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (!(slippage >= 0.0) || !std::isfinite(slippage)) return fail("slippage must be >= 0");
+  if (side != 1 && side != -1) return fail("side must be +1 or -1");
+  if (!(step > 0.0) || !std::isfinite(step)) return fail("step must be > 0 mm");
+  if (!(tolerance > 0.0)) return fail("tolerance must be > 0");
+  if (!(max_length > 0.0)) return fail("max_length must be > 0 mm");
+  return true;
+}
+
+MeridianLine::MeridianLine(const std::vector<Vec2>& points) : pts_(points) {
+  if (pts_.size() < 2) throw InputError("semi_geodesic: a meridian needs at least 2 points");
+  cum_.push_back(0.0);
+  for (std::size_t i = 1; i < pts_.size(); ++i) {
+    cum_.push_back(cum_.back() + (pts_[i] - pts_[i - 1]).norm());
+  }
+  if (!(cum_.back() > 0.0)) throw InputError("semi_geodesic: the meridian has no length");
+}
+
+int MeridianLine::segment(double s) const {
+  // The last segment starting at or before s with a length (zero-length ones are skipped).
+  const int n = static_cast<int>(pts_.size()) - 1;
+  int i = static_cast<int>(std::upper_bound(cum_.begin(), cum_.end(), s) - cum_.begin()) - 1;
+  i = std::clamp(i, 0, n - 1);
+  while (i > 0 && cum_[i + 1] - cum_[i] <= 0.0) --i;
+  while (i < n - 1 && cum_[i + 1] - cum_[i] <= 0.0) ++i;
+  return i;
+}
+
+Vec2 MeridianLine::point(double s) const {
+  const int i = segment(s);
+  return pts_[i] + (s - cum_[i]) * tangent(s);
+}
+
+Vec2 MeridianLine::tangent(double s) const {
+  const int i = segment(s);
+  return (pts_[i + 1] - pts_[i]) / (cum_[i + 1] - cum_[i]);
+}
+
+double MeridianLine::at_axial(double x) const {
+  for (std::size_t i = 1; i < pts_.size(); ++i) {
+    const double a = pts_[i - 1].x(), b = pts_[i].x();
+    if ((a - x) * (b - x) <= 0.0 && a != b) {
+      return cum_[i - 1] + (cum_[i] - cum_[i - 1]) * (x - a) / (b - a);
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+std::array<double, 3> semi_geodesic_rate(const MeridianLine& m, const MeridianState& y,
+                                         double lambda, int side) {
+  const Vec2 t = m.tangent(y.s);
+  const double r = m.point(y.s).y();
+  if (!(r > 0.0)) {
+    std::ostringstream s;
+    s << "semi_geodesic: the path reached the axis (radius " << r << " mm) at meridian length "
+      << y.s << " mm";
+    throw InputError(s.str());
+  }
+  const double sa = std::sin(y.a), ca = std::cos(y.a);
+  const double kn = sa * sa * std::abs(t.x()) / r;
+  return {ca, -sa * t.y() / r + side * lambda * kn, sa / r};
+}
+
+namespace semi_geodesic_detail {
+
+MeridianState rk4(const MeridianLine& m, const MeridianState& y, double h, double lambda,
+                  int side) {
+  auto at = [&](const MeridianState& b, const std::array<double, 3>& k, double f) {
+    return MeridianState{b.s + f * k[0], b.a + f * k[1], b.phi + f * k[2]};
+  };
+  const auto k1 = semi_geodesic_rate(m, y, lambda, side);
+  const auto k2 = semi_geodesic_rate(m, at(y, k1, 0.5 * h), lambda, side);
+  const auto k3 = semi_geodesic_rate(m, at(y, k2, 0.5 * h), lambda, side);
+  const auto k4 = semi_geodesic_rate(m, at(y, k3, h), lambda, side);
+  MeridianState out;
+  out.s = y.s + h / 6.0 * (k1[0] + 2.0 * k2[0] + 2.0 * k3[0] + k4[0]);
+  out.a = y.a + h / 6.0 * (k1[1] + 2.0 * k2[1] + 2.0 * k3[1] + k4[1]);
+  out.phi = y.phi + h / 6.0 * (k1[2] + 2.0 * k2[2] + 2.0 * k3[2] + k4[2]);
+  return out;
+}
+
+PassSample sample_of(const MeridianLine& m, const MeridianState& y, double length) {
+  const Vec2 p = m.point(y.s);
+  return {p.x(), p.y(), y.phi, length, y.a};
+}
+
+}  // namespace semi_geodesic_detail
+
+FrictionTurnaround friction_turnaround(const MeridianLine& m, int end, double apex_s, double c,
+                                       double lambda, double step) {
+  if (!(lambda > 0.0) || !std::isfinite(lambda)) {
+    throw InputError("friction_turnaround: the slippage must be > 0");
+  }
+  FrictionTurnaround t;
+  t.end = end;
+  t.slippage = lambda;
+  t.c = c;
+  t.apex_s = apex_s;
+  const Vec2 apex = m.point(apex_s);
+  t.apex_x = apex.x();
+  t.apex_r = apex.y();
+  if (!(c > 0.0 && c < apex.y())) {
+    std::ostringstream s;
+    s << "friction_turnaround: the Clairaut constant " << c << " mm must be in (0, " << apex.y()
+      << " mm), the apex radius";
+    throw InputError(s.str());
+  }
+  SemiGeodesicOptions o;
+  o.slippage = lambda;
+  o.side = end == 1 ? 1 : -1;
+  o.step = step;
+  o.max_length = 200.0 * std::max(m.length(), apex.y());
+  // Leaving half: from the apex until r sin a falls to c.
+  const SemiGeodesicPath half = semi_geodesic(m, MeridianState{apex_s, 0.5 * M_PI, 0.0}, o,
+                                              [c](const MeridianLine& ml, const MeridianState& y) {
+                                                return ml.point(y.s).y() * std::sin(y.a) - c;
+                                              });
+  t.reached = half.event;
+  t.lowest = apex.y();
+  for (std::size_t i = 0; i < half.samples.size(); ++i) {
+    if (half.s[i] < 0.0 || half.s[i] > m.length()) break;  // off the meridian's ends
+    t.lowest = std::min(t.lowest, half.samples[i].r * std::sin(half.samples[i].angle));
+  }
+  const Vec2 join = m.point(half.end.s);
+  t.join_s = half.end.s;
+  t.join_x = join.x();
+  t.join_r = join.y();
+  t.pass_angle = std::asin(std::min(1.0, c / join.y()));
+  t.length = 2.0 * half.length;
+  const double ph = half.end.phi;
+  t.angle = 2.0 * ph;
+  const std::vector<PassSample>& h = half.samples;
+  const double lh = half.length;
+  for (std::size_t i = h.size(); i-- > 0;) {  // arriving: the mirror image, reversed
+    t.samples.push_back({h[i].x, h[i].r, ph - h[i].phi, lh - h[i].length, M_PI - h[i].angle});
+  }
+  for (std::size_t i = 1; i < h.size(); ++i) {
+    t.samples.push_back({h[i].x, h[i].r, ph + h[i].phi, lh + h[i].length, h[i].angle});
+  }
+  return t;
+}
+
+}  // namespace windplan
