@@ -170,7 +170,7 @@ void reject_unknown_keys(const ConfigNode& n, const std::vector<std::string>& kn
 }
 
 void decode_envelope(ConfigNode n, EnvelopeOptions* e) {
-  reject_unknown_keys(n, {"clearance", "profile", "free_length"});
+  reject_unknown_keys(n, {"clearance", "profile", "free_length", "radius"});
   int modes = 0;
   modes += n.has("clearance");
   modes += n.has("profile");
@@ -178,6 +178,7 @@ void decode_envelope(ConfigNode n, EnvelopeOptions* e) {
   if (modes > 1) n.fail_here("give only one of clearance, profile, free_length");
   n.get("clearance", &e->clearance);
   n.get("free_length", &e->free_length);
+  n.get("radius", &e->radius);
   if (n.has("profile")) {
     const YAML::Node p = n.yaml()["profile"];
     if (!p.IsSequence()) n.fail("profile", "expected a list of [x, r] pairs (mm)");
@@ -207,6 +208,7 @@ void decode_axis(ConfigNode n, AxisOptions* a) {
   n.get("min", &a->min);
   n.get("max", &a->max);
   n.get("max_velocity", &a->max_velocity);
+  n.get("max_acceleration", &a->max_acceleration);
   n.finish();
   n.check(*a);
 }
@@ -216,6 +218,8 @@ void decode_machine(ConfigNode n, MachineOptions* m) {
   n.get_choice("kind", {"lathe2", "lathe4", "robot"}, &m->kind);
   n.get("chord_tolerance", &m->chord_tolerance);
   n.get("max_fibre_speed", &m->max_fibre_speed);
+  n.get("tangent_window", &m->tangent_window);
+  n.get("replay_tolerance", &m->replay_tolerance);
   decode_envelope(n.section("envelope"), &m->envelope);
   ConfigNode axes = n.section("axes");
   decode_axis(axes.section("A"), &m->a);
