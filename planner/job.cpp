@@ -213,8 +213,24 @@ void decode_axis(ConfigNode n, AxisOptions* a) {
   n.check(*a);
 }
 
-void decode_machine(ConfigNode n, MachineOptions* m) {
+void decode_machine(ConfigNode n, const std::filesystem::path& base, MachineOptions* m,
+                    bool in_profile = false) {
   if (!n.present()) return;
+  // A machine profile (its own YAML file of machine keys) first; the job's keys override it.
+  std::string profile;
+  if (!in_profile && n.get("profile", &profile)) {
+    if (profile.empty()) n.fail("profile", "must name a machine profile file");
+    const std::filesystem::path file = (base / profile).lexically_normal();
+    if (!std::filesystem::exists(file)) {
+      n.fail("profile", "the machine profile " + file.string() + " does not exist");
+    }
+    ConfigNode p = ConfigNode::load_file(file);
+    if (!p.present() || !p.yaml().IsMap()) {
+      throw ConfigError(file.string() + ": a machine profile must be a map of machine keys");
+    }
+    decode_machine(p, file.parent_path(), m, true);
+    m->profile = file.string();
+  }
   n.get_choice("kind", {"lathe2", "lathe4", "robot"}, &m->kind);
   n.get("chord_tolerance", &m->chord_tolerance);
   n.get("max_fibre_speed", &m->max_fibre_speed);
@@ -352,7 +368,7 @@ Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   root.get("name", &job.name);
   const std::filesystem::path base = job.path.parent_path();
   decode_mandrel(root.section("mandrel"), base, &job.mandrel);
-  decode_machine(root.section("machine"), &job.machine);
+  decode_machine(root.section("machine"), base, &job.machine);
   decode_output(root.section("output"), base, &job.output);
   decode_winding(root.section("winding"), &job.winding);
   decode_girth(root.section("girth"), &job.girth);
