@@ -75,19 +75,3 @@ TEST(Replay, OneMillimetreCarriageFaultIsCaught) {
 
 }  // namespace
 }  // namespace windplan
-namespace windplan {
-namespace {
-TEST(Replay, DebugCoarse) {
-  const double R = 50, Re = 70, alpha = 62, turns = 2;
-  for (int nf : {36, 72, 512}) {
-  const WindingPlan plan = test::helix_plan(R, alpha, turns, 2000);
-  const double c = R / std::tan(alpha * M_PI / 180);
-  const Mesh mesh(test::open_cylinder(R, c * turns * 2 * M_PI + 100, nf, 100));
-  const MachineOptions m = lathe2(Re);
-  const GcodeProgram p = read_gcode(helix_program(R, Re, c, turns, 1500), m, "helix.ngc");
-  const ReplayResult r = replay_program(p, plan, mesh, m);
-  std::printf("%d %s\n", nf, r.summary.c_str());
-  }
-}
-}
-}
