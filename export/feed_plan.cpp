@@ -34,7 +34,7 @@ FeedPlan plan_feed(const std::vector<AxisValues>& values, int n_axes,
   for (int k = 1; k < n; ++k) {
     double l2 = 0.0;
     for (int a = 0; a < n_axes; ++a) l2 += std::pow(values[k][a] - values[k - 1][a], 2);
-    if (!(l2 > 0.0)) continue;
+    if (!(l2 > 1e-12)) continue;  // below 1e-6 mm (or deg): no motion, no time
     const double l = std::sqrt(l2);
     AxisValues d{0, 0, 0, 0};
     for (int a = 0; a < n_axes; ++a) d[a] = (values[k][a] - values[k - 1][a]) / l;

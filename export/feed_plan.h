@@ -19,7 +19,7 @@
 // stays within amax_a on every junction (check_axis_limits measures exactly that, and from and
 // to rest at the ends), and every block's average axis velocity within vmax_a. Junction speeds
 // come from the usual forward (acceleration) and backward (deceleration) passes.
-// Blocks of zero length take no time and are transparent (the neighbours join across them).
+// Blocks shorter than 1e-6 (mm or deg) take no time and are transparent (the neighbours join across them).
 #include <array>
 #include <vector>
 

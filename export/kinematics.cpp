@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "export/clearance.h"
+#include "export/monotone_axes.h"
 #include "export/resample.h"
 #include "export/tangent_smoothing.h"
 #include "geometry/closest_point.h"
@@ -176,7 +177,7 @@ void count_circuit_reversals(const Circuit& c, const std::vector<MachineState>& 
     if (const CircuitSegment* seg = pass_of(k)) {
       const double s0 = c.points[seg->first].s, s1 = c.points[seg->last].s;
       const double s = c.points[k].s;
-      if (s > s0 + 0.1 * (s1 - s0) && s < s1 - 0.1 * (s1 - s0)) ++m->mid_pass_carriage_reversals;
+      if (s > s0 + 0.25 * (s1 - s0) && s < s1 - 0.25 * (s1 - s0)) ++m->mid_pass_carriage_reversals;
     }
   });
   m->carriage_reversals += cx;
@@ -338,6 +339,26 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
       m.states.push_back(st);
       prev = st;
       first = false;
+    }
+    if (opts.monotone_axes) {
+      const int b = circuit_begin.back(), e = static_cast<int>(m.states.size());
+      std::vector<double> xs(e), as(e);
+      for (int i = b; i < e; ++i) {
+        xs[i] = m.states[i].x_mm;
+        as[i] = m.states[i].a_deg;
+      }
+      m.max_monotone_change_x = std::max(m.max_monotone_change_x, monotone_between_extremes(&xs, b, e));
+      m.max_monotone_change_a = std::max(m.max_monotone_change_a, monotone_overall(&as, b, e));
+      for (int i = b; i < e; ++i) {
+        MachineState& st = m.states[i];
+        st.x_mm = xs[i];
+        st.a_deg = as[i];
+        const double th = -st.a_deg / kDeg;
+        st.eye = frame.origin + st.x_mm * frame.d +
+                 st.y_mm * (std::cos(th) * frame.u + std::sin(th) * frame.v);
+        st.free_length = (st.eye - st.position).norm();
+      }
+      prev = m.states.back();
     }
     count_circuit_reversals(c, m.states, circuit_begin.back(),
                             static_cast<int>(m.states.size()), &m);

@@ -36,6 +36,8 @@
 // motion has duration 0 and keeps the previous F.
 // Clearance (with a mandrel mesh): every dense eye point's distance to the mesh; below the
 // required clearance minus chord_tolerance it is an error naming the point.
+// Monotone axes (machine.monotone_axes, export/monotone_axes.h): per circuit, A monotone and X
+// monotone between its turning points; the eye is then recomputed from the axes.
 // Reversals: a reversal of an axis is a sign change between consecutive non-zero moves of its
 // resampled values; a pass is a CircuitSegment of kind Pass.
 #include <array>
@@ -122,11 +124,13 @@ struct Motion {
   /// Reversals of the carriage X and the spindle A (see the header comment).
   int carriage_reversals = 0;
   int max_carriage_reversals_per_circuit = 0;
-  /// Carriage reversals whose fibre point is in the middle 80% (by arc length) of a pass.
+  /// Carriage reversals whose fibre point is in the middle half (by arc length) of a pass.
   int mid_pass_carriage_reversals = 0;
   int spindle_reversals = 0;
   int spindle_reversals_in_passes = 0;  ///< at a point strictly inside a pass
   double max_tangent_change = 0.0;      ///< deg, largest change of the smoothed vs plan tangent
+  double max_monotone_change_x = 0.0;   ///< mm, largest change of X by monotone_axes
+  double max_monotone_change_a = 0.0;   ///< deg, largest change of A by monotone_axes
 
   AxisLimitCheck limits;             ///< the feed plan measured against the axis limits
   std::vector<double> circuit_time;  ///< s per circuit (in order), the link move included

@@ -37,6 +37,8 @@ void motion_json(JsonWriter& j, const Motion& mo, const ReplayResult* rp) {
   j.field("spindle_reversals", mo.spindle_reversals);
   j.field("spindle_reversals_in_passes", mo.spindle_reversals_in_passes);
   j.field("max_tangent_smoothing_deg", mo.max_tangent_change);
+  j.field("max_monotone_change_X_mm", mo.max_monotone_change_x);
+  j.field("max_monotone_change_A_deg", mo.max_monotone_change_a);
   j.field("max_velocity_ratio", mo.limits.velocity_ratio);
   j.field("max_acceleration_ratio", mo.limits.acceleration_ratio);
   j.field("wind_time_s", mo.wind_time);

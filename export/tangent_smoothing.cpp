@@ -28,21 +28,21 @@ std::vector<Vec3> smooth_tangents(const std::vector<Vec3>& points, const std::ve
     w = std::min({w, s[i] - s[first], s[last] - s[i]});
     const int lo = static_cast<int>(std::lower_bound(s.begin(), s.end(), s[i] - w) - s.begin());
     const int hi = static_cast<int>(std::upper_bound(s.begin(), s.end(), s[i] + w) - s.begin());
-    if (hi - lo < 5 || !(w > 0.0)) continue;
-    // Normal equations of the cubic fit in u = (s - s_i) / w (scaled for conditioning).
-    Eigen::Matrix4d M = Eigen::Matrix4d::Zero();
-    Eigen::Matrix<double, 4, 3> R = Eigen::Matrix<double, 4, 3>::Zero();  // rows: sum u^j P^T
+    if (hi - lo < 3 || !(w > 0.0)) continue;
+    // Normal equations of the quadratic fit in u = (s - s_i) / w (scaled for conditioning).
+    Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d R = Eigen::Matrix3d::Zero();  // rows: sum u^j P^T
     for (int j = lo; j < hi; ++j) {
       const double u = (s[j] - s[i]) / w;
-      const double pw[4] = {1.0, u, u * u, u * u * u};
-      for (int r = 0; r < 4; ++r) {
-        for (int c = 0; c < 4; ++c) M(r, c) += pw[r] * pw[c];
+      const double pw[3] = {1.0, u, u * u};
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) M(r, c) += pw[r] * pw[c];
         R.row(r) += pw[r] * (points[j] - points[i]).transpose();
       }
     }
-    const Eigen::FullPivLU<Eigen::Matrix4d> lu(M);
-    if (lu.rank() < 4) continue;
-    const Eigen::Matrix<double, 4, 3> coef = lu.solve(R);
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(M);
+    if (lu.rank() < 3) continue;
+    const Eigen::Matrix3d coef = lu.solve(R);
     Vec3 b = coef.row(1).transpose();
     const double bn = b.norm();
     if (!(bn > 1e-12) || !std::isfinite(bn)) continue;

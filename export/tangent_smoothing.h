@@ -5,13 +5,15 @@
 // tangent jumps by up to the dihedral angle at every edge crossing; the eye E = P + L t turns that
 // into steps of L times the jump (on the shipped vessel, L ~ 100 mm and 6 mm triangles gave eye
 // steps of up to 3.9 mm and carriage reversals in the middle of passes). Here the tangent at point
-// i is the derivative at s_i of the least-squares cubic P(s) ~ a + b u + c u^2 + d u^3 (u = s -
-// s_i) over the points with |s - s_i| <= w_i (arc length), w_i = clamp(0.5 / kappa_i, w_min,
-// w_max) with kappa_i = sqrt(k_n^2 + k_g^2) of the plan, and the window symmetric (shrunk near the
-// ends of the polyline and of the point's piece; fewer than 5 points: the plan's tangent). On a
-// smooth curve the symmetric cubic's slope errs by O(w^4) (a helix of radius 50 mm, w = 15 mm:
-// 1e-4 relative), while the noise, which changes sign face by face, averages out over the several
-// faces in the window.
+// i is the derivative at s_i of the least-squares quadratic P(s) ~ a + b u + c u^2 (u = s - s_i)
+// over the points with |s - s_i| <= w_i (arc length), w_i = clamp(0.5 / kappa_i, w_min, w_max)
+// with kappa_i = sqrt(k_n^2 + k_g^2) of the plan, and the window symmetric (shrunk near the ends
+// of the polyline and of the point's piece; fewer than 3 points: the plan's tangent). On a
+// symmetric window the slope is that of the straight-line fit, biased by O((w kappa)^2) on a
+// smooth curve (a helix of radius 50 mm and pitch 20 mm/rad, w = 15 mm: 3e-3 rad); a cubic would
+// remove the bias but measured 7 times the carriage reversals on the vessel (its slope is
+// noisier), and the reversals are what reach the machine. The noise, which changes sign face by
+// face, averages out over the several faces in the window.
 // The result points the same way as the plan's tangent. Its effect on the laid fibre is measured
 // by the replay (export/replay.h).
 #include <vector>

