@@ -88,16 +88,18 @@ double lift(const Surface::Point& p, const Vec3& eye) { return (eye - p.p).dot(p
 // Advances the contact point P towards the eye until the free fibre is tangent (header comment).
 // The lift (E - P(h)) . n(P(h)) along the walk P(h) = proj(P + h dir) is bracketed starting from
 // the previous step's walk length *h_guess, then its root found by regula falsi (Illinois).
-void advance(const Surface& surf, const Vec3& eye, Surface::Point* P, double* h_guess) {
-  for (int round = 0; round < 16; ++round) {
+void advance(const Surface& surf, const Vec3& eye, Surface::Point* P, double* h_guess,
+             double max_walk) {
+  double walked = 0.0;
+  for (int round = 0; round < 16 && walked < max_walk; ++round) {
     const Vec3 d = eye - P->p;
     const double len = d.norm();
     const double f0 = lift(*P, eye);
     if (!(len > 0.0) || f0 >= -1e-12 * len) return;
     const Vec3 w = d - d.dot(P->n) * P->n;
-    const double wn = w.norm();
+    const double wn = std::min(w.norm(), max_walk - walked);
     if (!(wn > 1e-12)) return;
-    const Vec3 dir = w / wn;
+    const Vec3 dir = w.normalized();
     auto at = [&](double h) { return surf.project(P->p + h * dir); };
     double h_lo = 0.0, f_lo = f0;
     Surface::Point lo = *P, hi;
@@ -120,6 +122,7 @@ void advance(const Surface& surf, const Vec3& eye, Surface::Point* P, double* h_
     }
     if (!found) {
       *P = lo;  // not tangent within reach: go as far as that and aim again
+      walked += h_lo;
       continue;
     }
     double h_hi = h;
@@ -201,7 +204,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   if (machine.kind == "robot") throw InputError("machine.kind: robot has no G-code to replay");
   if (program.blocks.empty()) throw InputError("the program has no moves");
   if (mandrel.num_faces() == 0) throw InputError("the mandrel mesh is empty");
-  std::vector<Vec3> planned;
+  std::vector<Vec3> planned, planned_n;
   std::vector<char> held;  // on a turnaround: a pin ring or boss holds the fibre there
   for (const Circuit& c : plan.circuits) {
     std::vector<char> on_turn(c.points.size(), 0);
@@ -216,6 +219,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
       const FibrePoint& p = c.points[i];
       if (planned.empty() || (p.position - planned.back()).norm() > 1e-12) {
         planned.push_back(p.position);
+        planned_n.push_back(p.normal);
         held.push_back(on_turn[i]);
       } else {
         held.back() = held.back() || on_turn[i];
@@ -226,6 +230,11 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   std::vector<double> planned_s(planned.size(), 0.0);
   for (std::size_t i = 1; i < planned.size(); ++i) {
     planned_s[i] = planned_s[i - 1] + (planned[i] - planned[i - 1]).norm();
+  }
+  // The first turnaround point at or after each planned point (-1: none).
+  std::vector<int> next_held(planned.size(), -1);
+  for (int i = static_cast<int>(planned.size()) - 1; i >= 0; --i) {
+    next_held[i] = held[i] ? i : (i + 1 < static_cast<int>(planned.size()) ? next_held[i + 1] : -1);
   }
   const bool lathe2 = machine.kind == "lathe2";
   const AxisFrame frame = make_axis_frame(plan.axis);
@@ -241,7 +250,9 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   ReplayResult r;
   r.blocks = static_cast<int>(program.blocks.size());
   r.min_clearance = std::numeric_limits<double>::infinity();
-  Surface::Point P = surf.project(planned.front());
+  Surface::Point P;
+  P.p = planned.front();
+  P.n = planned_n.front();
   int ptr = 0;
   double h_guess = 0.05;
   double dev_sum = 0.0;
@@ -279,14 +290,27 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
         const double t = static_cast<double>(k) / n;
         const Vec3 e = eye_at(prev->a + t * (b.a - prev->a), prev->x + t * (b.x - prev->x),
                               pv[2] + t * (v[2] - pv[2]));
-        advance(surf, e, &P, &h_guess);
-        double dev = track(planned, planned_s, P.p, options.search_back, options.search_ahead, &ptr);
-        if (held[ptr] || held[ptr + 1 < static_cast<int>(held.size()) ? ptr + 1 : ptr]) {
-          // The pins or the boss lay the fibre along the turnaround as planned.
-          const Vec3 on = closest_on_segment(P.p, planned[ptr], planned[std::min<int>(ptr + 1, planned.size() - 1)]);
-          P = surf.project(on);
-          dev = 0.0;
+        const int last = static_cast<int>(planned.size()) - 1;
+        double dev = 0.0;
+        // The pins catch the fibre as it arrives at the ring: within `catch_distance` before it.
+        const int nh = next_held[ptr];
+        if (!held[ptr] && nh >= 0 && nh < last && held[nh + 1] &&
+            planned_s[nh] - planned_s[ptr] <= options.catch_distance) {
+          ptr = nh;
+        }
+        if (held[ptr] && ptr < last && held[ptr + 1]) {
+          // On a turnaround the pins or the boss lay the fibre along the plan: the contact moves
+          // along the planned arc to the first point whose free fibre to the eye is tangent.
+          int j = ptr;
+          while (j < last && held[j + 1] && (e - planned[j]).dot(planned_n[j]) < 0.0) ++j;
+          ptr = j;
+          // The plan's normal: at a rim the closest face may be the end cap's.
+          P.p = planned[j];
+          P.n = planned_n[j];
           ++r.held_substeps;
+        } else {
+          advance(surf, e, &P, &h_guess, 4.0 * options.step);
+          dev = track(planned, planned_s, P.p, options.search_back, options.search_ahead, &ptr);
         }
         dev_sum += dev;
         ++r.substeps;

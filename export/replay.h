@@ -11,14 +11,18 @@
 // surface at P. When the eye moves to E', the straight fibre from P would cut into the surface
 // ((E' - P) . n(P) < 0): the fibre wraps on and P advances along the surface towards E' (the
 // tangent-plane direction of E' - P) until the free fibre is tangent again ((E' - P) . n = 0,
-// found by bracketing and bisection on straight steps projected back onto the mesh, with normals
+// found by bracketing and regula falsi on straight steps projected back onto the mesh, at most
+// 4 `step` per sub-step (a contact that finds no tangency, e.g. pulled over a tube's open end,
+// does not run away along the rim), with normals
 // interpolated from face-corner normals that do not average across creases). When the free fibre lifts off, P stays: laid fibre does
 // not come off. This is the payout lag of a real winder; on a cylinder it lays z_P' = (z_E - z_P)
 // / tan(beta) per radian (beta = acos(r / R_eye)), whose steady state is the planned helix.
 // The fibre starts at the planned path's first point (where it is tied on). On the plan's
 // turnarounds (CircuitSegment::Kind::Turnaround: dwell arcs on pin rings, stations or a boss) the
-// pins or the boss hold the fibre: while the matched planned point is on one, the contact point is
-// put on the plan and no deviation is counted (held_substeps counts those sub-steps).
+// pins or the boss hold the fibre: once the contact comes within catch_distance of one, it moves along the planned arc to
+// the first planned point whose free fibre to the eye is tangent ((E - P) . n >= 0 with the plan's
+// normal), and no deviation is counted (held_substeps counts those sub-steps); it leaves the arc
+// at its end, free again.
 //
 // Deviation: the distance of every sub-step's contact point to the planned fibre polyline (all
 // circuits in order), searched in a window of arc length that moves along it.
@@ -40,6 +44,8 @@ struct ReplayOptions {
   /// mm of planned path searched behind and ahead of the last match for the deviation.
   double search_back = 10.0;
   double search_ahead = 40.0;
+  /// mm: a contact this close (along the plan) to a turnaround is caught by its pins or boss.
+  double catch_distance = 5.0;
 };
 
 struct ReplayResult {
