@@ -40,6 +40,11 @@ class Surface {
         fan[tris[f][k]].push_back({f, ang});
       }
     }
+    face_n_ = fn;
+    fan_.resize(mesh.num_vertices());
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      for (const auto& fa : fan[v]) fan_[v].push_back(fa.first);
+    }
     const double crease = std::cos(40.0 * kPi / 180.0);
     corner_.resize(static_cast<std::size_t>(nf) * 3);
     for (int f = 0; f < nf; ++f) {
@@ -56,31 +61,58 @@ class Surface {
     Vec3 p = Vec3::Zero();
     Vec3 n = Vec3::UnitX();
   };
-  Point project(const Vec3& q) const {
+  /// The closest point with its interpolated normal. On a crease (an edge or vertex shared by
+  /// faces more than 40 deg apart, e.g. a tube's rim) the face whose normal is closest to `ref`
+  /// (the walking contact's normal) is taken, so that the walk stays on its side of the crease.
+  Point project(const Vec3& q, const Vec3* ref = nullptr) const {
     const ClosestPointQuery::Hit h = query_.closest(q);
     Point out;
     out.p = h.position;
-    const int f = containing_face(mesh_, h.point);
+    int f = containing_face(mesh_, h.point);
+    if (ref && h.point.kind != SurfacePoint::Kind::Face) {
+      // Faces round the triangle's vertex nearest to the hit.
+      const auto& t0 = mesh_.triangles()[f];
+      int v = t0[0];
+      for (int k = 1; k < 3; ++k) {
+        if ((mesh_.points()[t0[k]] - h.position).squaredNorm() <
+            (mesh_.points()[v] - h.position).squaredNorm()) {
+          v = t0[k];
+        }
+      }
+      double best = face_n_[f].dot(*ref);
+      for (int g : fan_[v]) {
+        const auto& tg = mesh_.triangles()[g];
+        Vec3 bg;
+        const Vec3 pg = closest_point_on_triangle(h.position, mesh_.points()[tg[0]],
+                                                  mesh_.points()[tg[1]], mesh_.points()[tg[2]], &bg);
+        if ((pg - h.position).norm() > 1e-6) continue;  // the hit is not on this face
+        if (face_n_[g].dot(*ref) > best) {
+          best = face_n_[g].dot(*ref);
+          f = g;
+        }
+      }
+    }
     const auto& t = mesh_.triangles()[f];
     Vec3 bary = h.point.bary;
-    if (h.point.kind != SurfacePoint::Kind::Face) {
+    if (h.point.kind != SurfacePoint::Kind::Face || f != h.point.element) {
       // Barycentric coordinates of the hit in face f.
-      const Vec3& a = mesh_.points()[t[0]];
-      const Vec3& b = mesh_.points()[t[1]];
-      const Vec3& c = mesh_.points()[t[2]];
-      closest_point_on_triangle(h.position, a, b, c, &bary);
+      closest_point_on_triangle(h.position, mesh_.points()[t[0]], mesh_.points()[t[1]],
+                                mesh_.points()[t[2]], &bary);
     }
     Vec3 n = bary[0] * corner_[3 * f] + bary[1] * corner_[3 * f + 1] + bary[2] * corner_[3 * f + 2];
     const double nn = n.norm();
     out.n = nn > 0.0 ? Vec3(n / nn) : mesh_.face_normal(f);
     return out;
   }
+
   double distance(const Vec3& q) const { return query_.closest(q).distance; }
 
  private:
   const Mesh& mesh_;
   ClosestPointQuery query_;
   std::vector<Vec3> corner_;
+  std::vector<Vec3> face_n_;
+  std::vector<std::vector<int>> fan_;
 };
 
 double lift(const Surface::Point& p, const Vec3& eye) { return (eye - p.p).dot(p.n); }
@@ -100,7 +132,8 @@ void advance(const Surface& surf, const Vec3& eye, Surface::Point* P, double* h_
     const double wn = std::min(w.norm(), max_walk - walked);
     if (!(wn > 1e-12)) return;
     const Vec3 dir = w.normalized();
-    auto at = [&](double h) { return surf.project(P->p + h * dir); };
+    const Vec3 ref = P->n;
+    auto at = [&](double h) { return surf.project(P->p + h * dir, &ref); };
     double h_lo = 0.0, f_lo = f0;
     Surface::Point lo = *P, hi;
     double h = std::clamp(*h_guess, 1e-4, wn), f_hi = 0.0;
@@ -294,15 +327,14 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
         double dev = 0.0;
         // The pins catch the fibre as it arrives at the ring: within `catch_distance` before it.
         const int nh = next_held[ptr];
-        if (!held[ptr] && nh >= 0 && nh < last && held[nh + 1] &&
-            planned_s[nh] - planned_s[ptr] <= options.catch_distance) {
+        if (!held[ptr] && nh >= 0 && planned_s[nh] - planned_s[ptr] <= options.catch_distance) {
           ptr = nh;
         }
-        if (held[ptr] && ptr < last && held[ptr + 1]) {
+        if (held[ptr] && ptr < last) {
           // On a turnaround the pins or the boss lay the fibre along the plan: the contact moves
           // along the planned arc to the first point whose free fibre to the eye is tangent.
           int j = ptr;
-          while (j < last && held[j + 1] && (e - planned[j]).dot(planned_n[j]) < 0.0) ++j;
+          while (j < last && held[j] && (e - planned[j]).dot(planned_n[j]) < 0.0) ++j;
           ptr = j;
           // The plan's normal: at a rim the closest face may be the end cap's.
           P.p = planned[j];

@@ -19,7 +19,8 @@
 // / tan(beta) per radian (beta = acos(r / R_eye)), whose steady state is the planned helix.
 // The fibre starts at the planned path's first point (where it is tied on). On the plan's
 // turnarounds (CircuitSegment::Kind::Turnaround: dwell arcs on pin rings, stations or a boss) the
-// pins or the boss hold the fibre: once the contact comes within catch_distance of one, it moves along the planned arc to
+// pins or the boss hold the fibre: once the contact comes within catch_distance (10 mm, along the
+// plan) of one, it moves along the planned arc to
 // the first planned point whose free fibre to the eye is tangent ((E - P) . n >= 0 with the plan's
 // normal), and no deviation is counted (held_substeps counts those sub-steps); it leaves the arc
 // at its end, free again.
@@ -45,7 +46,7 @@ struct ReplayOptions {
   double search_back = 10.0;
   double search_ahead = 40.0;
   /// mm: a contact this close (along the plan) to a turnaround is caught by its pins or boss.
-  double catch_distance = 5.0;
+  double catch_distance = 10.0;
 };
 
 struct ReplayResult {
