@@ -42,6 +42,16 @@ int main(int argc, char** argv) {
       const Job job = load_job(path);
       const PipelineResult r = plan_job(job, {});
       const Motion mo = compute_motion(r.plan, job.machine, &r.mandrel.mesh);
+      if (job.machine.kind == "robot") {
+        std::printf("%-12s %2zu circuits | robot (no G-code) | X reversals %d (max %d per circuit, "
+                    "%d mid-pass) | A reversals %d | v %.3f a %.3f of limit | clearance min %.3f "
+                    "mm | wind %.1f s | eye X %.0f..%.0f mm, free length <= %.0f mm\n",
+                    path.stem().string().c_str(), mo.circuit_time.size(), mo.carriage_reversals,
+                    mo.max_carriage_reversals_per_circuit, mo.mid_pass_carriage_reversals,
+                    mo.spindle_reversals, mo.limits.velocity_ratio, mo.limits.acceleration_ratio,
+                    mo.min_clearance, mo.wind_time, mo.x.min, mo.x.max, mo.free_length.max);
+        continue;
+      }
       const std::string text = gcode_program(mo, r.plan.job_name, job.machine);
       auto t0 = std::chrono::steady_clock::now();
       const GcodeProgram p = read_gcode(text, job.machine, "toolpath");

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "geometry/errors.h"
+#include "geometry/winding_surface.h"
 
 namespace windplan {
 
@@ -48,6 +49,13 @@ double Envelope::radius_at(double ax) const {
   const std::size_t i = static_cast<std::size_t>(it - x.begin());
   const double t = (ax - x[i - 1]) / (x[i] - x[i - 1]);
   return (1.0 - t) * r[i - 1] + t * r[i];
+}
+
+RadiusProfile swept_profile(const WindingPlan& plan, const Mesh* mandrel) {
+  if (!mandrel || mandrel->num_faces() == 0 || plan.profile.empty()) return plan.profile;
+  const double span = plan.profile.axial.back() - plan.profile.axial.front();
+  const int stations = std::clamp(static_cast<int>(std::ceil(span / 0.5)), 200, 4000);
+  return compute_radius_profile(*mandrel, plan.axis, stations);
 }
 
 RadiusProfile dilate_profile(const RadiusProfile& profile, double c) {

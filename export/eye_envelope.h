@@ -22,6 +22,8 @@
 #include <vector>
 
 #include "geometry/axis.h"
+#include "geometry/mesh.h"
+#include "planner/plan.h"
 #include "planner/machine_options.h"
 
 namespace windplan {
@@ -44,6 +46,13 @@ struct Envelope {
 ///        for lathe2 with a non-constant profile or a free length (no cross-feed to follow it).
 Envelope make_envelope(const RadiusProfile& mandrel, const EnvelopeOptions& opts,
                        const std::string& kind = "lathe4");
+
+/// The swept mandrel's radius profile for the envelope: with a mesh, its largest radius about the
+/// plan's axis at stations at most 0.5 mm apart (at least 200, at most 4000:
+/// geometry/winding_surface.h), so that a bend bulging between the plan's 200 stations is not
+/// missed (0.31 mm inside the clearance on the shipped bent tube with the plan's profile);
+/// without one, the plan's profile.
+RadiusProfile swept_profile(const WindingPlan& plan, const Mesh* mandrel);
 
 /// The dilation of the region under `profile` by a disc of radius `clearance` (see the header
 /// comment), as (x, r) samples spanning [x0 - clearance, xn + clearance].

@@ -195,7 +195,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
   Motion m;
   m.inverse_time = uses_inverse_time(opts.gcode);
   const AxisFrame frame = make_axis_frame(plan.axis);
-  const Envelope env = make_envelope(plan.profile, opts.envelope, opts.kind);
+  const Envelope env = make_envelope(swept_profile(plan, mandrel), opts.envelope, opts.kind);
   m.envelope = env.description;
   const bool lathe2 = opts.kind == "lathe2";
   // Machine axes that move (and bound the time): lathe2 drives A and X only.

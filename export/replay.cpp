@@ -272,7 +272,9 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   const bool lathe2 = machine.kind == "lathe2";
   const AxisFrame frame = make_axis_frame(plan.axis);
   double eye_radius = 0.0;
-  if (lathe2) eye_radius = make_envelope(plan.profile, machine.envelope, "lathe2").r.front();
+  if (lathe2) {
+    eye_radius = make_envelope(swept_profile(plan, &mandrel), machine.envelope, "lathe2").r.front();
+  }
   auto eye_at = [&](double a_deg, double x, double y) {
     const double th = -a_deg * kPi / 180.0;
     const double r = lathe2 ? eye_radius : y;

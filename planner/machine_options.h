@@ -76,9 +76,8 @@ struct MachineOptions {
   /// (export/monotone_axes.h).
   bool monotone_axes = true;
   /// mm: a program whose replay (export/replay.h) lays the fibre farther than this from the
-  /// planned path is not written by `windplan run`; 0 = replay and report only (the default
-  /// until the replay models the pin rings at mesh boundaries, see docs/config.md). >= 0
-  double replay_tolerance = 0.0;
+  /// planned path is not written by `windplan run`; 0 = replay and report only. >= 0
+  double replay_tolerance = 0.5;
   /// The profile file the machine was read from (machine.profile), empty if none; for reports.
   std::string profile;
   /// A spindle (deg), X carriage (mm), Y cross-feed (mm), B eye rotation (deg).
