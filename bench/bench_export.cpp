@@ -13,6 +13,8 @@
 #include "export/gcode.h"
 #include "export/report.h"
 #include "export/svg.h"
+#include "export/unroll.h"
+#include "export/viewer.h"
 #include "tests/export/plan_fixtures.h"
 
 using namespace windplan;
@@ -67,8 +69,13 @@ int main(int argc, char** argv) {
   write_csv(csv, payout_table(mo));
   std::printf("csv text: %.3f s, %.1f MB\n", seconds_since(t0), csv.str().size() / 1e6);
   t0 = std::chrono::steady_clock::now();
-  const std::string svg = development_svg(plan);
+  const std::string svg = development_svg(plan, Unrolling::make(plan, Mesh()));
   std::printf("development.svg: %.3f s, %.2f MB\n", seconds_since(t0), svg.size() / 1e6);
+  t0 = std::chrono::steady_clock::now();
+  const ViewerPage page = viewer_page(plan, Mesh(), mo);
+  std::printf("viewer.html: %.3f s, %.2f MB, %d of %d fibre points, %d of %d machine points\n",
+              seconds_since(t0), page.html.size() / 1e6, page.points_kept, page.points,
+              page.states_kept, page.states);
 
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / "windplan_bench_export";

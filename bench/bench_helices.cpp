@@ -1,7 +1,9 @@
 // bench_helices: helix planning speed and the plan figures of every shipped job.
-//   bench_helices [configs_dir]
-// 1. 24 circuits of 5 turns (48 passes) on the vessel and the pipe: trace and refinement times.
-// 2. For every configs/*.yaml: plan_job, then spacing, coverage and stability figures.
+//   bench_helices [configs_dir] [--shipped]
+// 1. 24 circuits of 5 turns (48 passes) on the vessel and the pipe: trace and refinement times
+//    (the geodesic core's route; skipped with --shipped).
+// 2. For every configs/*.yaml: plan_job, then the route, pattern, measured coverage, spacing and
+//    stability figures and the planning time.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -68,12 +70,22 @@ void bench_24x5(const std::filesystem::path& job_file, double beta) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::filesystem::path dir = argc > 1 ? argv[1] : WINDPLAN_CONFIGS_DIR;
+  std::filesystem::path dir = WINDPLAN_CONFIGS_DIR;
+  bool shipped_only = false;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--shipped") {
+      shipped_only = true;
+    } else {
+      dir = argv[i];
+    }
+  }
   try {
-    std::printf("== 24 circuits of 5 turns ==\n");
-    for (const char* job : {"pipe.yaml", "cone.yaml", "bent_tube.yaml", "vessel.yaml"}) {
-      bench_24x5(dir / job, 0.0);
-      bench_24x5(dir / job, 1.0);
+    if (!shipped_only) {
+      std::printf("== 24 circuits of 5 turns ==\n");
+      for (const char* job : {"pipe.yaml", "cone.yaml", "bent_tube.yaml", "vessel.yaml"}) {
+        bench_24x5(dir / job, 0.0);
+        bench_24x5(dir / job, 1.0);
+      }
     }
     std::printf("\n== shipped jobs (their winding: sections) ==\n");
     std::map<std::string, std::filesystem::path> files;
@@ -86,17 +98,18 @@ int main(int argc, char** argv) {
       const PlanMetrics& m = r.plan.metrics;
       double total = 0.0;
       for (const StageTiming& t : m.timings) total += t.seconds;
+      const CoverageReport& cv = m.coverage;
       std::printf(
-          "%-16s N=%g K=%d beta=%.1f | spacing mean %.2f mm, CV(norm) %.3f | coverage "
-          "needs %d, cover %.3f | max |kg/kn| %.3f (mu %.2f), above mu %.1f%%, "
-          "bridging %.1f mm | turnarounds max |kg/kn| %.3f (start %.3f, end %.3f), above mu "
-          "%.1f%%, bridging %.1f mm | passes not converged %d | %.2f s\n",
-          name.c_str(), job.winding.turns, m.circuits, job.winding.beta, m.spacing_mean,
-          m.spacing_cv, m.circuits_for_coverage, m.cover_factor, m.max_slippage, m.friction,
-          100.0 * m.slip_fraction, m.bridging_length, m.turnarounds.max_slippage,
-          m.turnaround_ends[0].max_slippage, m.turnaround_ends[1].max_slippage,
-          100.0 * m.turnarounds.slip_fraction, m.turnarounds.bridging_length,
-          r.helices.summary.not_converged, total);
+          "%-16s %s N=%.4f K=%d beta=%.1f | c %.2f mm | bare %.2f%%, gap %.1f mm, overlap %.2f "
+          "mm (largest sections %.2f), stack %d, cover %.3f, %zu stations | spacing CV %.3f | "
+          "max |kg/kn| %.3f (mu %.2f), above mu %.1f%%, bridging %.1f mm | dwell arcs %.0f mm, "
+          "max |kg/kn| %.3f | %.2f s\n",
+          name.c_str(), r.clairaut ? "clairaut" : "core    ", m.turns_per_pass, m.circuits,
+          job.winding.beta, m.pattern_info.turnaround_radius, 100.0 * cv.bare_fraction,
+          cv.widest_gap, cv.widest_overlap, cv.widest_overlap_largest, cv.max_stack,
+          cv.cover_factor, cv.stations.size(), m.spacing_cv, m.max_slippage, m.friction,
+          100.0 * m.slip_fraction, m.bridging_length, m.turnarounds.length,
+          m.turnarounds.max_slippage, total);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_helices: %s\n", e.what());

@@ -24,8 +24,8 @@ namespace windplan::cli {
 
 const char* const kCutlineHelp =
     "usage: windplan cutline <job.yaml | mesh-file> [--name N] [--plane nx,ny,nz,d | --station z]\n"
-    "                        [--normal-mode free|fixed|cone] [--max-tilt deg] [--json] [-o "
-    "cut.csv]\n\n"
+    "                        [--normal-mode free|fixed|cone] [--max-tilt deg] [--free-offset]\n"
+    "                        [--json] [-o cut.csv]\n\n"
     "Computes coplanar cut-lines (trim lines): the shortest planar loop around the mandrel near a\n"
     "start plane (the paper's coplanar geodesic, eq. 7/8). With a job file: its cutlines: list\n"
     "(--name picks one) on the winding surface, or one cut-line from the flags. With a mesh file\n"
@@ -37,7 +37,10 @@ const char* const kCutlineHelp =
     "  --station z        start plane normal to the spindle axis at axial position z (mm, from\n"
     "                     the axis origin: mandrel.axis, the parametric origin, or the area\n"
     "                     centroid when the axis is inferred)\n"
-    "  --normal-mode M    free (default), fixed (the plane only translates), cone\n"
+    "  --normal-mode M    free (default for --plane), fixed (default for --station: the\n"
+    "                     station's own plane), cone\n"
+    "  --free-offset      let the plane slide along the mandrel too (by default it keeps its\n"
+    "                     start offset and only turns about the point where it meets the axis)\n"
     "  --max-tilt DEG     for cone: largest angle from the start normal (default 90)\n"
     "  --json             print the result as JSON on stdout\n"
     "  -o, --out FILE     write the points as CSV (name, index, x, y, z)\n";
@@ -74,7 +77,7 @@ std::vector<double> parse_numbers(const std::string& option, const std::string& 
 }  // namespace
 
 int run_cutline(const std::vector<std::string>& argv) {
-  const Args args(argv, {"--json"},
+  const Args args(argv, {"--json", "--free-offset"},
                   {"-o", "--out", "--name", "--plane", "--station", "--normal-mode", "--max-tilt"});
   args.expect_positional(1, "a job file or a mesh file");
   const std::filesystem::path input = args.positional()[0];
@@ -84,8 +87,9 @@ int run_cutline(const std::vector<std::string>& argv) {
     throw UsageError("give --plane or --station, not both");
   }
   const bool from_flags = args.has("--plane") || args.has("--station");
-  if (!from_flags && (args.has("--normal-mode") || args.has("--max-tilt"))) {
-    throw UsageError("--normal-mode and --max-tilt go with --plane or --station");
+  if (!from_flags &&
+      (args.has("--normal-mode") || args.has("--max-tilt") || args.flag("--free-offset"))) {
+    throw UsageError("--normal-mode, --max-tilt and --free-offset go with --plane or --station");
   }
 
   std::vector<CutLineOptions> cuts;
@@ -103,6 +107,7 @@ int run_cutline(const std::vector<std::string>& argv) {
     }
     c.normal_mode = args.value("--normal-mode", c.normal_mode);
     c.max_tilt_deg = args.number("--max-tilt", c.max_tilt_deg);
+    c.keep_offset = !args.flag("--free-offset");
     if (std::string why; !c.is_valid(&why)) throw UsageError("cut-line from the flags: " + why);
     cuts.push_back(c);
   }

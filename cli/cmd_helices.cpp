@@ -37,13 +37,13 @@ int run_helices(const std::vector<std::string>& argv) {
   const PipelineResult r = plan_job(job);
   const WindingPlan& plan = r.plan;
   const PlanMetrics& m = plan.metrics;
-  const HelixPlanSummary& hs = r.helices.summary;
 
   const std::string out = args.has("-o") ? args.value("-o") : args.value("--out");
   if (!out.empty()) {
     OutputOptions o = job.output;
     o.gcode = false;
     o.svg = false;
+    o.viewer = false;
     export_plan(plan, r.mandrel.mesh, job.machine, o, out);
   }
 
@@ -52,8 +52,10 @@ int run_helices(const std::vector<std::string>& argv) {
     j.begin_object();
     j.field("job", job.name);
     j.field("turns", job.winding.turns);
-    j.field("circuits", hs.circuits);
-    j.field("circuits_auto", hs.circuits_auto);
+    j.field("circuits", static_cast<int>(plan.circuits.size()));
+    j.field("circuits_auto", job.winding.circuits == 0);
+    j.field("route", r.clairaut ? "clairaut" : "geodesic core");
+    j.field("turns_per_pass", m.turns_per_pass);
     j.field("beta", job.winding.beta);
     j.field("girth_field", r.has_girth);
     j.field("conformal_error_deg", r.helices.coords.conformal_error);
@@ -106,6 +108,12 @@ int run_helices(const std::vector<std::string>& argv) {
     j.field("turnaround_bridging_length", m.turnarounds.bridging_length);
     j.key("turnarounds");
     turnarounds_json(j, m, false);
+    if (m.pattern_info.geodesic) {
+      j.key("pattern_info");
+      pattern_json(j, m.pattern_info, false);
+    }
+    j.key("coverage");
+    coverage_json(j, m.coverage, false);
     j.key("warnings").begin_array();
     for (const std::string& w : m.warnings) j.value(w);
     j.end_array();
@@ -120,11 +128,13 @@ int run_helices(const std::vector<std::string>& argv) {
   std::ostringstream s;
   s.setf(std::ios::fixed);
   s.precision(3);
-  s << "helices: " << job.name << ": K = " << hs.circuits << (hs.circuits_auto ? " (auto)" : "")
-    << " circuits of N = " << format_turns(job.winding.turns)
+  s << "helices: " << job.name << ": K = " << plan.circuits.size()
+    << (job.winding.circuits == 0 ? " (auto)" : "")
+    << " circuits of N = " << format_turns(m.turns_per_pass)
     << " turns per pass, beta = " << job.winding.beta
-    << (r.has_girth ? " (girth field)" : " (girth 2 pi r)") << "\n";
-  s << "  conformal error " << r.helices.coords.conformal_error << " deg\n";
+    << (r.has_girth ? " (girth field)" : " (girth 2 pi r)")
+    << (r.clairaut ? ", Clairaut geodesics on the meridian" : ", geodesic core") << "\n";
+  if (!r.clairaut) s << "  conformal error " << r.helices.coords.conformal_error << " deg\n";
   if (r.has_turn_limit) {
     const ClairautLimit& lim = r.turn_limit;
     s << "  geodesic turn limit: ";
@@ -145,8 +155,8 @@ int run_helices(const std::vector<std::string>& argv) {
   s << "  fibre length " << m.fibre_length << " mm\n";
   s << "  spacing: mean " << m.spacing_mean << " mm, CV (girth-normalised) " << m.spacing_cv
     << "\n";
-  s << "  coverage: " << m.circuits_for_coverage << " circuits needed, cover factor "
-    << m.cover_factor << "; pattern " << m.pattern << "\n";
+  s << "  coverage (laid bands): " << m.coverage.brief_report() << "\n";
+  s << "  pattern: " << m.pattern << "\n";
   s << "  stability: max |k_g/k_n| " << m.max_slippage << " vs mu " << m.friction << ", "
     << 100.0 * m.slip_fraction << "% above, bridging " << m.bridging_length << " mm (passes)\n";
   s << "  turnarounds: max |k_g/k_n| " << m.turnarounds.max_slippage << " vs mu " << m.friction

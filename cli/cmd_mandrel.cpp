@@ -20,8 +20,11 @@ const char* const kMandrelHelp =
     "                        [--json]\n\n"
     "Builds the job's mandrel (mandrel.source: mesh, cad, pipe, cone, vessel, bent_tube),\n"
     "reports the welded mesh (vertices, faces, closed, manifold, oriented, area), the winding\n"
-    "surface (its two boundary loops with their mean radii and axial stations), the spindle\n"
-    "axis and the tessellation time. Warnings go to stderr.\n\n"
+    "surface (its two boundary loops with their mean radii and axial stations), the candidate\n"
+    "regions (each connected part of the wound selection: axial extent, radius range, loops,\n"
+    "genus), the spindle axis and the tessellation time. Warnings go to stderr. When the wound\n"
+    "region is not an annulus it prints the candidate table and the suggested mandrel.region\n"
+    "keys, then fails (exit 1).\n\n"
     "  -o, --out FILE   write the full welded mesh (.ply or .obj)\n"
     "  --winding FILE   write the winding surface (the annulus) (.ply or .obj)\n"
     "  --step FILE      write the mandrel's B-rep (.step, .iges or .brep; cad/parametric only)\n"
@@ -31,11 +34,26 @@ int run_mandrel(const std::vector<std::string>& argv) {
   const Args args(argv, {"--json"}, {"-o", "--out", "--winding", "--step"});
   args.expect_positional(1, "a job file");
   const Job job = load_job(args.positional()[0]);
-  const Mandrel m = build_mandrel(job);
-  for (const std::string& w : m.warnings) std::cerr << "windplan mandrel: warning: " << w << "\n";
-
+  Mandrel m = build_mandrel(job.mandrel, /*require_annulus=*/false);
+  // The full mesh is written even when it cannot be wound (to look at it, or to use it as a
+  // mesh-file mandrel with a region).
   const std::string out = args.has("-o") ? args.value("-o") : args.value("--out");
   if (!out.empty()) write_mesh(out, m.mesh);
+  const bool windable = m.winding.mesh.num_faces() > 0;
+  if (!windable) {
+    // Say what is there: the candidate regions and the suggested keys, then fail.
+    std::cout << "mandrel: " << m.description << "\n  the wound region is not an annulus; "
+              << "candidate regions (axis origin (" << m.axis.origin.transpose()
+              << "), direction (" << m.axis.direction.transpose() << ")):\n"
+              << region_table(m.candidates, "  ");
+    if (m.suggestion.found) {
+      std::cout << "  suggested (under mandrel:): " << m.suggestion.keys() << "\n";
+    }
+    const std::string msg = m.warnings.back();
+    throw TopologyError(msg);
+  }
+  for (const std::string& w : m.warnings) std::cerr << "windplan mandrel: warning: " << w << "\n";
+
   if (args.has("--winding")) write_mesh(args.value("--winding"), m.winding.mesh);
   if (args.has("--step")) {
     if (m.shape.empty()) {
@@ -84,6 +102,27 @@ int run_mandrel(const std::vector<std::string>& argv) {
     }
     j.end_array();
     j.end_object();
+    j.key("regions").begin_array();
+    for (const CandidateRegion& c : m.candidates) {
+      j.begin_object();
+      j.field("index", c.index);
+      j.field("faces", c.faces);
+      j.field("axial_min", c.axial_min).field("axial_max", c.axial_max);
+      j.field("radius_min", c.radius_min).field("radius_max", c.radius_max);
+      j.field("loops", c.loops).field("loops_around", c.loops_around).field("genus", c.genus);
+      j.field("area", c.area);
+      j.field("wound", c.index - 1 == m.chosen_candidate);
+      j.end_object();
+    }
+    j.end_array();
+    if (job.mandrel.region.enabled) {
+      j.key("region").begin_object();
+      j.field("start", job.mandrel.region.start).field("end", job.mandrel.region.end);
+      j.field("split_edges", m.region_split_edges);
+      j.field("moved_vertices", m.region_moved_vertices);
+      j.field("max_move", m.region_max_move);
+      j.end_object();
+    }
     j.key("axis").begin_object();
     j.field_array("origin", {m.axis.origin.x(), m.axis.origin.y(), m.axis.origin.z()});
     j.field_array("direction", {m.axis.direction.x(), m.axis.direction.y(), m.axis.direction.z()});
@@ -99,6 +138,7 @@ int run_mandrel(const std::vector<std::string>& argv) {
     j.key("timings_ms").begin_object();
     j.field("tessellation", m.tessellation_ms);
     j.field("remesh", m.remesh_ms);
+    j.field("region", m.region_ms);
     j.field("total", m.total_ms);
     j.end_object();
     j.key("warnings").begin_array();
@@ -122,12 +162,21 @@ int run_mandrel(const std::vector<std::string>& argv) {
       << " vertices, length " << L.length << " mm, mean radius " << L.mean_radius
       << " mm, axial " << L.axial << " mm\n";
   }
+  if (job.mandrel.region.enabled) {
+    s << "  region: axial " << job.mandrel.region.start << " .. " << job.mandrel.region.end
+      << " mm, cut exactly on both planes (" << m.region_split_edges << " edges split, "
+      << m.region_moved_vertices << " vertices moved onto a plane, at most " << m.region_max_move
+      << " mm)\n";
+  }
+  s << "  candidate regions (#" << m.chosen_candidate + 1 << " is wound):\n"
+    << region_table(m.candidates, "  ");
   s << "  axis: origin (" << m.axis.origin.transpose() << "), direction ("
     << m.axis.direction.transpose() << "), " << m.axis_source
     << (m.revolution ? ", surface of revolution" : "") << "\n";
   s << "  max radius " << rmax << " mm over " << m.profile.axial.size() << " stations\n";
   s << "  time: tessellation " << m.tessellation_ms << " ms";
   if (job.mandrel.remesh > 0.0) s << ", remesh " << m.remesh_ms << " ms";
+  if (job.mandrel.region.enabled) s << ", region " << m.region_ms << " ms";
   s << ", total " << m.total_ms << " ms\n";
   std::cout << s.str();
   return 0;

@@ -1,15 +1,21 @@
 // windplan run <job.yaml> [--out DIR]
 // The whole pipeline: mandrel -> mesh -> girth -> helices -> toolpath -> exports, one progress
-// line per stage on stderr, every file into the output directory, the summary on stdout.
+// line per stage on stderr (on a terminal also a live line for the stage under way;
+// cli/progress.h), every file into the output directory, the summary on stdout.
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/progress.h"
 #include "export/export_plan.h"
+#include "export/layup_export.h"
 #include "export/report.h"
 #include "planner/job.h"
+#include "planner/layup.h"
 #include "planner/pipeline.h"
 
 namespace windplan::cli {
@@ -18,9 +24,12 @@ const char* const kRunHelp =
     "usage: windplan run <job.yaml> [--out DIR]\n\n"
     "Runs a job end to end: builds the mandrel, its girth field and density, plans the helices\n"
     "and circuits, computes the machine motion and writes every output file (fibre_path.csv,\n"
-    "payout.csv, axes.csv, G-code, report.json/md, mesh.ply, paths.ply, development.svg, as\n"
-    "switched by output:) into the output directory. Progress goes to stderr, one line per\n"
-    "stage; the summary to stdout. Two runs of the same job write byte-identical files.\n\n"
+    "payout.csv, axes.csv, G-code, report.json/md, mesh.ply, paths.ply, development.svg,\n"
+    "axes.svg, viewer.html, as switched by output:) into the output directory. Progress goes to\n"
+    "stderr, one line per stage (on a terminal also a live line for the stage under way); the\n"
+    "summary to stdout. Two runs of the same job write byte-identical files.\n"
+    "A job with layers: winds every layer in order on the surface built by the ones under it\n"
+    "into one program, and writes laminate.csv/.vtu and layer_profiles.csv/.svg besides.\n\n"
     "  --out DIR   output directory (default: output.directory of the job, else\n"
     "              out/<job name>/ relative to the current directory)\n";
 
@@ -39,28 +48,43 @@ int run_run(const std::vector<std::string>& argv) {
     dir = std::filesystem::path("out") / job.name;
   }
 
+  StageProgress progress(std::cerr, ::isatty(STDERR_FILENO) == 1, "windplan run");
   PipelineOptions po;
-  po.on_stage = [](const StageTiming& t) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "windplan run: %-8s done in %.2f s", t.stage.c_str(), t.seconds);
-    std::cerr << buf << "\n";
-  };
-  PipelineResult r = plan_job(job, po);
-  for (const std::string& w : r.plan.metrics.warnings) {
+  po.on_stage_start = [&](const std::string& stage) { progress.start(stage); };
+  po.on_stage = [&](const StageTiming& t) { progress.finish(t.stage, t.seconds); };
+  // A job with `layers:` is a layup (planner/layup.h): every layer in order, one program.
+  PipelineResult r;
+  LayupResult layup;
+  const bool layered = !job.layers.empty();
+  if (layered) {
+    layup = plan_layup(job, po);
+  } else {
+    r = plan_job(job, po);
+  }
+  WindingPlan& plan = layered ? layup.plan : r.plan;
+  const Mandrel& mandrel = layered ? layup.mandrel : r.mandrel;
+  for (const std::string& w : plan.metrics.warnings) {
     std::cerr << "windplan run: warning: " << w << "\n";
   }
 
   const auto t0 = std::chrono::steady_clock::now();
-  const ExportResult ex = export_plan(r.plan, r.mandrel.mesh, job.machine, job.output, dir);
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.plan.metrics.timings.push_back({"export", secs});
-  {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "windplan run: %-8s done in %.2f s (%zu files in %s)", "export",
-                  secs, ex.files.size(), dir.string().c_str());
-    std::cerr << buf << "\n";
+  progress.start("export");
+  ExportContext context;
+  context.wound_region = &mandrel.winding.mesh;
+  context.wound_face_map = &mandrel.winding.face_map;
+  context.on_file = [&](const std::string& file, int done, int total) {
+    progress.count(done, total, file);
+  };
+  if (layered) {
+    context.also_written = layup_file_names(layup, job.output);
+    write_layup_files(layup, job.output, dir);
   }
-  std::cout << summary_text(r.plan, ex);
+  const ExportResult ex = export_plan(plan, mandrel.mesh, job.machine, job.output, dir, context);
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  plan.metrics.timings.push_back({"export", secs});
+  progress.finish("export", secs,
+                  " (" + std::to_string(ex.files.size()) + " files in " + dir.string() + ")");
+  std::cout << summary_text(plan, ex);
   return 0;
 }
 

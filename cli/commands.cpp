@@ -10,6 +10,8 @@ const std::vector<Command>& commands() {
        run_mesh},
       {"helices", "plan a job's equally spaced geodesic helices and report the plan metrics",
        kHelicesHelp, run_helices},
+      {"patterns", "list the winding patterns that close near a job's winding, measured",
+       kPatternsHelp, run_patterns},
       {"run", "run a job end to end: mandrel, girth, helices, toolpath, every output file",
        kRunHelp, run_run},
       {"simulate", "replay a G-code program through the job's machine: deviation, limits, time",

@@ -45,6 +45,8 @@ extern const char* const kCutlineHelp;
 
 /// cmd_helices.cpp: plan a job's helices and circuits and report passes and plan metrics.
 int run_helices(const std::vector<std::string>& args);
+extern const char* const kPatternsHelp;
+int run_patterns(const std::vector<std::string>& args);
 extern const char* const kHelicesHelp;
 
 /// cmd_run.cpp: run a job end to end (mandrel -> girth -> helices -> toolpath -> exports).

@@ -1,5 +1,6 @@
 #include "export/export_plan.h"
 
+#include "export/axes_svg.h"
 #include "export/cutlines_csv.h"
 
 #include <cstdio>
@@ -9,6 +10,8 @@
 #include "export/ply_polylines.h"
 #include "export/report.h"
 #include "export/svg.h"
+#include "export/unroll.h"
+#include "export/viewer.h"
 #include "geometry/atomic_file.h"
 #include "geometry/errors.h"
 #include "geometry/mesh_io.h"
@@ -90,7 +93,7 @@ CsvTable eye_pose_table(const Motion& motion) {
 
 ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
                          const MachineOptions& machine, const OutputOptions& output,
-                         const std::filesystem::path& dir) {
+                         const std::filesystem::path& dir, const ExportContext& context) {
   ExportResult r;
   r.directory = dir;
   r.machine = machine;
@@ -125,27 +128,61 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   const std::string gcode_name = "toolpath" + gcode_extension(machine.gcode.dialect);
   if (output.gcode && !robot) r.files.push_back(gcode_name);
   if (output.ply) r.files.insert(r.files.end(), {"mesh.ply", "paths.ply"});
-  if (output.svg) r.files.push_back("development.svg");
+  if (output.svg) r.files.insert(r.files.end(), {"development.svg", "axes.svg"});
+  if (output.viewer) r.files.push_back("viewer.html");
+  r.files.insert(r.files.end(), context.also_written.begin(), context.also_written.end());
   if (output.report) r.files.insert(r.files.end(), {"report.json", "report.md"});
 
+  int done = 0;
+  const int total = static_cast<int>(r.files.size());
+  auto wrote = [&](const std::string& name) {
+    ++done;
+    if (context.on_file) context.on_file(name, done, total);
+  };
   if (output.csv) {
     write_csv_file(dir / "fibre_path.csv", fibre_path_table(plan));
+    wrote("fibre_path.csv");
     write_csv_file(dir / "payout.csv", payout_table(r.motion));
+    wrote("payout.csv");
     write_csv_file(dir / "axes.csv", axes_table(r.motion));
-    if (robot) write_csv_file(dir / "eye_pose.csv", eye_pose_table(r.motion));
-    if (cutlines) write_cutlines_csv(dir / "cutlines.csv", plan.cutlines);
+    wrote("axes.csv");
+    if (robot) {
+      write_csv_file(dir / "eye_pose.csv", eye_pose_table(r.motion));
+      wrote("eye_pose.csv");
+    }
+    if (cutlines) {
+      write_cutlines_csv(dir / "cutlines.csv", plan.cutlines);
+      wrote("cutlines.csv");
+    }
   }
   if (output.gcode && !robot) {
     write_text_atomically(dir / gcode_name, program);
+    wrote(gcode_name);
   }
   if (output.ply) {
     write_mesh(dir / "mesh.ply", mandrel_mesh);
+    wrote("mesh.ply");
     write_text_atomically(dir / "paths.ply", paths_ply(plan));
+    wrote("paths.ply");
   }
-  if (output.svg) write_text_atomically(dir / "development.svg", development_svg(plan));
+  if (output.svg) {
+    const Mesh& region = context.wound_region ? *context.wound_region : mandrel_mesh;
+    write_text_atomically(
+        dir / "development.svg",
+        development_svg(plan, Unrolling::make(plan, region, context.wound_face_map)));
+    wrote("development.svg");
+    write_text_atomically(dir / "axes.svg", axes_svg(r.motion, plan.job_name));
+    wrote("axes.svg");
+  }
+  if (output.viewer) {
+    write_text_atomically(dir / "viewer.html", viewer_page(plan, mandrel_mesh, r.motion).html);
+    wrote("viewer.html");
+  }
   if (output.report) {
     write_text_atomically(dir / "report.json", report_json(plan, r));
+    wrote("report.json");
     write_text_atomically(dir / "report.md", report_markdown(plan, r));
+    wrote("report.md");
   }
   return r;
 }

@@ -16,9 +16,11 @@
 //   gcode:  toolpath.ngc | toolpath.gcode | toolpath.nc (lathe2/lathe4; see export/gcode.h)
 //   report: report.json, report.md (see export/report.h)
 //   ply:    mesh.ply (the mandrel), paths.ply (see export/ply_polylines.h)
-//   svg:    development.svg (see export/svg.h)
+//   svg:    development.svg (see export/svg.h), axes.svg (export/axes_svg.h)
+//   viewer: viewer.html (see export/viewer.h)
 // "index" is always the index of the point in its circuit's dense points.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -43,13 +45,29 @@ struct ExportResult {
   bool timings = false;            ///< output.timings
 };
 
+/// What export_plan may use besides the plan: the wound region and a progress hook.
+struct ExportContext {
+  /// The annulus the plan was made on (Mandrel::winding.mesh, whose faces FibrePoint::face
+  /// names): development.svg unrolls a tube that is not a shape of revolution in its conformal
+  /// coordinates. Null: the mandrel mesh is used.
+  const Mesh* wound_region = nullptr;
+  /// Per face of wound_region, the mandrel mesh's face (WindingSurface::face_map; FibrePoint::face
+  /// indexes the mandrel mesh). Null: the identity.
+  const std::vector<int>* wound_face_map = nullptr;
+  /// Called after each file with its name, the files written so far and their number.
+  std::function<void(const std::string& file, int done, int total)> on_file;
+  /// Files another writer puts into the directory (a layup's laminate files,
+  /// export/layup_export.h): listed in ExportResult::files and the reports, before them.
+  std::vector<std::string> also_written;
+};
+
 /// Computes the motion, replays the G-code (export/replay.h) and writes the files.
 /// \throw InputError (bad envelope, clearance, axis limits; see compute_motion; a replay that
 ///        deviates more than machine.replay_tolerance from the plan: then no file is written),
 ///        IoError (cannot write).
 ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
                          const MachineOptions& machine, const OutputOptions& output,
-                         const std::filesystem::path& dir);
+                         const std::filesystem::path& dir, const ExportContext& context = {});
 
 /// Where a job's files go: output.directory when set (already resolved against the job file's
 /// directory by the job loader), else "<job name>.out" beside the job file.

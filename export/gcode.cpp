@@ -163,13 +163,38 @@ std::string gcode_program(const Motion& motion, const std::string& job_name,
     w.line(s);
   };
 
+  // Layups: the layer whose first circuit circuit k is, or -1.
+  auto layer_start = [&](int k) {
+    const int ordinal = motion.states[circuit_starts[k]].ordinal;
+    for (std::size_t l = 0; l < motion.layers.size(); ++l) {
+      if (motion.layers[l].first_circuit == ordinal) return static_cast<int>(l);
+    }
+    return -1;
+  };
+  // Before a layer's first circuit: the transition (tie off, cut, pause) and the layer comment.
+  auto layer_header = [&](int l) {
+    const int n = static_cast<int>(motion.layers.size());
+    const LayerSummary& L = motion.layers[l];
+    if (l > 0) {
+      w.comment("end of layer " + std::to_string(l) + " " + motion.layers[l - 1].name +
+                ": tie off and cut the tow");
+      w.line("M0");
+    }
+    w.comment("layer " + std::to_string(l + 1) + " of " + std::to_string(n) + ": " + L.name +
+              ", " + L.kind + ", circuits " + std::to_string(L.first_circuit) + " to " +
+              std::to_string(L.first_circuit + L.circuit_count - 1) +
+              (l > 0 ? ": tie on the tow, cycle start, rapid to its first point" : ""));
+  };
+
   auto circuit_body = [&](int k) {
     const int begin = circuit_starts[k];
     const int end =
         k + 1 < n_circuits ? circuit_starts[k + 1] : static_cast<int>(motion.states.size());
+    const int layer = layer_start(k);
+    if (!fanuc && layer >= 0) layer_header(layer);
     if (!fanuc) w.comment("circuit " + std::to_string(motion.states[begin].circuit));
     for (int i = begin; i < end; ++i) {
-      motion_line(motion.states[i], i == 0);
+      motion_line(motion.states[i], i == 0 || (i == begin && layer > 0));
       if (marlin && i == begin) {
         // Re-zero the spindle at the circuit start: the machine's A becomes 0 here.
         for (std::size_t j = 0; j < axes.size(); ++j) {
@@ -184,6 +209,7 @@ std::string gcode_program(const Motion& motion, const std::string& job_name,
 
   if (fanuc) {
     for (int k = 0; k < n_circuits; ++k) {
+      if (const int layer = layer_start(k); layer >= 0) layer_header(layer);
       w.line("M98 P" + std::to_string(opts.gcode.program_number + 1 + k));
     }
     w.line("M30");

@@ -18,6 +18,13 @@
 //    calls one subprogram per circuit (O<program_number + 1 + k> for the k-th circuit) with
 //    M98 P..., each ending with M99; the main program ends with M30. Comments are upper case.
 //    N numbers restart at 1 in each program and wrap after 99999.
+//
+// Layups (Motion::layers not empty, planner/layup.h): before the first circuit of each layer a
+// comment names it (number, name, kind, its circuits); between two layers the program comments
+// the end of the previous one ("tie off and cut the tow"), pauses with M0 (the operator ties off,
+// cuts and ties the tow on at the next layer's start, then presses cycle start) and moves to the
+// next layer's first point with a rapid G0 (the tow is cut: no fibre is laid on the way). Fanuc
+// writes these in the main program before the layer's first M98 call.
 #include <string>
 
 #include "export/kinematics.h"

@@ -194,6 +194,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
   if (!opts.is_valid(&why)) throw ConfigError("machine: " + why);
   Motion m;
   m.inverse_time = uses_inverse_time(opts.gcode);
+  m.layers = plan.layers;
   const AxisFrame frame = make_axis_frame(plan.axis);
   const Envelope env = make_envelope(swept_profile(plan, mandrel), opts.envelope, opts.kind);
   m.envelope = env.description;

@@ -113,6 +113,10 @@ struct Motion {
   double max_chord_deviation = 0.0;  ///< mm (fibre and eye polylines)
   Range a, x, y, b, free_length;     ///< deg, mm, mm, deg, mm
   int max_eye_iterations = 0;
+  /// The plan's layers (WindingPlan::layers; empty for a one-layer job): the G-code comments
+  /// each layer and pauses between layers (export/gcode.h).
+  std::vector<LayerSummary> layers;
+
   std::string envelope;              ///< the eye envelope of the machine kind, in words
 
   /// Clearance: the smallest distance of a dense eye point to the mandrel mesh (NaN: no mesh

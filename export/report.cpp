@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "export/layup_report.h"
 #include "export/motion_report.h"
 #include "geometry/json.h"
 #include "planner/winding_options.h"
@@ -93,6 +94,67 @@ void turnarounds_json(JsonWriter& j, const PlanMetrics& m, bool mm_keys) {
   j.end_array();
 }
 
+void coverage_json(JsonWriter& j, const CoverageReport& c, bool mm_keys) {
+  const std::string mm = mm_keys ? "_mm" : "";
+  j.begin_object();
+  j.field("measured", c.measured());
+  j.field("bare_fraction", c.bare_fraction);
+  j.field("widest_gap" + mm, c.widest_gap);
+  j.field("widest_overlap" + mm, c.widest_overlap);
+  j.field("widest_overlap_largest" + mm, c.widest_overlap_largest);
+  j.field("max_stack", c.max_stack);
+  j.field("cover_factor", c.cover_factor);
+  j.field("mean_plies", c.mean_plies);
+  j.field("spacing_cv", c.spacing_cv);
+  j.field("stations_skipped", c.skipped);
+  j.key("stations").begin_array();
+  for (const StationCoverage& st : c.stations) {
+    j.begin_object();
+    j.field("station" + mm, st.station);
+    j.field("loop_length" + mm, st.loop_length);
+    j.field("bands_out", st.bands[0]);
+    j.field("bands_return", st.bands[1]);
+    j.field("bare_fraction", st.bare_fraction);
+    j.field("bare_fraction_out", st.family_bare[0]);
+    j.field("bare_fraction_return", st.family_bare[1]);
+    j.field("widest_gap" + mm, st.widest_gap);
+    j.field("widest_overlap" + mm, st.widest_overlap);
+    j.field("max_stack", st.max_stack);
+    j.field("mean_plies", st.mean_plies);
+    j.field("cover_factor", st.cover_factor);
+    j.end_object();
+  }
+  j.end_array();
+  j.end_object();
+}
+
+void pattern_json(JsonWriter& j, const PatternInfo& p, bool mm_keys) {
+  const std::string mm = mm_keys ? "_mm" : "";
+  j.begin_object();
+  j.field("geodesic", p.geodesic);
+  if (p.geodesic) {
+    j.field("circuits", p.circuits);
+    j.field("skip", p.skip);
+    j.field("turnaround_radius" + mm, p.turnaround_radius);
+    j.field("requested_radius" + mm, p.requested_radius);
+    j.field("requested_by", p.requested_by);
+    j.field("largest_radius" + mm, p.largest_radius);
+    j.field("angle_deg", p.angle_deg);
+    j.field("advance_deg", p.advance_deg);
+    j.key("ends").begin_array();
+    for (int e = 0; e < 2; ++e) {
+      j.begin_object();
+      j.field("end", e == 0 ? "start" : "end");
+      j.field("turnaround", p.geodesic_end[e] ? "geodesic" : "dwell");
+      j.field("dwell_deg", p.dwell_deg[e]);
+      j.end_object();
+    }
+    j.end_array();
+    j.field("projection_max" + mm, p.projection_max);
+  }
+  j.end_object();
+}
+
 std::string report_json(const WindingPlan& plan, const ExportResult& r) {
   const PlanMetrics& m = plan.metrics;
   const Motion& mo = r.motion;
@@ -126,6 +188,12 @@ std::string report_json(const WindingPlan& plan, const ExportResult& r) {
     j.field("geodesic_min_radius_mm", m.geodesic_min_radius);
   }
   j.end_object();
+  if (m.pattern_info.geodesic) {  // planned from Clairaut's integral (shapes of revolution)
+    j.key("pattern");
+    pattern_json(j, m.pattern_info, true);
+  }
+  j.key("coverage");
+  coverage_json(j, m.coverage, true);
   j.key("turnarounds");
   turnarounds_json(j, m, true);
   j.key("machine").begin_object();
@@ -173,6 +241,7 @@ std::string report_json(const WindingPlan& plan, const ExportResult& r) {
     j.end_object();
   }
   j.end_array();
+  layers_json(j, plan, r.motion);  // layups only (export/layup_report.h)
   j.key("warnings").begin_array();
   for (const std::string& w : m.warnings) j.value(w);
   j.end_array();
@@ -231,6 +300,32 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
       << " | " << fmt("%.4f", t.max_slippage) << " | " << fmt("%.3f", t.slip_length) << " | "
       << fmt("%.4f", t.slip_fraction) << " | " << fmt("%.3f", t.bridging_length) << " |\n";
   }
+  const PatternInfo& pi = m.pattern_info;
+  if (pi.geodesic) {
+    o << "\n## Pattern\n\n" << m.pattern << ".\n\n| end | turnaround | dwell [deg] |\n"
+      << "|---|---|---|\n";
+    for (int e = 0; e < 2; ++e) {
+      o << "| " << kEndName[e] << " | "
+        << (pi.geodesic_end[e] ? "geodesic, tangent to r = " + fmt("%.3f", pi.turnaround_radius) +
+                                     " mm"
+                               : std::string("dwell (fibre held by pins or a ring)"))
+        << " | " << fmt("%.2f", pi.dwell_deg[e]) << " |\n";
+    }
+  }
+  const CoverageReport& cv = m.coverage;
+  o << "\n## Coverage on the laid bands\n\n" << cv.brief_report() << ".\n";
+  if (cv.measured()) {
+    o << "\n| station [mm] | loop [mm] | bands out/return | bare [%] | widest gap [mm] | widest "
+         "overlap [mm] | most stacked | plies | cover factor |\n"
+      << "|---|---|---|---|---|---|---|---|---|\n";
+    for (const StationCoverage& st : cv.stations) {
+      o << "| " << fmt("%.1f", st.station) << " | " << fmt("%.1f", st.loop_length) << " | "
+        << st.bands[0] << "/" << st.bands[1] << " | " << fmt("%.2f", 100.0 * st.bare_fraction)
+        << " | " << fmt("%.2f", st.widest_gap) << " | " << fmt("%.2f", st.widest_overlap)
+        << " | " << st.max_stack << " | " << fmt("%.2f", st.mean_plies) << " | "
+        << fmt("%.3f", st.cover_factor) << " |\n";
+    }
+  }
   o << "\n"
     << "## Machine\n\n| figure | value |\n|---|---|\n"
     << "| kind | " << r.machine.kind << " |\n"
@@ -267,6 +362,7 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
         << fmt("%.2e", c.residual) << " |\n";
     }
   }
+  o << layers_markdown(plan, mo);  // layups only (export/layup_report.h)
   if (!m.warnings.empty()) {
     o << "\n## Warnings\n\n";
     for (const std::string& w : m.warnings) o << "- " << w << "\n";
@@ -291,13 +387,31 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
     << "  circuits         " << plan.circuits.size() << " (coverage needs "
     << m.circuits_for_coverage << ")\n"
     << "  cover factor     " << fmt("%.3f", m.cover_factor) << "\n"
+    << "  coverage         " << m.coverage.brief_report() << "\n"
+    << "  pattern          " << m.pattern << "\n"
     << "  spacing CV       " << fmt("%.4f", m.spacing_cv) << "\n"
-    << "  max slippage     " << fmt("%.4f", m.max_slippage) << "\n"
-    << "  turnarounds      max slippage " << fmt("%.4f", m.turnarounds.max_slippage) << ", "
-    << fmt("%.1f", m.turnarounds.slip_length) << " mm above mu ("
-    << fmt("%.2f", 100.0 * m.turnarounds.slip_fraction) << "%), bridging "
-    << fmt("%.1f", m.turnarounds.bridging_length) << " mm\n";
-  if (!std::isnan(m.geodesic_turn_limit)) {
+    << "  max slippage     " << fmt("%.4f", m.max_slippage) << "\n";
+  const PatternInfo& pi = m.pattern_info;
+  if (pi.geodesic && pi.geodesic_end[0] && pi.geodesic_end[1]) {
+    o << "  turnarounds      geodesic at both ends, tangent to r = "
+      << fmt("%.2f", pi.turnaround_radius) << " mm: no dwell arc\n";
+  } else {
+    o << "  dwell arcs       max slippage " << fmt("%.4f", m.turnarounds.max_slippage) << ", "
+      << fmt("%.1f", m.turnarounds.slip_length) << " mm above mu ("
+      << fmt("%.2f", 100.0 * m.turnarounds.slip_fraction) << "%), bridging "
+      << fmt("%.1f", m.turnarounds.bridging_length) << " mm (held by pins or a ring)\n";
+  }
+
+  const bool domes = m.pattern_info.geodesic && m.pattern_info.geodesic_end[0] &&
+                     m.pattern_info.geodesic_end[1];
+  if (domes) {
+    o << "  turns per pass   " << fmt("%.4f", m.turns_per_pass) << " (geodesic, turning around at r = "
+      << fmt("%.2f", m.pattern_info.turnaround_radius) << " mm";
+    if (std::isfinite(m.geodesic_turn_limit)) {
+      o << "; " << fmt("%.2f", m.geodesic_turn_limit) << " would reach the openings";
+    }
+    o << ")\n";
+  } else if (!std::isnan(m.geodesic_turn_limit)) {
     o << "  geodesic limit   "
       << (std::isfinite(m.geodesic_turn_limit) ? fmt("%.2f", m.geodesic_turn_limit) + " turns"
                                                : std::string("none"))
@@ -310,6 +424,7 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
     << "  machine points   " << mo.states.size() << " of " << mo.dense_points
     << " (chord deviation " << fmt("%.4f", mo.max_chord_deviation) << " mm)\n"
     << motion_summary(mo, r.has_replay ? &r.replay : nullptr);
+  o << layers_summary(plan, mo);  // layups only (export/layup_report.h)
   for (const StageTiming& t : m.timings) {
     o << "  time " << t.stage << std::string(t.stage.size() < 12 ? 12 - t.stage.size() : 1, ' ')
       << fmt("%.3f", t.seconds) << " s\n";

@@ -26,5 +26,10 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& result);
 /// `mm_keys` the keys of lengths carry their unit (`length_mm`, ...), as everywhere in
 /// report.json; `windplan helices --json` writes them without (its other keys have none).
 void turnarounds_json(JsonWriter& j, const PlanMetrics& m, bool mm_keys);
+/// The measured coverage (planner/coverage.h) as a JSON object: the figures over all stations
+/// and one object per station; lengths with an "_mm" suffix when mm_keys.
+void coverage_json(JsonWriter& j, const CoverageReport& c, bool mm_keys);
+/// How the circuits were planned on a shape of revolution (PatternInfo) as a JSON object.
+void pattern_json(JsonWriter& j, const PatternInfo& p, bool mm_keys);
 
 }  // namespace windplan

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
@@ -34,23 +33,15 @@
 
 #include "geometry/cad_shape_occt.h"
 #include "geometry/errors.h"
+#include "geometry/param_check.h"
 
 namespace windplan {
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-bool fail(std::string* why, const std::string& msg) {
-  if (why) *why = msg;
-  return false;
-}
-
-bool positive(double v) { return std::isfinite(v) && v > 0.0; }
+using param_check::fail;
+using param_check::num;
+using param_check::positive;
 
 template <class P>
 void require_valid(const P& p, const char* what) {

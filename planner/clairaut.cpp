@@ -48,28 +48,10 @@ double min_radius(const std::vector<Vec2>& pts, std::size_t* at = nullptr) {
   return pts[best].y();
 }
 
-// The integral of c / (r sqrt(r^2 - c^2)) ds over one truncated cone, r from ra to rb over an
-// axial step dx. With r linear in s it is l / |rb - ra| |arccos(c / rb) - arccos(c / ra)|; the
-// difference of the arccos is atan(z) with z = q |rb - ra| (the tangent subtraction formula,
-// sa = sqrt(ra^2 - c^2), sb likewise):
-//   q = c (ra + rb) / ((sa + sb) (c^2 + sa sb)),
-// so the segment gives l q atan(z) / z: no cancellation when rb -> ra (it tends to
-// l c / (r sqrt(r^2 - c^2)), the integrand times the length) and exact at c = ra (sa = 0).
-double segment_angle(double dx, double ra, double rb, double c) {
-  const double l = std::hypot(dx, rb - ra);
-  if (c <= 0.0 || l == 0.0) return 0.0;
-  const double sa = std::sqrt(std::max(0.0, (ra - c) * (ra + c)));
-  const double sb = std::sqrt(std::max(0.0, (rb - c) * (rb + c)));
-  if (sa + sb == 0.0) return kInf;  // a cylinder at r = c: the hoop
-  const double q = c * (ra + rb) / ((sa + sb) * (c * c + sa * sb));
-  const double z = q * std::abs(rb - ra);
-  return l * q * (z < 1e-8 ? 1.0 - z * z / 3.0 : std::atan(z) / z);
-}
-
 double polyline_angle(const std::vector<Vec2>& pts, double c) {
   double phi = 0.0;
   for (std::size_t i = 1; i < pts.size(); ++i) {
-    phi += segment_angle(pts[i].x() - pts[i - 1].x(), pts[i - 1].y(), pts[i].y(), c);
+    phi += clairaut_segment_angle(pts[i].x() - pts[i - 1].x(), pts[i - 1].y(), pts[i].y(), c);
   }
   return phi;
 }
@@ -81,6 +63,25 @@ constexpr double kGaussW[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810
                                0.1012285362903763};
 
 }  // namespace
+
+// The integral of c / (r sqrt(r^2 - c^2)) ds over one truncated cone, r from ra to rb over an
+// axial step dx. With r linear in s it is l / |rb - ra| |arccos(c / rb) - arccos(c / ra)|; the
+// difference of the arccos is atan(z) with z = q |rb - ra| (the tangent subtraction formula,
+// sa = sqrt(ra^2 - c^2), sb likewise):
+//   q = c (ra + rb) / ((sa + sb) (c^2 + sa sb)),
+// so the segment gives l q atan(z) / z: no cancellation when rb -> ra (it tends to
+// l c / (r sqrt(r^2 - c^2)), the integrand times the length) and exact at c = ra (sa = 0).
+double clairaut_segment_angle(double dx, double ra, double rb, double c) {
+  const double l = std::hypot(dx, rb - ra);
+  if (c <= 0.0 || l == 0.0) return 0.0;
+  const double sa = std::sqrt(std::max(0.0, (ra - c) * (ra + c)));
+  const double sb = std::sqrt(std::max(0.0, (rb - c) * (rb + c)));
+  if (sa + sb == 0.0) return kInf;  // a cylinder at r = c: the hoop
+  const double q = c * (ra + rb) / ((sa + sb) * (c * c + sa * sb));
+  const double z = q * std::abs(rb - ra);
+  return l * q * (z < 1e-8 ? 1.0 - z * z / 3.0 : std::atan(z) / z);
+}
+
 
 double clairaut_angle(const RadiusProfile& profile, double x0, double x1, double c) {
   const std::vector<Vec2> pts = clip(profile, x0, x1, "clairaut_angle");

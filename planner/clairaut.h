@@ -51,6 +51,13 @@ namespace windplan {
 ///        outside [0, smallest radius]
 double clairaut_angle(const RadiusProfile& profile, double x0, double x1, double c);
 
+/// The turning angle of a geodesic with Clairaut constant c over one truncated cone of the
+/// meridian (radians): the integral of c / (r sqrt(r^2 - c^2)) ds with r linear in the arc length
+/// s, from radius ra to rb over the axial step dx (mm; any sign). Exact, with no cancellation when
+/// rb -> ra and finite at c = ra or c = rb (the turnaround); +inf on a cylinder at r = c.
+/// \pre 0 <= c <= min(ra, rb)
+double clairaut_segment_angle(double dx, double ra, double rb, double c);
+
 /// A smooth meridian of a surface of revolution, t in [t0, t1].
 struct Meridian {
   std::function<Vec2(double)> point;       ///< (axial position, radius) at t (mm)

@@ -164,6 +164,8 @@ bool ConfigNode::get_choice(const std::string& key, const std::vector<std::strin
   fail(key, "'" + v + "' is not one of: " + list);
 }
 
+bool ConfigNode::is_map(const std::string& key) const { return has(key) && node_[key].IsMap(); }
+
 ConfigNode ConfigNode::section(const std::string& key) {
   used_.insert(key);
   if (!has(key)) return ConfigNode(YAML::Node(), file_, key_path(key));

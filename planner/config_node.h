@@ -35,6 +35,8 @@ class ConfigNode {
 
   bool present() const { return node_.IsDefined() && !node_.IsNull(); }
   bool has(const std::string& key) const;
+  /// The key is present and its value is a map (e.g. a key that takes a word or a map).
+  bool is_map(const std::string& key) const;
 
   /// Reads an optional scalar/list key; leaves *out unchanged when absent.
   /// Supported T: bool, int, double, std::string, std::vector<double>, std::array<double, N>,

@@ -115,7 +115,8 @@ bool CutLineOptions::is_valid(std::string* why) const {
     if (!std::isfinite(offset)) return fail("plane.offset must be a finite number (mm)");
   }
   if (has_station && !std::isfinite(station)) return fail("station must be a finite number (mm)");
-  if (normal_mode != "free" && normal_mode != "fixed" && normal_mode != "cone") {
+  if (!normal_mode.empty() && normal_mode != "free" && normal_mode != "fixed" &&
+      normal_mode != "cone") {
     return fail("normal_mode '" + normal_mode + "' is not one of: free, fixed, cone");
   }
   if (!(max_tilt_deg > 0.0 && max_tilt_deg <= 90.0)) {
@@ -313,14 +314,16 @@ struct SectionFit {
 
 SectionFit minimise_section(const Sectioner& S, const Vec3& n_start, double d_start,
                             const Vec3& near, const std::string& mode, const Vec3& n_initial,
-                            double max_tilt) {
+                            double max_tilt, const Vec3* pivot = nullptr) {
   SectionFit best;
   best.n = n_start.normalized();
-  best.d = d_start;
+  best.d = pivot ? best.n.dot(*pivot) : d_start;
   if (!S.around_loop(best.n, best.d, &near, &best.section)) return best;
   const bool fixed = mode == "fixed";
   const bool cone = mode == "cone";
-  const int dim = fixed ? 1 : 3;
+  // With a pivot the plane only turns about it (its offset follows the normal).
+  const int dim = pivot ? (fixed ? 0 : 2) : (fixed ? 1 : 3);
+  if (dim == 0) return best;
   double scale = std::max(best.section.length / (2.0 * M_PI), 1e-9);
   double step_angle = 0.02, step_offset = 0.02;
   for (int round = 0; round < 8; ++round) {
@@ -337,7 +340,7 @@ SectionFit minimise_section(const Sectioner& S, const Vec3& n_start, double d_st
           *n = std::cos(max_tilt) * n_initial + std::sin(max_tilt) * w.normalized();
         }
       }
-      *d = dc + x[dim - 1] * scale;
+      *d = pivot ? n->dot(*pivot) : dc + x[dim - 1] * scale;
     };
     PlaneSection sec;
     auto f = [&](const std::vector<double>& x) {
@@ -350,7 +353,9 @@ SectionFit minimise_section(const Sectioner& S, const Vec3& n_start, double d_st
     };
     // Simplex.
     std::vector<std::vector<double>> X(dim + 1, std::vector<double>(dim, 0.0));
-    for (int i = 0; i < dim; ++i) X[i + 1][i] = (fixed || i == dim - 1) ? step_offset : step_angle;
+    for (int i = 0; i < dim; ++i) {
+      X[i + 1][i] = !pivot && (fixed || i == dim - 1) ? step_offset : step_angle;
+    }
     std::vector<double> F(dim + 1);
     for (int i = 0; i <= dim; ++i) F[i] = f(X[i]);
     const double start_value = F[0];
@@ -728,8 +733,42 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
   sum.initial_normal = n0;
   sum.initial_offset = d0;
 
-  const double tilt = cut.normal_mode == "cone" ? cut.max_tilt_deg * M_PI / 180.0 : M_PI;
-  PlaneConstraint plane(n0, d0, constraint_mode(cut.normal_mode), tilt);
+  // A station keeps its plane unless the job frees the normal; a plane or station start keeps
+  // its offset (the plane turns about the start loop's centre) unless keep_offset is false: on a
+  // cylinder every perpendicular loop is equally short, so a free offset drifts.
+  const std::string mode =
+      !cut.normal_mode.empty() ? cut.normal_mode : cut.has_station ? "fixed" : "free";
+  const double tilt = mode == "cone" ? cut.max_tilt_deg * M_PI / 180.0 : M_PI;
+  if (cut.closed && cut.keep_offset && (cut.has_plane || cut.has_station)) {
+    const Sectioner S(mesh, axis);
+    // The pivot: the centre of the start loop (in the start plane, so the offset is kept; in a
+    // bend it lies near the centreline, about which the cross-sections turn).
+    const Vec3 pivot = Sectioner::centroid(polyline(mesh, initial));
+    const SectionFit fit =
+        minimise_section(S, n0, d0, pivot, mode, n0, tilt, &pivot);
+    if (!fit.section.around) {
+      throw InputError(what + ": the plane through the start has no section loop around the "
+                       "mandrel");
+    }
+    CutLine out;
+    out.name = cut.name;
+    out.closed = true;
+    Vec3 fn = fit.n;
+    double fd = fit.d;
+    if (fn.dot(n0) < 0.0) fn = -fn, fd = -fd;
+    out.points = fit.section.points;
+    out.plane_normal = fn;
+    out.plane_offset = fd;
+    out.length = fit.section.length;
+    for (const Vec3& p : out.points) out.residual = std::max(out.residual, std::fabs(fn.dot(p) - fd));
+    sum.method = "section polish";
+    sum.polish_evaluations = fit.evaluations;
+    sum.tilt_deg = std::acos(std::clamp(fn.dot(n0), -1.0, 1.0)) * 180.0 / M_PI;
+    sum.time_ms = ms_since(t_start);
+    if (summary) *summary = std::move(sum);
+    return out;
+  }
+  PlaneConstraint plane(n0, d0, constraint_mode(mode), tilt);
   GeodesicResult r = refine_path(mesh, initial, {}, opts, &plane);
   Vec3 n = plane.normal(r.constraint_variables.data());
   double d = plane.offset(r.constraint_variables.data());
@@ -762,8 +801,8 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
     double phi = std::atan2(n.dot(e2), n.dot(n0));
     if (phi > M_PI / 2) phi -= M_PI;
     if (phi < -M_PI / 2) phi += M_PI;
-    const double max_phi = cut.normal_mode == "fixed"  ? 0.0
-                           : cut.normal_mode == "cone" ? tilt
+    const double max_phi = mode == "fixed"  ? 0.0
+                           : mode == "cone" ? tilt
                                                        : M_PI / 2;
     const ArcFit fit = minimise_arc(S, a, b, n0, phi, max_phi, 1e-7 * (1.0 + diag));
     sum.polish_evaluations = fit.evaluations;
@@ -786,9 +825,9 @@ CutLine compute_cutline(const Mesh& mesh, const CutLineOptions& cut, const Spind
     // the initial one), and keep the polished loop unless the refined one is clearly shorter.
     const Sectioner S(mesh, axis);
     SectionFit fit =
-        minimise_section(S, n, d, Sectioner::centroid(out.points), cut.normal_mode, n0, tilt);
+        minimise_section(S, n, d, Sectioner::centroid(out.points), mode, n0, tilt);
     if (!fit.section.around) {
-      fit = minimise_section(S, n0, d0, Sectioner::centroid(out.points), cut.normal_mode, n0, tilt);
+      fit = minimise_section(S, n0, d0, Sectioner::centroid(out.points), mode, n0, tilt);
     }
     sum.polish_evaluations = fit.evaluations;
     const bool refine_ok = r.summary.converged() && out.residual <= 1e-6 * out.length;

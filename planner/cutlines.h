@@ -53,7 +53,12 @@ struct CutLineOptions {
   std::filesystem::path init;  ///< CSV of x,y,z points (mm) of a closed curve near the surface
   bool closed = true;          ///< loop around the mandrel (true) or open curve from -> to
   Vec3 from = Vec3::Zero(), to = Vec3::Zero();  ///< open curves: the two surface points (mm)
-  std::string normal_mode = "free";             ///< free | fixed (only translate) | cone
+  /// free | fixed (only translate) | cone; "" (default): fixed for a station, free otherwise.
+  std::string normal_mode;
+  /// Closed cut-lines from a plane or station: the plane keeps its start offset, turning only
+  /// about the centre of its start loop (with normal_mode fixed: the start plane's own section).
+  /// false: the offset is free too (the plane may slide along the mandrel).
+  bool keep_offset = true;
   double max_tilt_deg = 90.0;  ///< deg, for "cone": max angle between final and initial normal
   bool is_valid(std::string* why) const;
 };

@@ -36,23 +36,6 @@ Vec3 chord_direction(const std::vector<FibrePoint>& p, const std::vector<double>
   return n > 0.0 ? Vec3(d / n) : Vec3::Zero();
 }
 
-Vec3 point_normal(const Mesh& m, const std::vector<Vec3>& vn, const SurfacePoint& p) {
-  Vec3 n = Vec3::Zero();
-  switch (p.kind) {
-    case SurfacePoint::Kind::Vertex:
-      n = vn[p.element];
-      break;
-    case SurfacePoint::Kind::Edge:
-      n = (1.0 - p.t) * vn[m.from(p.element)] + p.t * vn[m.to(p.element)];
-      break;
-    case SurfacePoint::Kind::Face: {
-      const Tri& t = m.triangle(p.element);
-      n = p.bary[0] * vn[t[0]] + p.bary[1] * vn[t[1]] + p.bary[2] * vn[t[2]];
-      break;
-    }
-  }
-  return n.norm() > 0.0 ? Vec3(n.normalized()) : Vec3::UnitX();
-}
 
 double mean_of(const std::vector<double>& v) {
   return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
@@ -134,7 +117,76 @@ std::string turnaround_place(int end, const TurnaroundStability& t) {
   return "the " + which + " loop (polar opening or tube end)";
 }
 
+// The slippage and bridging warnings of the passes and, per end, of the dwell arcs.
+void add_stability_warnings(PlanMetrics* metrics, double pass_slip_length,
+                            const WindingOptions& options) {
+  PlanMetrics& pm = *metrics;
+  if (pm.max_slippage > options.mu) {
+    pm.warnings.push_back("slippage: max |k_g/k_n| = " + fmt(pm.max_slippage) + " exceeds mu = " +
+                          fmt(options.mu) + " on " + fmt(pass_slip_length, 1) + " mm (" +
+                          fmt(100.0 * pm.slip_fraction, 2) +
+                          "% of the pass length): the fibre may slip there (lower beta)");
+  }
+  if (pm.bridging_length > 0.0) {
+    pm.warnings.push_back("bridging: " + fmt(pm.bridging_length, 1) +
+                          " mm of pass with k_n <= 0: the fibre would bridge a concave region");
+  }
+  for (int e = 0; e < 2; ++e) {
+    const TurnaroundStability& t = pm.turnaround_ends[e];
+    if (t.max_slippage > options.mu) {
+      pm.warnings.push_back(
+          "turnaround slippage: max |k_g/k_n| = " + fmt(t.max_slippage) + " on the dwell arcs " +
+          "along " + turnaround_place(e, t) + " exceeds mu = " + fmt(options.mu) + " by " +
+          fmt(t.max_slippage - options.mu) + ", on " + fmt(t.slip_length, 1) + " mm (" +
+          fmt(100.0 * t.slip_fraction, 2) + "% of the turnaround length there): the fibre may " +
+          "slip off the turnaround (a circle about the axis is a geodesic only where the radius " +
+          "does not change along the axis" +
+          (t.at_station() ? ": move the station onto a cylindrical part)"
+                          : ": a boss or pin ring must hold the fibre there, or turn around on a "
+                            "station on a cylindrical part)"));
+    }
+    if (t.bridging_length > 0.0) {
+      pm.warnings.push_back("turnaround bridging: " + fmt(t.bridging_length, 1) +
+                            " mm of dwell arc along " + turnaround_place(e, t) +
+                            " with k_n <= 0: the fibre would bridge a concave region");
+    }
+  }
+}
+
+// A pass's length, end angles and radii and largest slippage, read off its circuit segment.
+void fill_pass_figures(const Circuit& c, const CircuitSegment& seg, const SpindleAxis& axis,
+                       PassReport* r) {
+  const FibrePoint& a = c.points[seg.first];
+  const FibrePoint& b = c.points[seg.last];
+  r->length = b.s - a.s;
+  r->angle_start = a.winding_angle;
+  r->angle_end = b.winding_angle;
+  r->radius_start = axis.radius(a.position);
+  r->radius_end = axis.radius(b.position);
+  for (int j = seg.first; j <= seg.last; ++j) {
+    r->max_slippage = std::max(r->max_slippage, c.points[j].slippage);
+  }
+}
+
 }  // namespace
+
+Vec3 point_normal(const Mesh& m, const std::vector<Vec3>& vn, const SurfacePoint& p) {
+  Vec3 n = Vec3::Zero();
+  switch (p.kind) {
+    case SurfacePoint::Kind::Vertex:
+      n = vn[p.element];
+      break;
+    case SurfacePoint::Kind::Edge:
+      n = (1.0 - p.t) * vn[m.from(p.element)] + p.t * vn[m.to(p.element)];
+      break;
+    case SurfacePoint::Kind::Face: {
+      const Tri& t = m.triangle(p.element);
+      n = p.bary[0] * vn[t[0]] + p.bary[1] * vn[t[1]] + p.bary[2] * vn[t[2]];
+      break;
+    }
+  }
+  return n.norm() > 0.0 ? Vec3(n.normalized()) : Vec3::UnitX();
+}
 
 std::vector<Vec3> vertex_normals(const Mesh& m) {
   std::vector<Vec3> n(m.num_vertices(), Vec3::Zero());
@@ -229,6 +281,20 @@ std::vector<FibrePoint> path_points(const Mesh& m, const SurfacePath& path,
   return out;
 }
 
+void append_circuit_segment(Circuit* c, std::vector<FibrePoint> pts, CircuitSegment::Kind kind,
+                            const SpindleAxis& axis, double window) {
+  const double s = c->points.empty() ? 0.0 : c->points.back().s;
+  annotate_fibre_points(&pts, axis, window, s);
+  if (pts.empty()) return;
+  // The first point repeats the previous segment's last point: keep one copy.
+  const int first = c->points.empty() ? 0 : static_cast<int>(c->points.size()) - 1;
+  const std::size_t skip = c->points.empty() ? 0 : 1;
+  // A pass owns its first point's annotation (its direction, not the turnaround's).
+  if (!c->points.empty() && kind == CircuitSegment::Kind::Pass) c->points.back() = pts.front();
+  for (std::size_t i = skip; i < pts.size(); ++i) c->points.push_back(pts[i]);
+  c->segments.push_back({kind, first, static_cast<int>(c->points.size()) - 1});
+}
+
 std::vector<Circuit> build_circuits(const Mesh& m, const HelixPlan& plan,
                                     const std::vector<int>& face_map, const SpindleAxis& axis,
                                     const WindingOptions& options) {
@@ -239,18 +305,8 @@ std::vector<Circuit> build_circuits(const Mesh& m, const HelixPlan& plan,
   for (int k = 0; k < K; ++k) {
     Circuit c;
     c.index = k;
-    double s = 0.0;
     auto append = [&](std::vector<FibrePoint> pts, CircuitSegment::Kind kind) {
-      annotate_fibre_points(&pts, axis, window, s);
-      if (pts.empty()) return;
-      s = pts.back().s;
-      // The first point repeats the previous segment's last point: keep one copy.
-      const int first = c.points.empty() ? 0 : static_cast<int>(c.points.size()) - 1;
-      const std::size_t skip = c.points.empty() ? 0 : 1;
-      // A pass owns its first point's annotation (its direction, not the turnaround's).
-      if (!c.points.empty() && kind == CircuitSegment::Kind::Pass) c.points.back() = pts.front();
-      for (std::size_t i = skip; i < pts.size(); ++i) c.points.push_back(pts[i]);
-      c.segments.push_back({kind, first, static_cast<int>(c.points.size()) - 1});
+      append_circuit_segment(&c, std::move(pts), kind, axis, window);
     };
     append(path_points(m, plan.passes[2 * k].path, vn), CircuitSegment::Kind::Pass);
     append(turnaround_points(m, plan.turnarounds[2 * k].arc), CircuitSegment::Kind::Turnaround);
@@ -349,17 +405,7 @@ std::vector<PassReport> pass_reports(const HelixPlan& plan, const std::vector<Ci
     const Circuit& c = circuits[p.circuit];
     int seg_index = p.hand == 1 ? 0 : 2;
     if (seg_index < static_cast<int>(c.segments.size())) {
-      const CircuitSegment& seg = c.segments[seg_index];
-      const FibrePoint& a = c.points[seg.first];
-      const FibrePoint& b = c.points[seg.last];
-      r.length = b.s - a.s;
-      r.angle_start = a.winding_angle;
-      r.angle_end = b.winding_angle;
-      r.radius_start = axis.radius(a.position);
-      r.radius_end = axis.radius(b.position);
-      for (int j = seg.first; j <= seg.last; ++j) {
-        r.max_slippage = std::max(r.max_slippage, c.points[j].slippage);
-      }
+      fill_pass_figures(c, c.segments[seg_index], axis, &r);
     }
     out.push_back(r);
   }
@@ -451,42 +497,65 @@ PlanMetrics compute_plan_metrics(const Mesh& m, const HelixPlan& plan,
   }
 
   for (const std::string& w : plan.summary.warnings) pm.warnings.push_back(w);
-  if (pm.max_slippage > options.mu) {
-    pm.warnings.push_back("slippage: max |k_g/k_n| = " + fmt(pm.max_slippage) + " exceeds mu = " +
-                          fmt(options.mu) + " on " + fmt(passes.slip_length, 1) + " mm (" +
-                          fmt(100.0 * pm.slip_fraction, 2) +
-                          "% of the pass length): the fibre may slip there (lower beta)");
-  }
-  if (pm.bridging_length > 0.0) {
-    pm.warnings.push_back("bridging: " + fmt(pm.bridging_length, 1) +
-                          " mm of pass with k_n <= 0: the fibre would bridge a concave region");
-  }
-  for (int e = 0; e < 2; ++e) {
-    const TurnaroundStability& t = pm.turnaround_ends[e];
-    if (t.max_slippage > options.mu) {
-      pm.warnings.push_back(
-          "turnaround slippage: max |k_g/k_n| = " + fmt(t.max_slippage) + " on the dwell arcs " +
-          "along " + turnaround_place(e, t) + " exceeds mu = " + fmt(options.mu) + " by " +
-          fmt(t.max_slippage - options.mu) + ", on " + fmt(t.slip_length, 1) + " mm (" +
-          fmt(100.0 * t.slip_fraction, 2) + "% of the turnaround length there): the fibre may " +
-          "slip off the turnaround (a circle about the axis is a geodesic only where the radius " +
-          "does not change along the axis" +
-          (t.at_station() ? ": move the station onto a cylindrical part)"
-                          : ": a boss or pin ring must hold the fibre there, or turn around on a "
-                            "station on a cylindrical part)"));
-    }
-    if (t.bridging_length > 0.0) {
-      pm.warnings.push_back("turnaround bridging: " + fmt(t.bridging_length, 1) +
-                            " mm of dwell arc along " + turnaround_place(e, t) +
-                            " with k_n <= 0: the fibre would bridge a concave region");
+  add_stability_warnings(&pm, passes.slip_length, options);
+  return pm;
+}
+
+}  // namespace windplan
+
+namespace windplan {
+
+std::vector<PassReport> circuit_pass_reports(const std::vector<Circuit>& circuits,
+                                             const SpindleAxis& axis, const std::string& how) {
+  std::vector<PassReport> out;
+  for (const Circuit& c : circuits) {
+    int hand = 1;
+    for (const CircuitSegment& seg : c.segments) {
+      if (seg.kind != CircuitSegment::Kind::Pass) continue;
+      PassReport r;
+      r.circuit = c.index;
+      r.hand = hand;
+      hand = -hand;
+      r.termination = how;
+      fill_pass_figures(c, seg, axis, &r);
+      out.push_back(r);
     }
   }
-  if (pm.cover_factor > 0.0 && pm.cover_factor < 1.0) {
-    pm.warnings.push_back("coverage: " + std::to_string(K) + " circuits of band " +
-                          fmt(options.band_width, 2) + " mm cover " +
-                          fmt(100.0 * pm.cover_factor, 1) + "% at the largest radius; " +
-                          std::to_string(pm.circuits_for_coverage) + " needed");
+  return out;
+}
+
+PlanMetrics circuit_plan_metrics(const std::vector<Circuit>& circuits, const SpindleAxis& axis,
+                                 const WindingOptions& options) {
+  PlanMetrics pm;
+  pm.circuits = static_cast<int>(circuits.size());
+  pm.band_width = options.band_width;
+  pm.friction = options.mu;
+  RunStability passes;
+  const double window = curvature_window(options);
+  for (const Circuit& c : circuits) {
+    if (!c.points.empty()) pm.fibre_length += c.points.back().s;
+    int dwell = 0;  // the first dwell arc of a circuit is at the far end, the second at the start
+    for (const CircuitSegment& seg : c.segments) {
+      if (seg.kind == CircuitSegment::Kind::Pass) {
+        passes.add(c.points, seg.first, seg.last, options.mu);
+        continue;
+      }
+      // A dwell arc on its own points and window, as compute_plan_metrics does.
+      std::vector<FibrePoint> pts(c.points.begin() + seg.first, c.points.begin() + seg.last + 1);
+      annotate_fibre_points(&pts, axis, window);
+      RunStability arc;
+      arc.add(pts, 0, static_cast<int>(pts.size()) - 1, options.mu);
+      const int end = dwell++ == 0 ? 1 : 0;
+      TurnaroundStability& t = pm.turnaround_ends[end];
+      t.station = end == 0 ? options.start_station : options.end_station;
+      add_run(arc, &t);
+      add_run(arc, &pm.turnarounds);
+    }
   }
+  pm.max_slippage = passes.max_slippage;
+  pm.slip_fraction = passes.slip_fraction();
+  pm.bridging_length = passes.bridging_length;
+  add_stability_warnings(&pm, passes.slip_length, options);
   return pm;
 }
 

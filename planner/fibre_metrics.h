@@ -60,6 +60,16 @@ void annotate_fibre_points(std::vector<FibrePoint>* points, const SpindleAxis& a
 /// Winding angle (deg, 0 axial, 90 hoop) of direction t at a point with normal n.
 double winding_angle_deg(const SpindleAxis& axis, const Vec3& n, const Vec3& t);
 
+/// The unit normal at a surface point: the vertex normals `vn` interpolated (vertex, edge or
+/// barycentric weights) and normalised.
+Vec3 point_normal(const Mesh& mesh, const std::vector<Vec3>& vn, const SurfacePoint& p);
+
+/// Appends a segment to a circuit: `pts` annotated on their own (annotate_fibre_points with
+/// `window`) with arc length continuing the circuit's; the first point, which repeats the
+/// circuit's last one, is kept once (with a pass's annotation when `kind` is Pass).
+void append_circuit_segment(Circuit* circuit, std::vector<FibrePoint> pts,
+                            CircuitSegment::Kind kind, const SpindleAxis& axis, double window);
+
 /// Polyline points of a path with interpolated normals and annulus faces (not yet annotated).
 std::vector<FibrePoint> path_points(const Mesh& annulus, const SurfacePath& path,
                                     const std::vector<Vec3>& normals);
@@ -110,5 +120,18 @@ PlanMetrics compute_plan_metrics(const Mesh& annulus, const HelixPlan& plan,
                                  const std::vector<Circuit>& circuits,
                                  const std::vector<double>& face_girth, const SpindleAxis& axis,
                                  bool revolution, const WindingOptions& options);
+
+/// Per pass figures read off the circuits' Pass segments (out pass hand +1, return -1), with no
+/// refinement figures (iterations 0) and `how` as the termination.
+std::vector<PassReport> circuit_pass_reports(const std::vector<Circuit>& circuits,
+                                             const SpindleAxis& axis, const std::string& how);
+
+/// The stability figures and warnings of circuits planned without a HelixPlan (the Clairaut
+/// route, planner/revolution_winding.h): fibre length, circuits, band width, mu, the passes'
+/// stability and, per end, the dwell arcs' (each re-annotated on its own points, as
+/// compute_plan_metrics does), with the same warnings. Coverage, pattern and turn limit are
+/// filled by the pipeline.
+PlanMetrics circuit_plan_metrics(const std::vector<Circuit>& circuits, const SpindleAxis& axis,
+                                 const WindingOptions& options);
 
 }  // namespace windplan

@@ -518,6 +518,16 @@ std::array<double, 2> station_range(const Mesh& m, const std::array<std::vector<
   return {lo, hi};
 }
 
+void check_station(const std::string& key, double station, const std::array<double, 2>& range) {
+  if (station > range[0] && station < range[1]) return;
+  std::ostringstream s;
+  s << key << " = " << station << " mm is outside the wound region: a station must lie"
+    << " strictly between the boundary loops, in (" << range[0] << ", " << range[1]
+    << ") mm along the spindle axis";
+  if (!(range[0] < range[1])) s << " (the loops overlap along the axis: no station fits)";
+  throw ConfigError(s.str());
+}
+
 double turnaround_dwell(double turns, int circuits, int pattern_step) {
   // A circuit advances theta by 4 pi N + 2 dwell; it must be 2 pi p / K modulo 2 pi, so the
   // dwell is pi + pi p / K modulo pi, less 2 pi N. Only the fractional part of N matters
@@ -567,14 +577,7 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
       const std::array<double, 2> range = station_range(m, loops, axis);
       for (int e = 0; e < 2; ++e) {
         if (!given[e]) continue;
-        if (!(at[e] > range[0] && at[e] < range[1])) {
-          std::ostringstream s;
-          s << keys[e] << " = " << at[e] << " mm is outside the wound region: a station must lie"
-            << " strictly between the boundary loops, in (" << range[0] << ", " << range[1]
-            << ") mm along the spindle axis";
-          if (!(range[0] < range[1])) s << " (the loops overlap along the axis: no station fits)";
-          throw ConfigError(s.str());
-        }
+        check_station(keys[e], at[e], range);
         stations[e] = station_circle(m, hc, axis, at[e], keys[e]);
         plan.summary.heights[e] = stations[e]->height;
       }

@@ -122,6 +122,10 @@ std::array<double, 2> station_range(const Mesh& annulus,
                                     const std::array<std::vector<int>, 2>& loops,
                                     const SpindleAxis& axis);
 
+/// \throw ConfigError naming `key` (winding.start_station / end_station) and the open range
+///        (mm) when `station` is not strictly inside `range` (station_range()).
+void check_station(const std::string& key, double station, const std::array<double, 2>& range);
+
 /// Lifted theta and height at an edge point of the annulus (h in [0, 1], theta in radians).
 std::array<double, 2> edge_point_coordinates(const Mesh& annulus, const HarmonicCoordinates& hc,
                                              int halfedge, double t);

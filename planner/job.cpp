@@ -1,5 +1,6 @@
 #include "planner/job.h"
 
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -39,10 +40,17 @@ bool MandrelOptions::is_valid(std::string* why) const {
     if (why) *why = "axis.direction must be a non-zero vector";
     return false;
   }
+  if (!region.is_valid(why)) return false;
+  if (!features.is_valid(why)) return false;
+  if (!features.empty() && (source == "mesh" || source == "cad" || source == "bent_tube")) {
+    if (why) *why = "features (bore, shafts, flanges, tabs) are for pipe, cone, vessel and section";
+    return false;
+  }
   if (source == "pipe") return pipe.is_valid(why);
   if (source == "cone") return cone.is_valid(why);
   if (source == "vessel") return vessel.is_valid(why);
   if (source == "bent_tube") return bent_tube.is_valid(why);
+  if (source == "section") return section.is_valid(why);
   return true;
 }
 
@@ -60,9 +68,58 @@ void decode_dome(ConfigNode n, DomeParams* d) {
   n.finish();
 }
 
+// One section end: `type` (flat | dome), `height`, `opening`; keeps *e's values when absent.
+void decode_section_end(ConfigNode n, SectionEndParams* e) {
+  if (!n.present()) return;
+  std::string type;
+  if (n.get_choice("type", {"flat", "dome"}, &type)) e->dome = type == "dome";
+  n.get("height", &e->height);
+  n.get("opening", &e->opening);
+  n.finish();
+}
+
+void decode_features(ConfigNode n, MandrelFeatures* f) {
+  if (!n.present()) return;
+  n.get("bore", &f->bore);
+  for (const auto& [key, shaft] : {std::pair{"shaft_start", &f->shaft_start},
+                                   std::pair{"shaft_end", &f->shaft_end}}) {
+    if (ConfigNode s = n.section(key); s.present()) {
+      s.require("radius", &shaft->radius);
+      s.require("length", &shaft->length);
+      s.finish();
+    }
+  }
+  for (ConfigNode fn : n.list("flanges")) {
+    FlangeParams fl;
+    fn.require("at", &fl.at);
+    fn.require("radius", &fl.radius);
+    fn.require("thickness", &fl.thickness);
+    fn.get("bolts", &fl.bolts);
+    fn.get("bolt_radius", &fl.bolt_radius);
+    fn.get("pitch_radius", &fl.pitch_radius);
+    fn.finish();
+    f->flanges.push_back(fl);
+  }
+  for (ConfigNode tn : n.list("tabs")) {
+    TabParams t;
+    tn.require("at", &t.at);
+    tn.get("count", &t.count);
+    tn.get("angle", &t.angle);
+    tn.get("reach", &t.reach);
+    tn.get("width", &t.width);
+    tn.get("thickness", &t.thickness);
+    tn.get("hole_radius", &t.hole_radius);
+    tn.finish();
+    f->tabs.push_back(t);
+  }
+  n.finish();
+  if (std::string why; !f->is_valid(&why, "features")) n.fail_here(why);
+}
+
 void decode_mandrel(ConfigNode n, const std::filesystem::path& base, MandrelOptions* m) {
   if (!n.present()) n.fail_here("the job needs a 'mandrel:' section");
-  n.get_choice("source", {"mesh", "cad", "pipe", "cone", "vessel", "bent_tube"}, &m->source);
+  n.get_choice("source", {"mesh", "cad", "pipe", "cone", "vessel", "bent_tube", "section"},
+               &m->source);
   std::string file;
   if (m->source == "mesh" || m->source == "cad") n.require("file", &file);
   if (!file.empty()) m->file = (base / file).lexically_normal();
@@ -84,6 +141,18 @@ void decode_mandrel(ConfigNode n, const std::filesystem::path& base, MandrelOpti
     if (!(d.norm() > 1e-12)) a.fail("direction", "must be a non-zero vector");
     m->axis.direction = d.normalized();
   }
+  if (ConfigNode r = n.section("region"); r.present()) {
+    RegionOptions& g = m->region;
+    g.enabled = true;
+    r.require("start", &g.start);
+    r.require("end", &g.end);
+    r.get_choice("surface", {"outer", "inner"}, &g.surface);
+    r.get("component", &g.component);
+    r.get("min_fraction", &g.cut.min_fraction);
+    r.finish();
+    if (std::string why; !g.is_valid(&why)) r.fail_here(why);
+  }
+  decode_features(n.section("features"), &m->features);
   // The section of the chosen parametric shape; the others are rejected as unknown keys.
   if (m->source == "pipe") {
     ConfigNode p = n.section("pipe");
@@ -126,6 +195,35 @@ void decode_mandrel(ConfigNode n, const std::filesystem::path& base, MandrelOpti
       }
       p.fail_here(why);
     }
+  } else if (m->source == "section") {
+    ConfigNode p = n.section("section");
+    if (!p.present()) {
+      n.fail("section", "source: section needs a 'section:' section (shape, dimensions, length)");
+    }
+    SectionParams& sp = m->section;
+    std::string shape = "ellipse";
+    p.get_choice("shape", {"ellipse", "rounded_rectangle"}, &shape);
+    sp.shape = shape == "ellipse" ? SectionShape::Ellipse : SectionShape::RoundedRectangle;
+    if (sp.shape == SectionShape::Ellipse) {
+      std::array<double, 2> ab{sp.semi_x, sp.semi_y};
+      if (!p.get("semi_axes", &ab)) {
+        p.fail_here("shape: ellipse needs 'semi_axes: [a, b]' (mm, along X and Y)");
+      }
+      sp.semi_x = ab[0];
+      sp.semi_y = ab[1];
+    } else {
+      p.require("width", &sp.width);
+      p.require("height", &sp.height);
+      p.require("corner_radius", &sp.corner_radius);
+    }
+    p.require("length", &sp.length);
+    SectionEndParams both;
+    decode_section_end(p.section("ends"), &both);
+    sp.end_start = sp.end_end = both;
+    decode_section_end(p.section("end_start"), &sp.end_start);
+    decode_section_end(p.section("end_end"), &sp.end_end);
+    p.finish();
+    p.check(sp);
   } else if (m->source == "bent_tube") {
     ConfigNode p = n.section("bent_tube");
     if (!p.present()) {
@@ -266,6 +364,7 @@ void decode_output(ConfigNode n, const std::filesystem::path& base, OutputOption
   n.get("report", &o->report);
   n.get("ply", &o->ply);
   n.get("svg", &o->svg);
+  n.get("viewer", &o->viewer);
   n.get("timings", &o->timings);
   n.finish();
   n.check(*o);
@@ -311,6 +410,7 @@ void decode_cutlines(ConfigNode& root, const std::filesystem::path& base,
     c.to = Vec3(to[0], to[1], to[2]);
     n.get_choice("normal_mode", {"free", "fixed", "cone"}, &c.normal_mode);
     n.get("max_tilt_deg", &c.max_tilt_deg);
+    n.get("keep_offset", &c.keep_offset);
     n.finish();
     n.check(c);
     cuts->push_back(std::move(c));
@@ -332,8 +432,22 @@ void decode_girth(ConfigNode n, GirthOptions* g) {
 
 void decode_winding(ConfigNode n, WindingOptions* w) {
   if (!n.present()) return;
-  n.get("turns", &w->turns);
+  w->turns_given = n.get("turns", &w->turns);
   std::string circuits;
+  if (n.has("pattern")) {
+    std::string word;
+    if (n.is_map("pattern")) {
+      ConfigNode pat = n.section("pattern");
+      pat.require("circuits", &w->circuits);
+      pat.get("skip", &w->skip);
+      pat.finish();
+      if (w->circuits < 1) pat.fail("circuits", "must be >= 1");
+      if (w->skip < 1 && w->circuits > 1) pat.fail("skip", "must be >= 1");
+    } else if (n.get("pattern", &word) && word != "auto") {
+      n.fail("pattern", "must be auto or {circuits: K, skip: p} (got '" + word + "')");
+    }
+    if (n.has("circuits")) n.fail("circuits", "give winding.pattern or winding.circuits, not both");
+  }
   if (n.get("circuits", &circuits)) {
     if (circuits == "auto") {
       w->circuits = 0;
@@ -358,8 +472,81 @@ void decode_winding(ConfigNode n, WindingOptions* w) {
   n.get("end_station", &w->end_station);
   n.get("curvature_window", &w->curvature_window);
   n.get("meridians", &w->meridians);
+  n.get("turnaround", &w->turnaround);
+  n.get("angle", &w->angle);
+  n.get("turnaround_window", &w->turnaround_window);
+  n.get("coverage_stations", &w->coverage_stations);
   n.finish();
   n.check(*w);
+}
+
+// ---- layers: (planner/layers.h) and material: (planner/material.h) ----
+
+void decode_layers(ConfigNode& root, const WindingOptions& winding,
+                   std::vector<LayerOptions>* layers) {
+  if (!root.has("layers")) return;
+  std::vector<ConfigNode> list = root.list("layers");
+  if (list.empty()) {
+    root.fail("layers",
+              "the list is empty: give at least one layer (kind: helical or hoop), or leave "
+              "'layers:' out for one helical layer made of 'winding:'");
+  }
+  std::vector<int> count(2, 0);
+  for (ConfigNode& n : list) {
+    LayerOptions L;
+    std::string kind;
+    if (!n.get_choice("kind", {"helical", "hoop"}, &kind)) {
+      n.fail_here("a layer needs 'kind: helical' or 'kind: hoop'");
+    }
+    L.kind = kind == "hoop" ? LayerKind::Hoop : LayerKind::Helical;
+    L.name = kind + std::to_string(++count[L.kind == LayerKind::Hoop]);
+    n.get("name", &L.name);
+    if (L.kind == LayerKind::Helical) {
+      L.winding = winding;
+      decode_winding(n, &L.winding);  // the layer's own winding keys; finish() and check()
+    } else {
+      L.hoop.band_width = winding.band_width;
+      L.hoop.mu = winding.mu;
+      n.get("band_width", &L.hoop.band_width);
+      n.get("mu", &L.hoop.mu);
+      n.get("overlap", &L.hoop.overlap);
+      n.get("passes", &L.hoop.passes);
+      n.get("reversal_friction", &L.hoop.reversal_friction);
+      n.get("point_spacing", &L.hoop.point_spacing);
+      n.get("meridians", &L.hoop.meridians);
+      std::array<double, 2> range{};
+      if (n.get("range", &range)) {
+        L.hoop.x0 = range[0];
+        L.hoop.x1 = range[1];
+      }
+      n.finish();
+      n.check(L.hoop);
+    }
+    layers->push_back(L);
+  }
+}
+
+void decode_material(ConfigNode n, MaterialOptions* m) {
+  if (!n.present()) return;
+  if (n.has("tex") && n.has("linear_density")) {
+    n.fail("linear_density", "give either tex (g/km) or linear_density (g/m), not both");
+  }
+  if (n.has("tows") && n.has("band_thickness")) {
+    n.fail("band_thickness", "give either tows (per band) or band_thickness (mm), not both");
+  }
+  n.get("tex", &m->tex);
+  double g_per_m = 0.0;
+  if (n.get("linear_density", &g_per_m)) {
+    if (!(g_per_m > 0.0)) n.fail("linear_density", "must be > 0 g/m");
+    m->tex = 1000.0 * g_per_m;
+  }
+  n.get("fibre_density", &m->fibre_density);
+  n.get("resin_density", &m->resin_density);
+  n.get("fibre_volume_fraction", &m->fibre_volume_fraction);
+  n.get("tows", &m->tows);
+  n.get("band_thickness", &m->band_thickness);
+  n.finish();
+  n.check(*m);
 }
 
 Job decode_job(ConfigNode root, const std::filesystem::path& file) {
@@ -374,6 +561,8 @@ Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   decode_winding(root.section("winding"), &job.winding);
   decode_girth(root.section("girth"), &job.girth);
   decode_cutlines(root, base, &job.cutlines);
+  decode_layers(root, job.winding, &job.layers);
+  decode_material(root.section("material"), &job.material);
   root.finish();
   return job;
 }

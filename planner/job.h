@@ -9,11 +9,15 @@
 #include <vector>
 
 #include "geometry/axis.h"
+#include "geometry/mandrel_region.h"
 #include "geometry/parametric_mandrel.h"
+#include "geometry/section_mandrel.h"
 #include "geometry/tessellate.h"
 #include "planner/cutlines.h"
 #include "planner/girth.h"
+#include "planner/layers.h"
 #include "planner/machine_options.h"
+#include "planner/material.h"
 #include "planner/winding_options.h"
 
 namespace windplan {
@@ -28,7 +32,7 @@ LengthUnit parse_length_unit(const std::string& s);
 /// The `mandrel:` section: a mesh file, a CAD file or a parametric shape (docs/config.md).
 struct MandrelOptions {
   /// Where the mandrel comes from: "mesh" (a triangle-mesh file), "cad" (STEP/IGES/BREP),
-  /// or a parametric shape: "pipe", "cone", "vessel", "bent_tube".
+  /// or a parametric shape: "pipe", "cone", "vessel", "bent_tube", "section".
   std::string source = "mesh";
   /// Mesh or CAD file, resolved relative to the job file's directory when loaded from a job.
   std::filesystem::path file;
@@ -46,11 +50,17 @@ struct MandrelOptions {
   /// The spindle axis, when given (`axis: {origin, direction}`); otherwise it is inferred.
   bool has_axis = false;
   SpindleAxis axis;
+  /// The wound region (`region: {start, end, surface, component}`): an axial range and the
+  /// surface around the axis in it; when absent, every non-planar face (see mandrel_builder.h).
+  RegionOptions region;
   /// Parameters of the parametric sources (mm, degrees).
   PipeParams pipe;
   ConeParams cone;
   VesselParams vessel;
   BentTubeParams bent_tube;
+  SectionParams section;  ///< ellipse or rounded-rectangle section (geometry/section_mandrel.h)
+  /// Parametric sources except bent_tube: bore, shafts, flanges with bolt holes, screw tabs.
+  MandrelFeatures features;
 
   bool is_valid(std::string* why) const;
 };
@@ -66,6 +76,9 @@ struct Job {
   WindingOptions winding;  ///< `winding:` (helices, coverage, stability; planner/helix.h)
   GirthOptions girth;      ///< `girth:` (girth field sampling, planner/girth.h)
   std::vector<CutLineOptions> cutlines;  ///< `cutlines:` (planar trim lines, planner/cutlines.h)
+  /// `layers:` (planner/layers.h), innermost first; empty: one helical layer made of `winding`.
+  std::vector<LayerOptions> layers;
+  MaterialOptions material;  ///< `material:` (the tow and the composite, planner/material.h)
 };
 
 /// Loads and validates a job file.

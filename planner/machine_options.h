@@ -123,7 +123,8 @@ struct OutputOptions {
   bool gcode = true;   ///< toolpath.ngc / .gcode / .nc (not for robots)
   bool report = true;  ///< report.json, report.md
   bool ply = true;     ///< mesh.ply, paths.ply
-  bool svg = true;     ///< development.svg
+  bool svg = true;     ///< development.svg, axes.svg
+  bool viewer = true;  ///< viewer.html (export/viewer.h)
   /// Stage timings in report.json/report.md. Off by default so that two runs of the same job
   /// give byte-identical files; the stdout summary always shows them.
   bool timings = false;

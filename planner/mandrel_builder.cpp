@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "geometry/cad_import.h"
 #include "geometry/errors.h"
 #include "geometry/parametric_mandrel.h"
 #include "geometry/remesh.h"
+#include "geometry/section_mandrel.h"
 #include "geometry/tessellate.h"
 #include "planner/mandrel_mesh.h"
 
@@ -44,20 +46,58 @@ std::string describe(const MandrelOptions& m, const std::string& selected) {
     };
     s << "vessel R=" << v.radius << " L=" << v.length << " mm, start: " << dome(v.dome_start)
       << ", end: " << dome(v.dome_end);
+  } else if (m.source == "section") {
+    const SectionParams& p = m.section;
+    if (p.shape == SectionShape::Ellipse) {
+      s << "elliptical section " << 2 * p.semi_x << " x " << 2 * p.semi_y << " mm";
+    } else {
+      s << "rounded-rectangle section " << p.width << " x " << p.height << " mm, corners r="
+        << p.corner_radius;
+    }
+    s << ", L=" << p.length << " mm, ends: " << (p.end_start.dome ? "dome" : "flat") << "/"
+      << (p.end_end.dome ? "dome" : "flat");
   } else if (m.source == "bent_tube") {
     s << "bent tube R=" << m.bent_tube.radius << " mm, " << m.bent_tube.segments.size()
       << " segment(s), " << m.bent_tube.bends.size() << " bend(s), centreline "
       << bent_tube_length(m.bent_tube) << " mm";
   }
+  const MandrelFeatures& f = m.features;
+  if (!f.empty()) {
+    s << "; features:";
+    if (f.bore > 0.0) s << " bore r=" << f.bore;
+    if (f.shaft_start.radius > 0.0 || f.shaft_end.radius > 0.0) s << " shafts";
+    if (!f.flanges.empty()) s << " " << f.flanges.size() << " flange(s)";
+    if (!f.tabs.empty()) s << " " << f.tabs.size() << " tab row(s)";
+  }
   return s.str();
+}
+
+std::string radius_text(double r) {
+  std::ostringstream s;
+  s << std::setprecision(4) << r;
+  return s.str();
+}
+
+// The body's distance from the axis at angle theta (for placing tabs on the wall).
+double body_outline(const MandrelOptions& m, double theta) {
+  if (m.source == "pipe") return m.pipe.radius;
+  if (m.source == "cone") return std::max(m.cone.radius_start, m.cone.radius_end);
+  if (m.source == "vessel") return m.vessel.radius;
+  if (m.source == "section") return section_radius(m.section, theta);
+  return 0.0;
 }
 
 }  // namespace
 
 CadShape mandrel_shape(const MandrelOptions& m, std::vector<std::string>* warnings) {
-  if (m.source == "pipe") return make_pipe(m.pipe);
-  if (m.source == "cone") return make_cone(m.cone);
-  if (m.source == "vessel") return make_vessel(m.vessel);
+  if (m.source == "pipe" || m.source == "cone" || m.source == "vessel" || m.source == "section") {
+    const CadShape body = m.source == "pipe"     ? make_pipe(m.pipe)
+                          : m.source == "cone"   ? make_cone(m.cone)
+                          : m.source == "vessel" ? make_vessel(m.vessel)
+                                                 : make_section_mandrel(m.section);
+    return add_mandrel_features(body, m.features,
+                                [&m](double theta) { return body_outline(m, theta); });
+  }
   if (m.source == "bent_tube") return make_bent_tube(m.bent_tube);
   if (m.source == "cad") {
     CadImportOptions io;
@@ -70,7 +110,7 @@ CadShape mandrel_shape(const MandrelOptions& m, std::vector<std::string>* warnin
   throw ConfigError("mandrel.source: " + m.source + " has no CAD shape (only cad and parametric)");
 }
 
-Mandrel build_mandrel(const MandrelOptions& m) {
+Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
   std::string why;
   if (!m.is_valid(&why)) throw ConfigError("mandrel: " + why);
   const auto t0 = Clock::now();
@@ -81,8 +121,9 @@ Mandrel build_mandrel(const MandrelOptions& m) {
   // and per patch whether it is wound.
   std::vector<int> patch;
   std::vector<char> patch_wound;
-  const bool parametric =
-      m.source == "pipe" || m.source == "cone" || m.source == "vessel" || m.source == "bent_tube";
+  const bool parametric = m.source == "pipe" || m.source == "cone" || m.source == "vessel" ||
+                          m.source == "bent_tube" || m.source == "section";
+  std::vector<Vec3> plane_normal;  // per B-rep face: the plane's normal, zero when not planar
 
   if (m.source == "mesh") {
     std::vector<std::string> changes;
@@ -104,7 +145,10 @@ Mandrel build_mandrel(const MandrelOptions& m) {
     out.tessellation_ms = tess.time_ms;
     out.brep_faces = static_cast<int>(tess.faces.size());
     patch = tess.triangle_face;
-    for (const CadFaceInfo& f : tess.faces) patch_wound.push_back(f.kind != CadSurfaceKind::Plane);
+    for (const CadFaceInfo& f : tess.faces) {
+      patch_wound.push_back(f.kind != CadSurfaceKind::Plane);
+      plane_normal.push_back(f.kind == CadSurfaceKind::Plane ? f.plane_normal : Vec3::Zero());
+    }
     soup = std::move(tess.soup);
   } else {
     throw ConfigError("mandrel.source: unknown source '" + m.source + "'");
@@ -129,10 +173,14 @@ Mandrel build_mandrel(const MandrelOptions& m) {
     out.axis.direction.normalize();
     out.axis_source = "job";
     out.revolution = radius_spread(out.mesh, out.axis) <= AxisInferenceOptions{}.revolution_tolerance;
-  } else if (m.source == "pipe" || m.source == "cone" || m.source == "vessel") {
+  } else if (m.source == "pipe" || m.source == "cone" || m.source == "vessel" ||
+             m.source == "section") {
     out.axis = SpindleAxis{};
     out.axis_source = "parametric";
-    out.revolution = true;
+    // The wound wall of pipe, cone and vessel is one of revolution (features are left out by
+    // mandrel.region); an elliptical or rounded-rectangle section is not.
+    out.revolution = m.source != "section" || (m.section.shape == SectionShape::Ellipse &&
+                                               m.section.semi_x == m.section.semi_y);
   } else {
     const AxisInference inf = infer_spindle_axis(out.mesh);
     out.axis = inf.axis;
@@ -146,7 +194,13 @@ Mandrel build_mandrel(const MandrelOptions& m) {
     }
   }
 
-  // Wound region.
+  // Wound region. B-rep planar faces are end caps, except those along the axis (normal
+  // perpendicular to it within 1 degree: the flat sides of a rounded-rectangle boom), wound.
+  for (std::size_t i = 0; i < plane_normal.size(); ++i) {
+    if (plane_normal[i].norm() > 0.5) {
+      patch_wound[i] = std::abs(plane_normal[i].dot(out.axis.direction)) < std::sin(M_PI / 180.0);
+    }
+  }
   if (m.source == "mesh") {
     patch.assign(out.mesh.num_faces(), 1);
     patch_wound = {0, 1};
@@ -157,6 +211,27 @@ Mandrel build_mandrel(const MandrelOptions& m) {
       }
     }
   }
+  // The region: cut on its planes; per face a patch id that also records "wound".
+  std::vector<char> keep;
+  if (m.region.enabled) {
+    const auto t_region = Clock::now();
+    RegionSelection sel = select_region(out.mesh, out.axis, m.region);
+    std::vector<int> cut_patch(sel.mesh.num_faces());
+    for (int f = 0; f < sel.mesh.num_faces(); ++f) {
+      cut_patch[f] = 2 * patch[sel.face_parent[f]] + (sel.keep[f] ? 1 : 0);
+    }
+    patch = std::move(cut_patch);
+    patch_wound.assign(2 * patch_wound.size(), 0);
+    for (std::size_t i = 1; i < patch_wound.size(); i += 2) patch_wound[i] = 1;
+    out.mesh = std::move(sel.mesh);
+    out.health = check_mesh(TriangleSoup{out.mesh.points(), out.mesh.triangles()});
+    out.region_split_edges = sel.split_edges;
+    out.region_moved_vertices = sel.moved_vertices;
+    out.region_max_move = sel.max_move;
+    out.candidates = std::move(sel.candidates);
+    out.chosen_candidate = sel.chosen;
+    out.region_ms = ms_since(t_region);
+  }
   if (m.remesh > 0.0) {
     RemeshOptions ro;
     ro.target_edge_length = m.remesh;
@@ -166,7 +241,7 @@ Mandrel build_mandrel(const MandrelOptions& m) {
     out.remesh_ms = r.time_ms;
     out.health = check_mesh(TriangleSoup{out.mesh.points(), out.mesh.triangles()});
   }
-  std::vector<char> keep(out.mesh.num_faces());
+  keep.assign(out.mesh.num_faces(), 0);
   for (int f = 0; f < out.mesh.num_faces(); ++f) keep[f] = patch_wound[patch[f]];
   if (std::find(keep.begin(), keep.end(), 1) == keep.end()) {
     throw TopologyError("mandrel (" + describe(m, selected) + "): no wound region: " +
@@ -176,7 +251,25 @@ Mandrel build_mandrel(const MandrelOptions& m) {
                                    " B-rep faces are planar (planar faces are taken as end caps)") +
                         "; the winding surface must be an annulus");
   }
-  out.winding = extract_winding_surface(out.mesh, keep, out.axis);
+  if (!m.region.enabled) out.candidates = candidate_regions(out.mesh, keep, out.axis);
+  out.description = describe(m, selected);
+  try {
+    out.winding = extract_winding_surface(out.mesh, keep, out.axis);
+    if (!m.region.enabled) out.chosen_candidate = 0;  // the selection is one annulus
+  } catch (const TopologyError& e) {
+    out.suggestion = suggest_region(out.mesh, out.axis);
+    std::string list;
+    for (const CandidateRegion& c : out.candidates) list += (list.empty() ? "" : "; ") + c.brief();
+    const std::string msg =
+        "mandrel (" + out.description + "): " + e.what() + ". Candidate regions: " + list +
+        (out.suggestion.found
+             ? ". Set mandrel." + out.suggestion.keys() + " to wind the outer wall (mean radius " +
+                   radius_text(out.suggestion.radius) + " mm)"
+             : ". No axial range with a clean outer wall was found: set mandrel.region "
+               "{start, end} (mm along the axis) and mandrel.axis by hand");
+    if (require_annulus) throw TopologyError(msg);
+    out.warnings.push_back(msg);
+  }
   out.profile = compute_radius_profile(out.mesh, out.axis);
   out.description = describe(m, selected);
   out.total_ms = ms_since(t0);

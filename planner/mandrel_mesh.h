@@ -1,8 +1,8 @@
 #pragma once
 // The mandrel of a job as a windplan Mesh, in millimetres: the single place that turns a job's
 // `mandrel:` section into the surface every later stage works on. It dispatches on
-// MandrelOptions::source; today "mesh" (a triangle-mesh file: OBJ, PLY, STL, OFF). CAD and
-// parametric sources plug in here as further branches.
+// MandrelOptions::source "mesh" (a triangle-mesh file: OBJ, PLY, STL, OFF). CAD and parametric
+// sources are built by planner/mandrel_builder.h, which calls this for mesh files.
 #include <string>
 #include <vector>
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "planner/coverage.h"
 #include "planner/cutlines.h"
 
 namespace windplan {
@@ -92,10 +93,20 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
   }
   girth.done();
 
+  // Shapes of revolution with plain geodesics: Clairaut's integral on the meridian, a closing
+  // pattern and circuits that are copies of one another (planner/revolution_winding.h). With
+  // beta > 0, off a shape of revolution, or between dwell ends at more turns than a geodesic
+  // can make: the geodesic core (planner/helix.h).
   Stage helices("helices", &timings, options);
-  std::vector<double> rho;
-  if (wo.beta > 0.0) rho = density_from_girth(ws.mesh, r.face_girth, wo.beta);
-  r.helices = plan_helices(ws.mesh, loops, rho, md.axis, wo);
+  if (md.revolution && wo.beta == 0.0) {
+    r.revolution = plan_revolution_winding(ws.mesh, ws.face_map, md.axis, wo);
+    r.clairaut = r.revolution.planned;
+  }
+  if (!r.clairaut) {
+    std::vector<double> rho;
+    if (wo.beta > 0.0) rho = density_from_girth(ws.mesh, r.face_girth, wo.beta);
+    r.helices = plan_helices(ws.mesh, loops, rho, md.axis, wo);
+  }
   helices.done();
 
   Stage metrics("metrics", &timings, options);
@@ -103,9 +114,79 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
   plan.job_name = job.name;
   plan.axis = md.axis;
   plan.profile = md.profile;
-  plan.circuits = build_circuits(ws.mesh, r.helices, ws.face_map, md.axis, wo);
-  plan.metrics = compute_plan_metrics(ws.mesh, r.helices, plan.circuits, r.face_girth, md.axis,
-                                      md.revolution, wo);
+  if (r.clairaut) {
+    RevolutionWinding& rw = r.revolution;
+    plan.circuits = std::move(rw.circuits);
+    rw.circuits.clear();
+    plan.metrics = circuit_plan_metrics(plan.circuits, md.axis, wo);
+    const PatternCandidate& pc = rw.pattern;
+    PatternInfo& pi = plan.metrics.pattern_info;
+    pi.geodesic = true;
+    pi.circuits = pc.circuits;
+    pi.skip = pc.skip;
+    pi.turnaround_radius = pc.c;
+    pi.requested_radius = rw.problem.requested_c;
+    pi.requested_by = rw.problem.requested_by;
+    pi.largest_radius = rw.problem.largest_radius;
+    pi.angle_deg = pc.angle_deg;
+    pi.geodesic_end = rw.geodesic_end;
+    pi.dwell_deg = {pc.dwell[0] * 180.0 / M_PI, pc.dwell[1] * 180.0 / M_PI};
+    pi.advance_deg = std::fmod(pc.advance * 180.0 / M_PI, 360.0);
+    pi.projection_max = rw.projection_max;
+    plan.metrics.turns_per_pass = pc.turns_per_pass;
+    plan.metrics.circuits_for_coverage = static_cast<int>(
+        std::ceil(pc.circuits * (1.0 - 1e-12) / std::max(1e-12, pc.cover_factor)));
+    plan.metrics.pattern =
+        "K=" + std::to_string(pc.circuits) + ", skip p=" + std::to_string(pc.skip) +
+        ", advance " + fixed(pi.advance_deg, 3) + " deg per circuit, closes after " +
+        std::to_string(pc.circuits) + " circuits; turnaround radius " + fixed(pc.c, 2) + " mm" +
+        (std::abs(pc.moved) > 5e-3 ? " (" + pi.requested_by + " asks " +
+                                         fixed(pi.requested_radius, 2) + " mm: moved " +
+                                         fixed(pc.moved, 2) + " mm to close the pattern)"
+                                   : std::string()) +
+        ", " + fixed(pc.angle_deg, 2) + " deg on the largest parallel";
+    r.passes = circuit_pass_reports(plan.circuits, md.axis, "clairaut");
+  } else {
+    plan.circuits = build_circuits(ws.mesh, r.helices, ws.face_map, md.axis, wo);
+    plan.metrics = compute_plan_metrics(ws.mesh, r.helices, plan.circuits, r.face_girth,
+                                        md.axis, md.revolution, wo);
+    r.passes = pass_reports(r.helices, plan.circuits, md.axis);
+    if (md.revolution && wo.beta == 0.0) {
+      plan.metrics.warnings.push_back("pattern: " + r.revolution.problem.why +
+                                      ": the passes are planned by the geodesic core and wrap "
+                                      "along the smaller end");
+    }
+  }
+  // Coverage on the laid bands, from the circuits alone (planner/coverage.h).
+  CoverageOptions co;
+  co.band_width = wo.band_width;
+  co.stations = wo.coverage_stations;
+  if (!md.revolution && !r.clairaut) co.height = &r.helices.coords.height;
+  PlanMetrics& pm = plan.metrics;
+  pm.coverage = measure_coverage(ws.mesh, md.axis, plan.circuits, co);
+  pm.cover_factor = pm.coverage.cover_factor;
+  if (r.clairaut) {  // the band spacing on the stations (the core's route has its own, per meridian)
+    pm.spacing_cv = pm.coverage.spacing_cv;
+    pm.spacing_mean = pm.coverage.spacing_mean;
+  }
+  if (!pm.coverage.measured()) {
+    pm.warnings.push_back("coverage: not measured: no plane normal to the spindle axis cuts the "
+                          "wound region in a loop around the axis between the passes' ends");
+  } else if (pm.coverage.bare_fraction > 0.0) {
+    const StationCoverage* worst = &pm.coverage.stations.front();
+    for (const StationCoverage& st : pm.coverage.stations) {
+      if (st.bare_fraction > worst->bare_fraction) worst = &st;
+    }
+    pm.warnings.push_back(
+        "coverage: the laid bands leave " + fixed(100.0 * worst->bare_fraction, 2) +
+        "% of the circumference bare at " +
+        (co.height ? "height " + fixed(worst->station, 3) + " of the wound region"
+                   : fixed(worst->station, 1) + " mm along the axis") +
+        " (widest gap " + fixed(pm.coverage.widest_gap, 1) + " mm over " +
+        std::to_string(pm.coverage.stations.size()) + " stations): " +
+        (r.clairaut ? "choose a pattern with more circuits (windplan patterns JOB)"
+                    : "more circuits, a wider band or beta = 0 on a shape of revolution"));
+  }
   // The geodesic turn limit (shapes of revolution) between the ends of the passes.
   if (md.revolution) {
     const double x0 = wo.has_start_station() ? wo.start_station : ws.loops[0].axial;
@@ -117,13 +198,13 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
       r.has_turn_limit = true;
       plan.metrics.geodesic_turn_limit = r.turn_limit.turns;
       plan.metrics.geodesic_min_radius = r.turn_limit.min_radius;
-      if (wo.beta == 0.0 && r.turn_limit.bounded && wo.turns > r.turn_limit.turns) {
+      if (!r.clairaut && wo.beta == 0.0 && r.turn_limit.bounded &&
+          wo.turns > r.turn_limit.turns) {
         plan.metrics.warnings.push_back(turn_limit_warning(r.turn_limit, wo));
       }
     }
   }
   for (const std::string& w : md.warnings) plan.metrics.warnings.push_back("mandrel: " + w);
-  r.passes = pass_reports(r.helices, plan.circuits, md.axis);
   metrics.done();
 
   if (!job.cutlines.empty()) {

@@ -21,6 +21,7 @@
 #include "planner/fibre_metrics.h"
 #include "planner/girth.h"
 #include "planner/helix.h"
+#include "planner/revolution_winding.h"
 #include "planner/job.h"
 #include "planner/mandrel_builder.h"
 #include "planner/plan.h"
@@ -39,6 +40,11 @@ struct PipelineResult {
   bool has_girth = false;  ///< the girth field was computed (beta > 0 or no revolution)
   GirthField girth;
   std::vector<double> face_girth;  ///< per winding-surface face (mm): girth field or 2 pi r
+  /// true: the circuits come from Clairaut's integral (a shape of revolution, beta = 0;
+  /// planner/revolution_winding.h) and `revolution` holds them (its circuits moved into the
+  /// plan); false: from the geodesic core (`helices`).
+  bool clairaut = false;
+  RevolutionWinding revolution;
   HelixPlan helices;
   std::vector<PassReport> passes;
   bool has_turn_limit = false;  ///< turn_limit was computed (a shape of revolution)

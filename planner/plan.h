@@ -12,6 +12,7 @@
 
 #include "geometry/axis.h"
 #include "geometry/mesh.h"
+#include "planner/layer_summary.h"
 
 namespace windplan {
 
@@ -77,6 +78,60 @@ struct TurnaroundStability {
   bool at_station() const { return std::isfinite(station); }
 };
 
+// Coverage measured on the laid bands (planner/coverage.h says how).
+/// The figures at one station (see the header comment).
+struct StationCoverage {
+  double station = 0.0;        ///< mm along the spindle axis
+  double loop_length = 0.0;    ///< mm: the section loop's length
+  std::array<int, 2> bands = {0, 0};                 ///< bands per family (+, -)
+  std::array<double, 2> family_bare = {0.0, 0.0};    ///< bare fraction per family
+  double bare_fraction = 0.0;  ///< the worse family
+  double widest_gap = 0.0;     ///< mm along the loop
+  double widest_overlap = 0.0;  ///< mm across the band (0 when no two neighbours share)
+  int max_stack = 0;           ///< most bands of one family over one point
+  double mean_plies = 0.0;     ///< band length of both families / loop length
+  double cover_factor = 0.0;   ///< the smaller family's band length / loop length
+  double spacing_cv = 0.0;     ///< CV of neighbouring band-centre distances (both families)
+  double spacing_mean = 0.0;   ///< their mean (mm across the band)
+};
+
+struct CoverageReport {
+  std::vector<StationCoverage> stations;
+  int skipped = 0;             ///< stations without a section loop around the axis
+  // Over the measured stations:
+  double bare_fraction = 0.0;  ///< the largest
+  double widest_gap = 0.0;     ///< the largest (mm)
+  double widest_overlap = 0.0;  ///< the largest (mm)
+  /// The largest at the stations whose loop is within 0.5% of the longest (the cylinder of a
+  /// vessel or pipe: where the bands lie side by side; domes stack them by design) (mm).
+  double widest_overlap_largest = 0.0;
+  int max_stack = 0;
+  double cover_factor = 0.0;   ///< the smallest
+  double mean_plies = 0.0;     ///< the mean over the stations
+  double spacing_cv = 0.0;     ///< the largest
+  double spacing_mean = 0.0;   ///< the mean over the stations (mm)
+
+  bool measured() const { return !stations.empty(); }
+  /// One line: "bare 0.00% (widest gap 0.0 mm), overlap <= 0.3 mm, up to 3 bands, ...".
+  std::string brief_report() const;
+};
+
+/// How the circuits were planned on a shape of revolution (planner/revolution_winding.h).
+struct PatternInfo {
+  bool geodesic = false;  ///< planned from Clairaut's integral (false: the geodesic core's route)
+  int circuits = 0;       ///< K
+  int skip = 0;           ///< p
+  double turnaround_radius = std::nan("");  ///< c (mm): the parallel the passes turn around on
+  double requested_radius = std::nan("");   ///< the c the job asked for (mm)
+  std::string requested_by;                 ///< the key that asked ("winding.turnaround", ...)
+  double largest_radius = std::nan("");     ///< R (mm)
+  double angle_deg = std::nan("");          ///< winding angle on the largest parallel (deg)
+  std::array<bool, 2> geodesic_end = {false, false};  ///< per end: geodesic turnaround (no dwell)
+  std::array<double, 2> dwell_deg = {0.0, 0.0};       ///< per end: dwell (deg; 0 geodesic)
+  double advance_deg = 0.0;     ///< mandrel advance per circuit, modulo 360 (deg)
+  double projection_max = 0.0;  ///< largest distance of a planned point from the mesh (mm)
+};
+
 /// Figures of a plan, reported in the summary, report.json and report.md.
 struct PlanMetrics {
   double fibre_length = 0.0;       ///< mm, all circuits
@@ -84,7 +139,11 @@ struct PlanMetrics {
   double turns_per_pass = 0.0;     ///< N (turns, > 0, need not be whole)
   double band_width = 0.0;         ///< mm
   int circuits_for_coverage = 0;   ///< circuits needed for full coverage
-  double cover_factor = 0.0;       ///< fraction of the surface covered (>= 1: full)
+  /// Band length laid per unit of circumference, the smaller pass family, measured on the laid
+  /// bands (coverage.cover_factor; >= 1: enough band for full cover).
+  double cover_factor = 0.0;
+  CoverageReport coverage;  ///< measured on the laid bands (planner/coverage.h)
+  PatternInfo pattern_info;
   std::string pattern;             ///< e.g. "K=12, advance 1/12, coprime" (shapes of revolution)
   double spacing_cv = 0.0;         ///< coefficient of variation of turn spacing along meridians
   double spacing_mean = 0.0;       ///< mm
@@ -114,6 +173,9 @@ struct WindingPlan {
   std::vector<Circuit> circuits;
   std::vector<CutLine> cutlines;
   PlanMetrics metrics;
+  /// A layup (planner/layup.h): its layers in winding order, each naming its circuits; empty for
+  /// a job without `layers:`.
+  std::vector<LayerSummary> layers;
 };
 
 }  // namespace windplan

@@ -4,6 +4,7 @@
 // (planner/fibre_metrics.h) and the pipeline (planner/pipeline.h).
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <string>
 
 namespace windplan {
@@ -40,6 +41,24 @@ struct WindingOptions {
   double curvature_window = 0.0;
   /// Meridians sampled for the turn spacing (count, >= 4).
   int meridians = 36;
+  /// Shapes of revolution (planner/winding_pattern.h): the turnaround radius, i.e. the Clairaut
+  /// constant c of the geodesic passes (mm, > 0; NaN: on domes the polar opening radius + half
+  /// the band width, elsewhere from `turns`). On domes the passes turn around on the parallel
+  /// r = c, tangent to it.
+  double turnaround = std::nan("");
+  /// Alternative to `turnaround`: the winding angle on the largest parallel (deg, in (0, 90);
+  /// NaN: not given). c = R sin(angle).
+  double angle = std::nan("");
+  /// How far the turnaround radius may move to close the pattern on domes (mm, >= 0; NaN: a
+  /// quarter of the band width): outward from `turnaround`, either way from `angle` / `turns`.
+  double turnaround_window = std::nan("");
+  /// The pattern's skip p (circuit k starts p k / K of a turn after circuit 0; coprime to K;
+  /// 0 = auto). `winding.pattern: {circuits: K, skip: p}` sets circuits and skip.
+  int skip = 0;
+  /// Set by the job loader when the job gives `turns` (on domes the turns then choose c).
+  bool turns_given = false;
+  /// Stations along the wound length where coverage is measured on the laid bands (count, >= 8).
+  int coverage_stations = 12;
 
   bool has_start_station() const { return std::isfinite(start_station); }
   bool has_end_station() const { return std::isfinite(end_station); }
@@ -68,6 +87,31 @@ struct WindingOptions {
       return fail("curvature_window must be >= 0 mm");
     }
     if (meridians < 4) return fail("meridians must be >= 4");
+    if (std::isfinite(turnaround) && !(turnaround > 0.0)) {
+      return fail("turnaround must be > 0 mm (got " + std::to_string(turnaround) + ")");
+    }
+    if (std::isnan(turnaround) == false && !std::isfinite(turnaround)) {
+      return fail("turnaround must be a finite radius in mm");
+    }
+    if (!std::isnan(angle) && !(angle > 0.0 && angle < 90.0)) {
+      return fail("angle must be in (0, 90) deg (got " + std::to_string(angle) + ")");
+    }
+    if (!std::isnan(turnaround) && !std::isnan(angle)) {
+      return fail("give turnaround or angle, not both");
+    }
+    if (!std::isnan(turnaround_window) &&
+        !(turnaround_window >= 0.0 && std::isfinite(turnaround_window))) {
+      return fail("turnaround_window must be >= 0 mm");
+    }
+    if (skip < 0) return fail("pattern skip must be >= 1 (got " + std::to_string(skip) + ")");
+    if (circuits > 0 && skip > 0 && (skip >= circuits || std::gcd(skip, circuits) != 1)) {
+      return fail("pattern: circuits " + std::to_string(circuits) + " and skip " +
+                  std::to_string(skip) + " must be coprime with skip < circuits (gcd " +
+                  std::to_string(std::gcd(skip, circuits)) + ")");
+    }
+    if (coverage_stations < 8 || coverage_stations > 1000) {
+      return fail("coverage_stations must be in [8, 1000]");
+    }
     if (has_start_station() && has_end_station() && !(start_station < end_station)) {
       return fail("start_station must be < end_station");
     }

@@ -116,7 +116,8 @@ TEST(ExportPlan, WritesEveryFileConsistently) {
   const ExportResult r = export_plan(plan, sample_mesh(), m, OutputOptions{}, d);
   const std::vector<std::string> expect = {
       "fibre_path.csv", "payout.csv",      "axes.csv",    "cutlines.csv", "toolpath.ngc",
-      "mesh.ply",       "paths.ply",       "development.svg", "report.json", "report.md"};
+      "mesh.ply",       "paths.ply",       "development.svg", "axes.svg",  "viewer.html",
+      "report.json",    "report.md"};
   EXPECT_EQ(r.files, expect);
   for (const std::string& f : expect) EXPECT_TRUE(fs::exists(d / f)) << f;
   // cutlines.csv: a header and one row per cut-line point.
@@ -147,7 +148,9 @@ TEST(ExportPlan, WritesEveryFileConsistently) {
   EXPECT_TRUE(xml_balanced(svg, &why)) << why;
   EXPECT_NE(svg.find("id=\"circuit-2\""), std::string::npos);
   EXPECT_NE(svg.find("id=\"cutline-0\""), std::string::npos);
-  EXPECT_NE(svg.find("axial position x [mm]"), std::string::npos);
+  // The sample plan is not flagged a shape of revolution and its mesh is an annulus: unrolled in
+  // its conformal coordinates (export/unroll.h).
+  EXPECT_NE(svg.find("height between the ends"), std::string::npos);
   // paths.ply: header counts match the body.
   const auto ply = lines_of(read_text_file(d / "paths.ply"));
   std::size_t nv = 0, ne = 0, body = 0;
@@ -274,8 +277,8 @@ TEST(ExportPlan, ReportsCarryTheTurnaroundStabilityApartFromThePasses) {
   }
   const std::string summary = summary_text(plan, r);
   EXPECT_NE(summary.find("  max slippage     0.1250\n"), std::string::npos) << summary;
-  EXPECT_NE(summary.find("  turnarounds      max slippage 0.2500, 75.0 mm above mu (25.00%), "
-                         "bridging 1.5 mm\n"),
+  EXPECT_NE(summary.find("  dwell arcs       max slippage 0.2500, 75.0 mm above mu (25.00%), "
+                         "bridging 1.5 mm (held by pins or a ring)\n"),
             std::string::npos)
       << summary;
 }
@@ -319,7 +322,7 @@ TEST(ExportPlan, JobSectionsDriveTheExport) {
       "mandrel:\n  file: a.obj\n"
       "machine:\n  kind: lathe4\n  replay_tolerance: 0\n  gcode: {dialect: marlin}\n"
       "  axes:\n    A: {letter: C}\n"
-      "output:\n  ply: false\n  svg: false\n",
+      "output:\n  ply: false\n  svg: false\n  viewer: false\n",
       "/jobs/tank.yaml");
   const fs::path d = temp_dir("job");
   const ExportResult r = export_plan(sample_plan(), sample_mesh(), job.machine, job.output, d);
@@ -329,13 +332,14 @@ TEST(ExportPlan, JobSectionsDriveTheExport) {
   const std::string g = read_text_file(d / "toolpath.gcode");
   EXPECT_NE(g.find("G92 C0"), std::string::npos);
   EXPECT_FALSE(fs::exists(d / "development.svg"));
+  EXPECT_FALSE(fs::exists(d / "viewer.html"));  // output.viewer: false writes none
 }
 
 TEST(ExportPlan, TimingsOnlyWhenAsked) {
   const fs::path d = temp_dir("timings");
   OutputOptions o;
   o.timings = true;
-  o.ply = o.svg = o.csv = o.gcode = false;
+  o.ply = o.svg = o.csv = o.gcode = o.viewer = false;
   const ExportResult r = export_plan(sample_plan(), sample_mesh(), report_only(), o, d);
   EXPECT_EQ(r.files, (std::vector<std::string>{"report.json", "report.md"}));
   EXPECT_NE(read_text_file(d / "report.json").find("\"girth\": 1.25"), std::string::npos);

@@ -226,6 +226,41 @@ TEST(CutLine, OpenCurveAcrossAHelixIsPlanarThroughBothPointsAndNotShorterThanThe
   }
 }
 
+// A station cut-line stays at its station: on a cylinder every perpendicular loop is equally
+// short, and a free offset drifted (the vessel's station 150 came out at 165.2 mm). By default
+// the plane is the station's own; with a free normal it only turns about the start loop's
+// centre (keep_offset), which on a cylinder leaves it where it is.
+TEST(CutLine, StationStaysAtItsStation) {
+  for (const char* mode : {"", "free", "cone"}) {
+    CutLineOptions c;
+    c.name = "split";
+    c.has_station = true;
+    c.station = 37.0;
+    c.normal_mode = mode;
+    CutLineSummary s;
+    const CutLine r = compute_cutline(cylinder(), c, z_axis(), {}, &s);
+    SCOPED_TRACE(mode);
+    expect_valid(cylinder(), r, s, true);
+    for (const Vec3& p : r.points) EXPECT_NEAR(p.z(), 37.0, 1e-9);
+    EXPECT_NEAR(r.plane_offset, 37.0, 1e-9);
+    EXPECT_NEAR(r.plane_normal.z(), 1.0, 1e-12);
+    EXPECT_NEAR(r.length, ring_perimeter(kR, kN), 1e-9);
+  }
+  // A tilted start plane with a free normal turns about its loop's centre (z = 37).
+  CutLineOptions t;
+  t.name = "tilted";
+  t.has_plane = true;
+  t.normal = Vec3(0.2, 0.0, 1.0).normalized();
+  t.offset = 37.0;
+  CutLineSummary s;
+  const CutLine r = compute_cutline(cylinder(), t, z_axis(), {}, &s);
+  expect_valid(cylinder(), r, s, true);
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& p : r.points) centre += p / static_cast<double>(r.points.size());
+  EXPECT_NEAR(centre.z(), 37.0, 1.0);  // the pivot is the mean of the crossings: near the centre
+  EXPECT_LT(r.length, s.initial_length);
+}
+
 // ---- the bend of a bent tube (the shipped job) ----
 
 TEST(CutLine, ObliqueStartInABendGivesTheCircularCrossSection) {

@@ -143,9 +143,9 @@ TEST(FibreMetrics, CylinderCoverageAndStability) {
   EXPECT_LT(pm.max_slippage, 0.1);  // geodesics on a cylinder: k_g ~ 0
   EXPECT_EQ(pm.bridging_length, 0.0);
   EXPECT_NE(pm.pattern.find("coprime"), std::string::npos) << pm.pattern;
-  bool coverage_warning = false;
-  for (const std::string& w : pm.warnings) coverage_warning |= w.find("coverage") == 0;
-  EXPECT_TRUE(coverage_warning);
+  // Too few circuits: the coverage warning comes from the bands measured on the surface
+  // (planner/coverage.h, the pipeline), not from this nominal count.
+  for (const std::string& w : pm.warnings) EXPECT_NE(w.find("coverage"), 0u) << w;
   // Spacing on a cylinder: equal in mm, the meridian length over K turns.
   EXPECT_NEAR(pm.spacing_mean, L / 5.0, 0.02 * L / 5.0);
   EXPECT_LT(pm.spacing_cv, 0.02);

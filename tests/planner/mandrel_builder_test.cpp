@@ -1,6 +1,8 @@
 // build_mandrel on every shipped parametric/CAD job and on bad jobs: the welded mesh is closed,
 // manifold and outward; the winding surface is an annulus whose loops sit at the openings.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -10,6 +12,7 @@
 #include "geometry/mesh_io.h"
 #include "geometry/mesh_validation.h"
 #include "geometry/parametric_mandrel.h"
+#include "geometry/section_mandrel.h"
 #include "planner/job.h"
 #include "planner/mandrel_builder.h"
 #include "tests/test_data.h"
@@ -262,6 +265,141 @@ TEST(MandrelBuilder, CadFilesThatAreNotMandrelsAreRefusedClearly) {
   } catch (const TopologyError& e) {
     EXPECT_NE(std::string(e.what()).find("winding surface"), std::string::npos) << e.what();
   }
+}
+
+// ---- Shop mandrels made in code: mandrel.region cuts the wound wall out of the whole mandrel ----
+
+// Shared YAML of the three shop mandrels (the CLI tests run the same jobs end to end).
+const char* const kShopPipe =
+    "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 500}\n  features:\n"
+    "    bore: 20\n    shaft_start: {radius: 25, length: 100}\n"
+    "    shaft_end: {radius: 25, length: 100}\n    flanges:\n"
+    "      - {at: 0, radius: 90, thickness: 12, bolts: 8, bolt_radius: 5, pitch_radius: 75}\n"
+    "      - {at: 488, radius: 90, thickness: 12, bolts: 8, bolt_radius: 5, pitch_radius: 75}\n"
+    "  region: {start: 20, end: 480}\n";
+const char* const kCanisterBody =
+    "mandrel:\n  source: section\n  section: {shape: ellipse, semi_axes: [80, 50], length: 300}\n"
+    "  features:\n    bore: 20\n    tabs:\n"
+    "      - {at: 10, count: 2, reach: 25, width: 20, thickness: 8, hole_radius: 4}\n"
+    "      - {at: 282, count: 2, reach: 25, width: 20, thickness: 8, hole_radius: 4}\n";
+const char* const kBoom =
+    "mandrel:\n  source: section\n  section: {shape: rounded_rectangle, width: 120, height: 80,"
+    " corner_radius: 15, length: 600}\n";
+
+// Every loop vertex lies on its plane to 1e-9 mm; the annulus has exactly two loops.
+void expect_cut_on_planes(const Mandrel& m, double a, double b) {
+  ASSERT_EQ(m.winding.mesh.boundary_loops().size(), 2u);
+  EXPECT_EQ(m.winding.mesh.num_components(), 1);
+  EXPECT_EQ(m.winding.mesh.genus(), 0);
+  for (int i = 0; i < 2; ++i) {
+    const double s = i == 0 ? a : b;
+    for (int v : m.winding.loops[i].vertices) {
+      EXPECT_NEAR(m.axis.axial(m.winding.mesh.position(v)), s, 1e-9);
+    }
+  }
+}
+
+// Inscribed polygons: the tessellated wall is smaller than the smooth one, by less than the
+// relative sagitta bound deflection / (smallest radius of curvature).
+void expect_area(double mesh_area, double exact, double min_curvature_radius) {
+  EXPECT_LE(mesh_area, exact * (1.0 + 1e-12));
+  EXPECT_GE(mesh_area, exact * (1.0 - 0.25 / min_curvature_radius)) << "exact " << exact;
+}
+
+TEST(MandrelBuilder, ShopPipeWithShaftsFlangesAndBoltHoles) {
+  const Mandrel m = build_mandrel(load_job_from_string(kShopPipe, "shop_pipe.yaml"));
+  expect_cut_on_planes(m, 20.0, 480.0);
+  expect_area(m.winding.area, 2.0 * M_PI * 50.0 * 460.0, 50.0);
+  // The full mandrel keeps shafts, flanges and bolt holes: the clearance sees the flanges.
+  EXPECT_TRUE(m.mesh.is_closed());
+  EXPECT_EQ(m.health.genus, 17) << "16 bolt holes and the bore";
+  EXPECT_NEAR(*std::max_element(m.profile.radius.begin(), m.profile.radius.end()), 90.0, 0.01);
+  EXPECT_NEAR(m.profile.axial.front(), -100.0, 1e-6);
+  EXPECT_NEAR(m.profile.axial.back(), 600.0, 1e-6);
+  // Between the planes: the wall and the bore; the wall is wound.
+  ASSERT_EQ(m.candidates.size(), 2u);
+  EXPECT_NEAR(m.candidates[m.chosen_candidate].mean_radius, 50.0, 0.05);
+}
+
+TEST(MandrelBuilder, EllipticalCanisterWithBoreAndScrewTabs) {
+  const std::string yaml = std::string(kCanisterBody) + "  region: {start: 30, end: 270}\n";
+  const Mandrel m = build_mandrel(load_job_from_string(yaml, "canister.yaml"));
+  expect_cut_on_planes(m, 30.0, 270.0);
+  const SectionParams e = SectionParams::ellipse(80, 50, 300);
+  expect_area(m.winding.area, section_perimeter(e) * 240.0, 50.0 * 50.0 / 80.0);
+  EXPECT_FALSE(m.revolution);
+  EXPECT_EQ(m.axis_source, "parametric");
+  // The tabs stick out 25 mm beyond the 80 mm semi-axis: the whole mandrel reaches 105 mm.
+  EXPECT_NEAR(*std::max_element(m.profile.radius.begin(), m.profile.radius.end()),
+              std::hypot(105.0, 10.0), 0.5);
+}
+
+TEST(MandrelBuilder, RoundedRectangleBoomWithFlatEnds) {
+  const SectionParams r = SectionParams::rounded_rectangle(120, 80, 15, 600);
+  // Without a region: the flat caps are left out, the flat sides along the axis are wound.
+  const Mandrel whole = build_mandrel(load_job_from_string(kBoom, "boom.yaml"));
+  expect_cut_on_planes(whole, 0.0, 600.0);
+  expect_area(whole.winding.area, section_perimeter(r) * 600.0, 15.0);
+  const std::string yaml = std::string(kBoom) + "  region: {start: 50, end: 550}\n";
+  const Mandrel m = build_mandrel(load_job_from_string(yaml, "boom.yaml"));
+  expect_cut_on_planes(m, 50.0, 550.0);
+  expect_area(m.winding.area, section_perimeter(r) * 500.0, 15.0);
+}
+
+TEST(MandrelBuilder, NonAnnulusErrorListsRegionsAndSuggestsKeys) {
+  std::string msg;
+  try {
+    build_mandrel(load_job_from_string(kCanisterBody, "canister.yaml"));
+  } catch (const TopologyError& e) {
+    msg = e.what();
+  }
+  EXPECT_NE(msg.find("not an annulus"), std::string::npos) << msg;
+  // The wall with its tabs, the bore and the four tab undersides are listed.
+  EXPECT_NE(msg.find("Candidate regions: #1: axial 0..300 mm"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("#2: axial 0..300 mm, radius 20..20 mm"), std::string::npos) << msg;
+  const std::size_t k = msg.find("Set mandrel.region: {start: ");
+  ASSERT_NE(k, std::string::npos) << msg;
+  // The suggested keys work: between the tabs (z 18..282) and they wind the outer wall.
+  double a = 0, b = 0;
+  ASSERT_EQ(std::sscanf(msg.c_str() + k, "Set mandrel.region: {start: %lf, end: %lf}", &a, &b), 2);
+  EXPECT_GE(a, 18.0);
+  EXPECT_LE(b, 282.0);
+  EXPECT_GT(b - a, 200.0);
+  const Mandrel m = build_mandrel(load_job_from_string(
+      std::string(kCanisterBody) + "  region: {start: " + std::to_string(a) + ", end: " +
+          std::to_string(b) + "}\n",
+      "canister.yaml"));
+  EXPECT_GT(m.winding.loops[0].mean_radius, 50.0) << "the outer wall (80 x 50), not the bore";
+}
+
+TEST(MandrelBuilder, RegionAndSectionBadInputNameTheKey) {
+  auto error = [](const std::string& yaml) {
+    try {
+      build_mandrel(load_job_from_string(yaml, "bad.yaml"));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::string e = error("mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 500}\n"
+            "  region: {start: 600, end: 700}\n");
+  EXPECT_NE(e.find("mandrel.region: the range [600, 700] mm misses the mandrel"),
+            std::string::npos) << e;
+  e = error("mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 500}\n"
+            "  axis: {origin: [300, 0, 0], direction: [0, 0, 1]}\n"
+            "  region: {start: 100, end: 400}\n");
+  EXPECT_NE(e.find("goes around the spindle axis"), std::string::npos) << e;
+  e = error("mandrel:\n  source: section\n  section: {shape: rounded_rectangle, width: 100,"
+            " height: 200, corner_radius: 60, length: 300}\n");
+  EXPECT_NE(e.find("corner_radius"), std::string::npos) << e;
+  EXPECT_NE(e.find("bad.yaml:"), std::string::npos) << e;
+  e = error("mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 500}\n"
+            "  region: {start: 400, end: 100}\n");
+  EXPECT_NE(e.find("region.start"), std::string::npos) << e;
+  e = error("mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 500}\n"
+            "  region: {start: 100, end: 400, surface: middle}\n");
+  EXPECT_NE(e.find("surface"), std::string::npos) << e;
+  for (const std::string& m : {e}) EXPECT_EQ(m.find('\n'), std::string::npos) << m;
 }
 
 }  // namespace

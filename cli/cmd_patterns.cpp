@@ -1,0 +1,142 @@
+// windplan patterns <job.yaml> [--json] [--top N]
+// The pattern table of a job on a shape of revolution: the closing patterns near the requested
+// winding, each planned and measured on its laid bands (planner/winding_pattern.h,
+// planner/coverage.h), as the pattern tables of winding software list them.
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "geometry/errors.h"
+#include "geometry/json.h"
+#include "planner/coverage.h"
+#include "planner/job.h"
+#include "planner/mandrel_builder.h"
+#include "planner/revolution_winding.h"
+
+namespace windplan::cli {
+
+const char* const kPatternsHelp =
+    "usage: windplan patterns <job.yaml> [--json] [--top N]\n\n"
+    "Lists the winding patterns that close near the job's requested winding on a shape of\n"
+    "revolution (winding.turnaround, winding.angle or winding.turns; on domes the default\n"
+    "turnaround is the polar opening + half the band). A pattern of K circuits with skip p\n"
+    "advances the mandrel by 2 pi p / K per circuit; on domes the turnaround radius moves\n"
+    "within winding.turnaround_window to close it, between dwell ends the dwells close it.\n"
+    "Each row is planned and measured on its laid bands: K, p, winding angle on the largest\n"
+    "parallel, turnaround radius (and how far it moved), nominal cover factor, measured bare\n"
+    "fraction, widest gap and overlap (everywhere, and on the largest sections: a vessel's\n"
+    "cylinder, where the bands lie side by side), most bands stacked and plies built (2 for one full\n"
+    "helical layer). The first row is what `winding.pattern: auto` winds; a job picks another\n"
+    "with `winding.pattern: {circuits: K, skip: p}`.\n\n"
+    "  --json      print the table as JSON\n"
+    "  --top N     rows to plan and measure (default 12)\n";
+
+int run_patterns(const std::vector<std::string>& argv) {
+  const Args args(argv, {"--json"}, {"--top"});
+  args.expect_positional(1, "a job file");
+  const Job job = load_job(args.positional()[0]);
+  int top = 12;
+  if (args.has("--top")) {
+    const std::string v = args.value("--top");
+    char* end = nullptr;
+    const long n = std::strtol(v.c_str(), &end, 10);
+    if (v.empty() || *end != '\0' || n < 1 || n > 200) {
+      throw UsageError("--top takes a whole number from 1 to 200 (got '" + v + "')");
+    }
+    top = static_cast<int>(n);
+  }
+  const Mandrel md = build_mandrel(job);
+  if (!md.revolution) {
+    throw InputError(job.path.string() + ": the mandrel is not a shape of revolution about " +
+                     "its axis: patterns are listed for shapes of revolution only (the " +
+                     "geodesic core plans the others; windplan helices reports their coverage)");
+  }
+  const WindingOptions& wo = job.winding;
+  const std::vector<Vec2> meridian = clip_meridian(
+      annulus_meridian(md.winding.mesh, md.axis), wo.start_station, wo.end_station);
+  const PatternProblem pr = pattern_problem(meridian, wo);
+  if (!pr.reachable) throw ConfigError(pr.why);
+  std::vector<PatternCandidate> all = pattern_candidates(pr);
+  if (static_cast<int>(all.size()) > top) all.resize(top);
+  struct Row {
+    PatternCandidate k;
+    CoverageReport cov;
+  };
+  std::vector<Row> rows;
+  CoverageOptions co;
+  co.band_width = wo.band_width;
+  co.stations = wo.coverage_stations;
+  for (const PatternCandidate& k : all) {
+    const ClairautPass pass = clairaut_pass(meridian, k.c, {fibre_step(wo)});
+    const std::vector<Circuit> circuits =
+        revolution_circuits(md.winding.mesh, {}, md.axis, pass, k, wo);
+    rows.push_back({k, measure_coverage(md.winding.mesh, md.axis, circuits, co)});
+  }
+  if (args.flag("--json")) {
+    JsonWriter j;
+    j.begin_object();
+    j.field("job", job.name);
+    j.field("requested_by", pr.requested_by);
+    j.field("requested_radius", pr.requested_c);
+    j.field("largest_radius", pr.largest_radius);
+    j.field("domes", pr.domes);
+    j.field("window_lo", pr.c_lo);
+    j.field("window_hi", pr.c_hi);
+    j.key("patterns").begin_array();
+    for (const Row& r : rows) {
+      j.begin_object();
+      j.field("circuits", r.k.circuits);
+      j.field("skip", r.k.skip);
+      j.field("angle_deg", r.k.angle_deg);
+      j.field("turnaround_radius", r.k.c);
+      j.field("moved", r.k.moved);
+      j.field("turns_per_pass", r.k.turns_per_pass);
+      j.field("cover_factor", r.k.cover_factor);
+      j.field("bare_fraction", r.cov.bare_fraction);
+      j.field("widest_gap", r.cov.widest_gap);
+      j.field("widest_overlap", r.cov.widest_overlap);
+      j.field("widest_overlap_largest", r.cov.widest_overlap_largest);
+      j.field("max_stack", r.cov.max_stack);
+      j.field("plies", r.cov.mean_plies);
+      j.end_object();
+    }
+    j.end_array();
+    j.end_object();
+    std::cout << j.str() << "\n";
+    return 0;
+  }
+  std::ostringstream s;
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "patterns: %s: %s asks a turnaround radius of %.2f mm (%.2f deg on R = %.2f mm); "
+                "%s\n",
+                job.name.c_str(), pr.requested_by.c_str(), pr.requested_c,
+                std::asin(std::min(1.0, pr.requested_c / pr.largest_radius)) * 180.0 / M_PI,
+                pr.largest_radius,
+                pr.domes ? "geodesic turnarounds on both domes, radius searched in the window"
+                         : "dwell ends: the dwells close every pattern");
+  s << buf;
+  if (pr.domes) {
+    std::snprintf(buf, sizeof buf, "  window %.2f .. %.2f mm\n", pr.c_lo, pr.c_hi);
+    s << buf;
+  }
+  s << "     K    p  angle[deg]  turnaround[mm]  moved[mm]  turns/pass  cover  bare[%]  gap[mm]"
+       "  overlap[mm] (largest)  stack  plies\n";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row& r = rows[i];
+    std::snprintf(buf, sizeof buf,
+                  "%s %4d %4d  %10.3f  %14.3f  %9.3f  %10.4f  %5.3f  %7.2f  %7.2f  %11.2f %9.2f  %5d  "
+                  "%5.2f\n",
+                  i == 0 ? "*" : " ", r.k.circuits, r.k.skip, r.k.angle_deg, r.k.c, r.k.moved,
+                  r.k.turns_per_pass, r.k.cover_factor, 100.0 * r.cov.bare_fraction,
+                  r.cov.widest_gap, r.cov.widest_overlap, r.cov.widest_overlap_largest, r.cov.max_stack, r.cov.mean_plies);
+    s << buf;
+  }
+  s << "  * what winding.pattern: auto winds\n";
+  std::cout << s.str();
+  return 0;
+}
+
+}  // namespace windplan::cli

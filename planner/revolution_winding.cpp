@@ -1,0 +1,123 @@
+#include "planner/revolution_winding.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/closest_point.h"
+#include "geometry/errors.h"
+#include "planner/fibre_metrics.h"
+#include "planner/helix.h"
+
+namespace windplan {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+}  // namespace
+
+double fibre_step(const WindingOptions& o) { return std::clamp(0.125 * o.band_width, 0.25, 2.0); }
+
+std::vector<Vec2> clip_meridian(const std::vector<Vec2>& m, double x0, double x1) {
+  const double lo = std::isfinite(x0) ? x0 : -std::numeric_limits<double>::infinity();
+  const double hi = std::isfinite(x1) ? x1 : std::numeric_limits<double>::infinity();
+  std::vector<Vec2> out;
+  auto cut = [](const Vec2& a, const Vec2& b, double x) {
+    const double t = (x - a.x()) / (b.x() - a.x());
+    return Vec2(x, a.y() + t * (b.y() - a.y()));
+  };
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const bool in = m[i].x() >= lo && m[i].x() <= hi;
+    if (i > 0) {
+      const Vec2 &a = m[i - 1], &b = m[i];
+      for (double x : {lo, hi}) {
+        if (std::isfinite(x) && (a.x() - x) * (b.x() - x) < 0.0) out.push_back(cut(a, b, x));
+      }
+    }
+    if (in) out.push_back(m[i]);
+  }
+  return out;
+}
+
+std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<int>& face_map,
+                                         const SpindleAxis& axis, const ClairautPass& pass,
+                                         const PatternCandidate& pattern,
+                                         const WindingOptions& options, double* projection_max) {
+  const std::array<Vec3, 2> frame = axis_frame(axis);
+  const std::vector<Vec3> vn = vertex_normals(annulus);
+  const ClosestPointQuery query(annulus);
+  const double window = options.curvature_window > 0.0 ? options.curvature_window
+                                                       : options.band_width;
+  const double step = fibre_step(options);
+  const std::vector<PassSample>& smp = pass.samples;
+  const double Phi = pass.angle;
+  double worst = 0.0;
+  auto place = [&](double x, double r, double phi) {
+    const Vec3 p = point_on_axis_frame(axis, frame, x, r, phi);
+    const ClosestPointQuery::Hit hit = query.closest(p);
+    worst = std::max(worst, hit.distance);
+    FibrePoint q;
+    q.position = hit.position;
+    q.normal = point_normal(annulus, vn, hit.point);
+    const int f = hit.point.element;
+    q.face = face_map.empty() || f < 0 || f >= static_cast<int>(face_map.size()) ? f : face_map[f];
+    return q;
+  };
+  // A dwell arc along the end circle (x, r) from phi on by delta.
+  auto dwell = [&](double x, double r, double phi, double delta) {
+    std::vector<FibrePoint> pts;
+    const int n = std::max(2, static_cast<int>(std::ceil(r * delta / step)));
+    for (int j = 0; j <= n; ++j) pts.push_back(place(x, r, phi + delta * j / n));
+    return pts;
+  };
+  const int K = pattern.circuits;
+  std::vector<Circuit> circuits(K);
+  for (int k = 0; k < K; ++k) {
+    Circuit& c = circuits[k];
+    c.index = k;
+    const double phi0 = std::fmod(k * pattern.advance, kTwoPi);
+    std::vector<FibrePoint> out;
+    for (const PassSample& s : smp) out.push_back(place(s.x, s.r, phi0 + s.phi));
+    append_circuit_segment(&c, std::move(out), CircuitSegment::Kind::Pass, axis, window);
+    const double d1 = pattern.dwell[1], d0 = pattern.dwell[0];
+    if (d1 > 0.0) {
+      append_circuit_segment(&c, dwell(smp.back().x, smp.back().r, phi0 + Phi, d1),
+                             CircuitSegment::Kind::Turnaround, axis, window);
+    }
+    std::vector<FibrePoint> back;
+    for (auto it = smp.rbegin(); it != smp.rend(); ++it) {
+      back.push_back(place(it->x, it->r, phi0 + Phi + d1 + (Phi - it->phi)));
+    }
+    append_circuit_segment(&c, std::move(back), CircuitSegment::Kind::Pass, axis, window);
+    if (d0 > 0.0) {
+      append_circuit_segment(&c, dwell(smp.front().x, smp.front().r, phi0 + 2.0 * Phi + d1, d0),
+                             CircuitSegment::Kind::Turnaround, axis, window);
+    }
+  }
+  if (projection_max) *projection_max = worst;
+  return circuits;
+}
+
+RevolutionWinding plan_revolution_winding(const Mesh& annulus, const std::vector<int>& face_map,
+                                          const SpindleAxis& axis, const WindingOptions& o) {
+  RevolutionWinding w;
+  const std::vector<Vec2> whole = annulus_meridian(annulus, axis);
+  const std::array<double, 2> range = {whole.front().x(), whole.back().x()};
+  if (o.has_start_station()) check_station("winding.start_station", o.start_station, range);
+  if (o.has_end_station()) check_station("winding.end_station", o.end_station, range);
+  w.meridian = clip_meridian(whole, o.start_station, o.end_station);
+  if (w.meridian.size() < 2) {
+    throw ConfigError("winding.start_station / end_station: the stations leave no wound length");
+  }
+  w.problem = pattern_problem(w.meridian, o);
+  if (!w.problem.reachable) return w;
+  w.planned = true;
+  w.pattern = choose_pattern(w.problem, o);
+  w.pass = clairaut_pass(w.meridian, w.pattern.c, {fibre_step(o)});
+  w.geodesic_end = w.pass.turns_around;
+  w.circuits = revolution_circuits(annulus, face_map, axis, w.pass, w.pattern, o,
+                                   &w.projection_max);
+  return w;
+}
+
+}  // namespace windplan

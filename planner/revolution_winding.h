@@ -1,0 +1,70 @@
+#pragma once
+// Helical winding on a shape of revolution: geodesic passes from Clairaut's integral on the
+// wound region's own meridian (planner/clairaut_pass.h), a closing pattern (planner/
+// winding_pattern.h), and K circuits that are copies of circuit 0 turned by the pattern's
+// advance, placed on the mesh by closest point.
+//
+// A circuit: the out pass from the start end to the far end (phi from 0 to Phi), the far end's
+// turnaround, the return pass (phi from Phi + delta_1 on, still increasing: the mandrel turns
+// one way), the start end's turnaround. On a dome the turnaround is the geodesic's own tangent
+// point on the parallel r = c: the two passes meet there with no arc between them. At a dwell
+// end (a pipe or cone end, a station) the fibre is held by pins or a ring while the mandrel
+// turns by delta: a dwell arc along the end circle (CircuitSegment::Kind::Turnaround).
+// Circuit k is circuit 0 turned by k times the advance, so whatever the mesh's own asymmetry the
+// circuits differ only by the projection onto the mesh (its tessellation error); the planned
+// points carry the projected positions, the interpolated vertex normals and the faces of the
+// full mesh (face_map), annotated like build_circuits (planner/fibre_metrics.h).
+// Units: mm, radians.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "geometry/axis.h"
+#include "geometry/mesh.h"
+#include "planner/clairaut_pass.h"
+#include "planner/plan.h"
+#include "planner/winding_options.h"
+#include "planner/winding_pattern.h"
+
+namespace windplan {
+
+struct RevolutionWinding {
+  /// false: the job's turns are beyond the geodesic turn limit between dwell ends
+  /// (problem.why); nothing else is planned.
+  bool planned = false;
+  std::vector<Vec2> meridian;  ///< the wound meridian (clipped to the stations), start end first
+  PatternProblem problem;
+  PatternCandidate pattern;
+  ClairautPass pass;  ///< the out pass of circuit 0 in meridian coordinates
+  std::vector<Circuit> circuits;
+  /// Per end: true where the passes turn around geodesically (no dwell arc).
+  std::array<bool, 2> geodesic_end = {false, false};
+  /// The largest distance from a planned point (before projection) to the mesh (mm): the
+  /// tessellation error the circuits carry.
+  double projection_max = 0.0;
+};
+
+/// The largest fibre length between the planned points of a pass (mm): an eighth of the band,
+/// within [0.25, 2].
+double fibre_step(const WindingOptions& options);
+
+/// The meridian clipped to the axial range [x0, x1] (NaN: no clip at that end), the end points
+/// interpolated.
+std::vector<Vec2> clip_meridian(const std::vector<Vec2>& meridian, double x0, double x1);
+
+/// The circuits of a pattern on the annulus (see the header comment).
+/// \param face_map annulus face -> full-mesh face (empty: keep annulus faces)
+std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<int>& face_map,
+                                         const SpindleAxis& axis, const ClairautPass& pass,
+                                         const PatternCandidate& pattern,
+                                         const WindingOptions& options,
+                                         double* projection_max = nullptr);
+
+/// Meridian, pattern and circuits of a job's winding on a shape of revolution.
+/// \throw ConfigError naming the winding key for a turnaround, angle, turns or pattern that no
+///        geodesic winding on this mandrel can give (planner/winding_pattern.h);
+///        TopologyError when the annulus has no meridian about the axis.
+RevolutionWinding plan_revolution_winding(const Mesh& annulus, const std::vector<int>& face_map,
+                                          const SpindleAxis& axis, const WindingOptions& options);
+
+}  // namespace windplan
