@@ -185,6 +185,8 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
         } else if (code == "M84") {
           if (!marlin) other(ln.number, code, "marlin");
           end = true;
+        } else if (code == "M0" || code == "M00") {
+          // A pause between layers (the operator ties off and cuts): no motion.
         } else if (code == "M98") {
           if (!fanuc) other(ln.number, code, "fanuc");
           call = 0;

@@ -3,7 +3,7 @@
 // written or as a user edited it, into the moves a lathe-type winder would make.
 //
 // Accepted, per dialect (anything else is an error naming the line):
-//   all:      G0, G1 (modal), G21, G90, G94, F, the machine's axis letters (lathe2: X and A;
+//   all:      G0, G1 (modal), G21, G90, G94, F, M0 (the pause between layers), the machine's axis letters (lathe2: X and A;
 //             lathe4: X, Y, A, B, as named in machine.axes), blank lines;
 //   linuxcnc: "%" lines, ( ) and ; comments, G93, M2, M30;
 //   marlin:   ; comments, G92 (re-zeroing; shifts are undone so values stay absolute), M84, M2;

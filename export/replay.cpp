@@ -238,6 +238,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   if (program.blocks.empty()) throw InputError("the program has no moves");
   if (mandrel.num_faces() == 0) throw InputError("the mandrel mesh is empty");
   std::vector<Vec3> planned, planned_n;
+  std::vector<int> circuit_start;  // index of each circuit's first point in `planned`
   std::vector<char> held;  // on a turnaround: a pin ring or boss holds the fibre there
   for (const Circuit& c : plan.circuits) {
     std::vector<char> on_turn(c.points.size(), 0);
@@ -248,6 +249,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
         on_turn[i] = 1;
       }
     }
+    if (!c.points.empty()) circuit_start.push_back(static_cast<int>(planned.size()));
     for (std::size_t i = 0; i < c.points.size(); ++i) {
       const FibrePoint& p = c.points[i];
       if (planned.empty() || (p.position - planned.back()).norm() > 1e-12) {
@@ -320,7 +322,17 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
       const double travel = std::hypot((e1 - e0).norm(),
                                        std::fabs(b.a - prev->a) * kPi / 180.0 *
                                            std::max(std::fabs(v[2]), std::fabs(pv[2])));
-      const int n = std::max(1, static_cast<int>(std::ceil(travel / options.step)));
+      if (b.rapid) {
+        // A rapid move between layers: the tow is cut, and tied on again at the next circuit's
+        // first point (export/gcode.h); no fibre is laid on the way.
+        const auto next = std::upper_bound(circuit_start.begin(), circuit_start.end(), ptr);
+        if (next != circuit_start.end()) {
+          ptr = std::min<int>(*next, static_cast<int>(planned.size()) - 1);
+          P.p = planned[ptr];
+          P.n = planned_n[ptr];
+        }
+      }
+      const int n = b.rapid ? 0 : std::max(1, static_cast<int>(std::ceil(travel / options.step)));
       for (int k = 1; k <= n; ++k) {
         const double t = static_cast<double>(k) / n;
         const Vec3 e = eye_at(prev->a + t * (b.a - prev->a), prev->x + t * (b.x - prev->x),

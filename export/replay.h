@@ -17,7 +17,8 @@
 // interpolated from face-corner normals that do not average across creases). When the free fibre lifts off, P stays: laid fibre does
 // not come off. This is the payout lag of a real winder; on a cylinder it lays z_P' = (z_E - z_P)
 // / tan(beta) per radian (beta = acos(r / R_eye)), whose steady state is the planned helix.
-// The fibre starts at the planned path's first point (where it is tied on). On the plan's
+// The fibre starts at the planned path's first point (where it is tied on); a rapid G0 after that
+// (between layers: the tow is cut) ties it on again at the next circuit's first point. On the plan's
 // turnarounds (CircuitSegment::Kind::Turnaround: dwell arcs on pin rings, stations or a boss) the
 // pins or the boss hold the fibre: once the contact comes within catch_distance (10 mm, along the
 // plan) of one, it moves along the planned arc to
