@@ -397,7 +397,8 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     if (dur > 0.0) {
       st.feed = m.inverse_time ? 60.0 / dur : 60.0 * std::sqrt(dist2) / dur;
     } else {
-      st.feed = p.feed;  // no motion: the modal feed stays
+      // No motion: the modal feed stays; before any motion a nominal one (a control rejects F0).
+      st.feed = p.feed > 0.0 ? p.feed : (m.inverse_time ? 60000.0 : 60.0 * opts.x.max_velocity);
     }
   }
   for (std::size_t k = 0; k < circuit_begin.size(); ++k) {
