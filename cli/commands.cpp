@@ -14,6 +14,8 @@ const std::vector<Command>& commands() {
        kPatternsHelp, run_patterns},
       {"run", "run a job end to end: mandrel, girth, helices, toolpath, every output file",
        kRunHelp, run_run},
+      {"simulate", "replay a G-code program through the job's machine: deviation, limits, time",
+       kSimulateHelp, run_simulate},
       {"girth", "the girth field of a job's winding surface (shortest loops winding once)",
        kGirthHelp, run_girth},
       {"geodesic", "a geodesic between two surface points (vertex or x,y,z), optional metric",

@@ -52,5 +52,7 @@ extern const char* const kHelicesHelp;
 /// cmd_run.cpp: run a job end to end (mandrel -> girth -> helices -> toolpath -> exports).
 int run_run(const std::vector<std::string>& args);
 extern const char* const kRunHelp;
+int run_simulate(const std::vector<std::string>& args);
+extern const char* const kSimulateHelp;
 
 }  // namespace windplan::cli

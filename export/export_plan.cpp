@@ -3,7 +3,10 @@
 #include "export/axes_svg.h"
 #include "export/cutlines_csv.h"
 
+#include <cstdio>
+
 #include "export/gcode.h"
+#include "export/gcode_reader.h"
 #include "export/output_set.h"
 #include "export/ply_polylines.h"
 #include "export/report.h"
@@ -79,10 +82,12 @@ CsvTable axes_table(const Motion& motion) {
 CsvTable eye_pose_table(const Motion& motion) {
   CsvTable t;
   t.header = {"circuit",    "index",      "t_s [s]", "A_deg [deg]", "eye_x [mm]",
-              "eye_y [mm]", "eye_z [mm]", "dir_x",   "dir_y",       "dir_z"};
+              "eye_y [mm]", "eye_z [mm]", "dir_x",   "dir_y",       "dir_z",
+              "radial_x",   "radial_y",   "radial_z"};
   for (const MachineState& s : motion.states) {
     t.rows.push_back({double(s.circuit), double(s.index), s.t_s, s.a_deg, s.eye.x(), s.eye.y(),
-                      s.eye.z(), s.direction.x(), s.direction.y(), s.direction.z()});
+                      s.eye.z(), s.direction.x(), s.direction.y(), s.direction.z(),
+                      s.radial.x(), s.radial.y(), s.radial.z()});
   }
   return t;
 }
@@ -94,8 +99,25 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   r.directory = dir;
   r.machine = machine;
   r.timings = output.timings;
-  r.motion = compute_motion(plan, machine);
+  r.motion = compute_motion(plan, machine, &mandrel_mesh);
   const bool robot = machine.kind == "robot";
+  std::string program;
+  if (!robot) {
+    program = gcode_program(r.motion, plan.job_name, machine);
+    if (mandrel_mesh.num_faces() > 0 && !r.motion.states.empty()) {
+      const std::string name = "toolpath" + gcode_extension(machine.gcode.dialect);
+      r.replay = replay_program(read_gcode(program, machine, name), plan, mandrel_mesh, machine);
+      r.has_replay = true;
+      if (machine.replay_tolerance > 0.0 && r.replay.max_deviation > machine.replay_tolerance) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%.3f mm from the plan at line %d, more than %.3f mm",
+                      r.replay.max_deviation, r.replay.max_deviation_line,
+                      machine.replay_tolerance);
+        throw InputError("machine.replay_tolerance: the replay of " + name + " lays the fibre " +
+                         buf + "; no program written");
+      }
+    }
+  }
 
   // The list first, so that the reports can name every file (themselves included).
   const bool cutlines = output.csv && !plan.cutlines.empty();
@@ -136,7 +158,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     }
   }
   if (output.gcode && !robot) {
-    write_text_atomically(dir / gcode_name, gcode_program(r.motion, plan.job_name, machine));
+    write_text_atomically(dir / gcode_name, program);
     wrote(gcode_name);
   }
   if (output.ply) {

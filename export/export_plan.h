@@ -11,7 +11,8 @@
 //                           (resampled points; cumulative = laid length so far + free length)
 //           axes.csv        circuit, index, t_s, A_deg, X_mm, Y_mm, B_deg, F (resampled points)
 //           eye_pose.csv    (machine.kind robot only) circuit, index, t_s, A, eye position and
-//                           unit fibre direction in the mandrel frame
+//                           unit fibre direction and unit radial direction of the eye (its full
+//                           pose: the third axis is their cross product) in the mandrel frame
 //   gcode:  toolpath.ngc | toolpath.gcode | toolpath.nc (lathe2/lathe4; see export/gcode.h)
 //   report: report.json, report.md (see export/report.h)
 //   ply:    mesh.ply (the mandrel), paths.ply (see export/ply_polylines.h)
@@ -26,6 +27,7 @@
 
 #include "export/csv.h"
 #include "export/kinematics.h"
+#include "export/replay.h"
 #include "geometry/mesh.h"
 #include "planner/machine_options.h"
 #include "planner/plan.h"
@@ -36,6 +38,10 @@ struct ExportResult {
   std::filesystem::path directory;
   std::vector<std::string> files;  ///< names written, in order (relative to directory)
   Motion motion;                   ///< eye, axes, times (from compute_motion)
+  /// The replay of the G-code program (lathe kinds with a non-empty mandrel mesh); has_replay
+  /// false otherwise.
+  bool has_replay = false;
+  ReplayResult replay;
   MachineOptions machine;          ///< as used
   bool timings = false;            ///< output.timings
 };
@@ -60,8 +66,10 @@ struct ExportContext {
   std::vector<std::string> also_written;
 };
 
-/// Computes the motion and writes the files.
-/// \throw InputError (bad envelope, axis limits; see compute_motion), IoError (cannot write).
+/// Computes the motion, replays the G-code (export/replay.h) and writes the files.
+/// \throw InputError (bad envelope, clearance, axis limits; see compute_motion; a replay that
+///        deviates more than machine.replay_tolerance from the plan: then no file is written),
+///        IoError (cannot write).
 ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
                          const MachineOptions& machine, const OutputOptions& output,
                          const std::filesystem::path& dir, const ExportContext& context = {});

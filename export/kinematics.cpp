@@ -3,8 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <memory>
 
+#include "export/clearance.h"
+#include "export/monotone_axes.h"
 #include "export/resample.h"
+#include "export/tangent_smoothing.h"
+#include "geometry/closest_point.h"
 #include "geometry/errors.h"
 
 namespace windplan {
@@ -48,45 +54,6 @@ AxisFrame make_axis_frame(const SpindleAxis& axis) {
   f.u = (e - e.dot(f.d) * f.d).normalized();
   f.v = f.d.cross(f.u);
   return f;
-}
-
-double Envelope::radius_at(double ax) const {
-  if (x.empty()) return 0.0;
-  if (ax <= x.front()) return r.front();
-  if (ax >= x.back()) return r.back();
-  const auto it = std::upper_bound(x.begin(), x.end(), ax);
-  const std::size_t i = static_cast<std::size_t>(it - x.begin());
-  const double t = (ax - x[i - 1]) / (x[i] - x[i - 1]);
-  return (1.0 - t) * r[i - 1] + t * r[i];
-}
-
-Envelope make_envelope(const RadiusProfile& mandrel, const EnvelopeOptions& opts) {
-  Envelope e;
-  const std::string mode = opts.mode();
-  if (mode == "free_length") {
-    e.fixed_length = true;
-    e.free_length = opts.free_length;
-    return e;
-  }
-  if (mode == "profile") {
-    for (const auto& xr : opts.profile) {
-      e.x.push_back(xr[0]);
-      e.r.push_back(xr[1]);
-    }
-  } else {
-    if (mandrel.empty()) {
-      throw InputError(
-          "machine.envelope: the plan has no mandrel radius profile for 'clearance'; give "
-          "machine.envelope.profile or machine.envelope.free_length");
-    }
-    e.x = mandrel.axial;
-    for (double r : mandrel.radius) e.r.push_back(r + opts.clearance);
-  }
-  for (std::size_t i = 1; i < e.x.size(); ++i) {
-    const double dx = e.x[i] - e.x[i - 1];
-    if (dx > 0.0) e.max_slope = std::max(e.max_slope, std::fabs(e.r[i] - e.r[i - 1]) / dx);
-  }
-  return e;
 }
 
 EyeSolution solve_payout_eye(const AxisFrame& frame, const Envelope& env, const Vec3& p,
@@ -160,43 +127,155 @@ bool uses_inverse_time(const GcodeOptions& g) {
   return g.dialect == "linuxcnc";
 }
 
-Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts) {
+std::array<FeedAxis, 4> feed_axes(const MachineOptions& opts) {
+  return {FeedAxis{opts.a.max_velocity, opts.a.max_acceleration},
+          FeedAxis{opts.x.max_velocity, opts.x.max_acceleration},
+          FeedAxis{opts.y.max_velocity, opts.y.max_acceleration},
+          FeedAxis{opts.b.max_velocity, opts.b.max_acceleration}};
+}
+
+int driven_axes(const MachineOptions& opts) { return opts.kind == "lathe2" ? 2 : 4; }
+
+namespace {
+
+// Sign changes between consecutive non-zero moves of v[begin..end); calls at(i) with the index of
+// the turning value for each.
+template <class F>
+int count_reversals(const std::vector<double>& v, int begin, int end, F at) {
+  int count = 0, dir = 0, last = begin;
+  for (int i = begin + 1; i < end; ++i) {
+    const double d = v[i] - v[i - 1];
+    if (std::fabs(d) < 1e-9) continue;
+    const int s = d > 0 ? 1 : -1;
+    if (dir != 0 && s != dir) {
+      ++count;
+      at(last);
+    }
+    dir = s;
+    last = i;
+  }
+  return count;
+}
+
+// Reversal figures of one circuit's states [begin, end).
+void count_circuit_reversals(const Circuit& c, const std::vector<MachineState>& st, int begin,
+                             int end, Motion* m) {
+  std::vector<double> xs(st.size()), as(st.size());
+  for (int i = begin; i < end; ++i) {
+    xs[i] = st[i].x_mm;
+    as[i] = st[i].a_deg;
+  }
+  // The pass containing dense index k strictly inside it, or nullptr.
+  auto pass_of = [&c](int k) -> const CircuitSegment* {
+    for (const CircuitSegment& seg : c.segments) {
+      if (seg.kind == CircuitSegment::Kind::Pass && k > seg.first && k < seg.last) return &seg;
+    }
+    return nullptr;
+  };
+  const int cx = count_reversals(xs, begin, end, [&](int i) {
+    const int k = st[i].index;
+    if (const CircuitSegment* seg = pass_of(k)) {
+      const double s0 = c.points[seg->first].s, s1 = c.points[seg->last].s;
+      const double s = c.points[k].s;
+      if (s > s0 + 0.25 * (s1 - s0) && s < s1 - 0.25 * (s1 - s0)) ++m->mid_pass_carriage_reversals;
+    }
+  });
+  m->carriage_reversals += cx;
+  m->max_carriage_reversals_per_circuit = std::max(m->max_carriage_reversals_per_circuit, cx);
+  m->spindle_reversals += count_reversals(as, begin, end, [&](int i) {
+    if (pass_of(st[i].index)) ++m->spindle_reversals_in_passes;
+  });
+}
+
+}  // namespace
+
+Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const Mesh* mandrel) {
   std::string why;
   if (!opts.is_valid(&why)) throw ConfigError("machine: " + why);
   Motion m;
   m.inverse_time = uses_inverse_time(opts.gcode);
   m.layers = plan.layers;
   const AxisFrame frame = make_axis_frame(plan.axis);
-  const Envelope env = make_envelope(plan.profile, opts.envelope);
+  const Envelope env = make_envelope(swept_profile(plan, mandrel), opts.envelope, opts.kind);
+  m.envelope = env.description;
   const bool lathe2 = opts.kind == "lathe2";
   // Machine axes that move (and bound the time): lathe2 drives A and X only.
   const AxisOptions* axes[4] = {&opts.a, &opts.x, &opts.y, &opts.b};
   const char* names[4] = {"A", "X", "Y", "B"};
   const char* units[4] = {"deg", "mm", "mm", "deg"};
-  const int n_axes = lathe2 ? 2 : 4;
+  const int n_axes = driven_axes(opts);
+  std::unique_ptr<ClosestPointQuery> query;
+  if (mandrel && mandrel->num_faces() > 0) query = std::make_unique<ClosestPointQuery>(*mandrel);
+  m.required_clearance = env.fixed_length ? 0.0 : opts.envelope.clearance;
+  double min_clearance = std::numeric_limits<double>::infinity();
 
   double laid_before = 0.0;
   bool first = true;
   MachineState prev;
+  std::vector<int> circuit_begin;
   for (std::size_t ordinal = 0; ordinal < plan.circuits.size(); ++ordinal) {
     const Circuit& c = plan.circuits[ordinal];
     const int n = static_cast<int>(c.points.size());
     if (n == 0) continue;
     m.dense_points += n;
-    std::vector<Vec3> fibre(n), eyes(n);
-    std::vector<EyeSolution> sol(n);
+    std::vector<Vec3> fibre(n), eyes(n), raw_t(n);
+    std::vector<double> s(n), kappa(n);
     for (int i = 0; i < n; ++i) {
       const FibrePoint& fp = c.points[i];
+      fibre[i] = fp.position;
+      raw_t[i] = fp.tangent;
+      s[i] = fp.s;
+      kappa[i] = std::hypot(fp.k_n, fp.k_g);
+    }
+    // Pieces: a dwell arc (Turnaround) is its own piece, consecutive passes form one (they meet
+    // tangentially); the smoothing window does not cross a corner between pieces.
+    std::vector<int> piece(n, 0);
+    {
+      int id = 0;
+      bool prev_turn = false;
+      for (std::size_t g = 0; g < c.segments.size(); ++g) {
+        const bool turn = c.segments[g].kind == CircuitSegment::Kind::Turnaround;
+        if (g > 0 && (turn || prev_turn)) ++id;
+        for (int i = std::max(0, c.segments[g].first); i <= c.segments[g].last && i < n; ++i) {
+          piece[i] = id;
+        }
+        prev_turn = turn;
+      }
+    }
+    const std::vector<Vec3> tangent =
+        smooth_tangents(fibre, s, kappa, raw_t, opts.tangent_window, 2.0, piece);
+    std::vector<EyeSolution> sol(n);
+    for (int i = 0; i < n; ++i) {
+      const double tn = raw_t[i].norm();
+      if (tn > 0.0) {
+        const double cosang = std::clamp(tangent[i].dot(raw_t[i]) / tn, -1.0, 1.0);
+        m.max_tangent_change = std::max(m.max_tangent_change, std::acos(cosang) * kDeg);
+      }
       try {
-        sol[i] = solve_payout_eye(frame, env, fp.position, fp.tangent);
+        sol[i] = solve_payout_eye(frame, env, fibre[i], tangent[i]);
       } catch (const InputError& e) {
         // The point is named only on failure (no string per point on the hot path).
         throw InputError("circuit " + std::to_string(c.index) + ", point " + std::to_string(i) +
                          ": " + e.what());
       }
-      fibre[i] = fp.position;
       eyes[i] = sol[i].eye;
       m.max_eye_iterations = std::max(m.max_eye_iterations, sol[i].iterations);
+    }
+    if (query) {
+      const ClearanceCheck cc = check_clearance(*query, eyes);
+      if (cc.min_distance < min_clearance) {
+        min_clearance = cc.min_distance;
+        m.min_clearance_circuit = c.index;
+        m.min_clearance_index = cc.worst;
+      }
+      if (cc.min_distance < m.required_clearance - opts.chord_tolerance) {
+        const Vec3& e = cc.worst_eye;
+        throw InputError("machine.envelope: circuit " + std::to_string(c.index) + ", point " +
+                         std::to_string(cc.worst) + ": the eye at (" + num(e.x()) + ", " +
+                         num(e.y()) + ", " + num(e.z()) + ") mm is " + num(cc.min_distance) +
+                         " mm from the mandrel, less than the clearance " +
+                         num(m.required_clearance) + " mm (" + env.description + ")");
+      }
     }
     std::vector<int> forced;
     for (const CircuitSegment& seg : c.segments) {
@@ -206,6 +285,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts) {
     const ResampleResult rs = resample_by_chord({&fibre, &eyes}, opts.chord_tolerance, forced);
     m.max_chord_deviation = std::max(m.max_chord_deviation, rs.max_deviation);
     const double s0 = c.points.front().s;
+    circuit_begin.push_back(static_cast<int>(m.states.size()));
     for (int k : rs.kept) {
       const FibrePoint& fp = c.points[k];
       MachineState st;
@@ -214,17 +294,18 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts) {
       st.index = k;
       st.position = fp.position;
       st.eye = sol[k].eye;
-      st.direction = fp.tangent.normalized();
+      st.direction = tangent[k];
       st.free_length = sol[k].free_length;
       st.paid_out = laid_before + (fp.s - s0) + st.free_length;
       const double a_raw = -frame.angle(st.eye) * kDeg;
       st.a_deg = first ? a_raw : unwrap_deg(a_raw, prev.a_deg);
       st.x_mm = frame.axial(st.eye);
       st.y_mm = frame.radius(st.eye);
+      const Vec3 q = st.eye - frame.origin;
+      const Vec3 radial = q - q.dot(frame.d) * frame.d;
+      const double rn = radial.norm();
+      if (rn > 1e-12) st.radial = radial / rn;
       if (!lathe2) {
-        const Vec3 q = st.eye - frame.origin;
-        const Vec3 radial = q - q.dot(frame.d) * frame.d;
-        const double rn = radial.norm();
         double b_raw = first ? 0.0 : prev.b_deg;
         if (rn > 1e-12) {
           const Vec3 circ = frame.d.cross(radial / rn);
@@ -243,27 +324,6 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts) {
                            ", point " + std::to_string(k));
         }
       }
-      if (!first) {
-        const double prev_value[4] = {prev.a_deg, prev.x_mm, prev.y_mm, prev.b_deg};
-        double dur = 0.0, dist2 = 0.0;
-        for (int ax = 0; ax < n_axes; ++ax) {
-          const double dv = value[ax] - prev_value[ax];
-          dur = std::max(dur, std::fabs(dv) / axes[ax]->max_velocity);
-          dist2 += dv * dv;
-        }
-        if (opts.max_fibre_speed > 0.0) {
-          const double laid = (st.paid_out - st.free_length) - (prev.paid_out - prev.free_length);
-          dur = std::max(dur, std::fabs(laid) / opts.max_fibre_speed);
-        }
-        // A move without motion still takes a millisecond (keeps F finite).
-        dur = std::max(dur, 1e-3);
-        st.duration = dur;
-        st.t_s = prev.t_s + dur;
-        st.feed = m.inverse_time ? 60.0 / dur : 60.0 * std::sqrt(dist2) / dur;
-        // A per-minute feed of 0 is an error on most controls; a move without motion keeps the
-        // previous (modal) feed.
-        if (!m.inverse_time && dist2 == 0.0) st.feed = prev.feed;
-      }
       auto grow = [first](Range* r, double v) {
         if (first) {
           r->min = r->max = v;
@@ -281,7 +341,71 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts) {
       prev = st;
       first = false;
     }
+    if (opts.monotone_axes) {
+      const int b = circuit_begin.back(), e = static_cast<int>(m.states.size());
+      std::vector<double> xs(e), as(e);
+      for (int i = b; i < e; ++i) {
+        xs[i] = m.states[i].x_mm;
+        as[i] = m.states[i].a_deg;
+      }
+      m.max_monotone_change_x = std::max(m.max_monotone_change_x, monotone_between_extremes(&xs, b, e));
+      m.max_monotone_change_a = std::max(m.max_monotone_change_a, monotone_overall(&as, b, e));
+      for (int i = b; i < e; ++i) {
+        MachineState& st = m.states[i];
+        st.x_mm = xs[i];
+        st.a_deg = as[i];
+        const double th = -st.a_deg / kDeg;
+        st.eye = frame.origin + st.x_mm * frame.d +
+                 st.y_mm * (std::cos(th) * frame.u + std::sin(th) * frame.v);
+        st.free_length = (st.eye - st.position).norm();
+      }
+      prev = m.states.back();
+    }
+    count_circuit_reversals(c, m.states, circuit_begin.back(),
+                            static_cast<int>(m.states.size()), &m);
     laid_before += c.points.back().s - s0;
+  }
+  if (query && std::isfinite(min_clearance)) m.min_clearance = min_clearance;
+
+  // The feed plan over all moves.
+  std::vector<AxisValues> values(m.states.size());
+  std::vector<double> cap(m.states.size(), 0.0);
+  for (std::size_t i = 0; i < m.states.size(); ++i) {
+    const MachineState& st = m.states[i];
+    values[i] = {st.a_deg, st.x_mm, st.y_mm, st.b_deg};
+    if (i > 0 && opts.max_fibre_speed > 0.0) {
+      const MachineState& p = m.states[i - 1];
+      const double laid = std::fabs((st.paid_out - st.free_length) - (p.paid_out - p.free_length));
+      double len2 = 0.0;
+      for (int a = 0; a < n_axes; ++a) len2 += std::pow(values[i][a] - values[i - 1][a], 2);
+      if (laid > 0.0) cap[i] = opts.max_fibre_speed * std::sqrt(len2) / laid;
+    }
+  }
+  const std::array<FeedAxis, 4> fa = feed_axes(opts);
+  const FeedPlan fp = plan_feed(values, n_axes, fa, cap);
+  m.limits = check_axis_limits(values, fp.duration, n_axes, fa);
+  m.circuit_time.assign(circuit_begin.size(), 0.0);
+  for (std::size_t i = 0; i < m.states.size(); ++i) {
+    MachineState& st = m.states[i];
+    if (i == 0) continue;
+    const MachineState& p = m.states[i - 1];
+    const double dur = fp.duration[i];
+    st.duration = dur;
+    st.t_s = p.t_s + dur;
+    double dist2 = 0.0;
+    for (int a = 0; a < n_axes; ++a) dist2 += std::pow(values[i][a] - values[i - 1][a], 2);
+    if (dur > 0.0) {
+      st.feed = m.inverse_time ? 60.0 / dur : 60.0 * std::sqrt(dist2) / dur;
+    } else {
+      // No motion: the modal feed stays; before any motion a nominal one (a control rejects F0).
+      st.feed = p.feed > 0.0 ? p.feed : (m.inverse_time ? 60000.0 : 60.0 * opts.x.max_velocity);
+    }
+  }
+  for (std::size_t k = 0; k < circuit_begin.size(); ++k) {
+    const int b = circuit_begin[k];
+    const int e =
+        k + 1 < circuit_begin.size() ? circuit_begin[k + 1] : static_cast<int>(m.states.size());
+    if (e > b) m.circuit_time[k] = m.states[e - 1].t_s - (b > 0 ? m.states[b - 1].t_s : 0.0);
   }
   m.wind_time = m.states.empty() ? 0.0 : m.states.back().t_s;
   return m;

@@ -3,11 +3,11 @@
 //
 // Payout eye (the convention of Cadfil's payout files): for a fibre point P with unit tangent t
 // (the direction of travel), the eye is E = P + L t, the point where the tangent line first
-// leaves the clearance envelope; L >= 0 is the free fibre length between eye and mandrel. The
-// envelope is a surface of revolution about the spindle axis, R_env(x) of the axial coordinate x:
-//   - clearance mode: the plan's RadiusProfile plus `clearance`;
-//   - profile mode:   the explicit (x, r) polyline, clamped beyond its ends;
-//   - free_length:    no envelope, L is the configured constant.
+// leaves the eye envelope; L >= 0 is the free fibre length between eye and mandrel. The
+// envelope is a surface of revolution about the spindle axis, R_env(x) of the axial coordinate x,
+// chosen per machine kind (export/eye_envelope.h: a cylinder for lathe2, the true-distance
+// clearance envelope for lathe4 and robots, or an explicit profile; or a fixed free length). The
+// tangents t are the plan's, smoothed under machine.tangent_window (export/tangent_smoothing.h).
 // L solves f(L) = r(E(L)) - R_env(x(E(L))) = 0 for the first root: f is Lipschitz with constant
 // 1 + S (S = the largest |dR_env/dx|), so marching by -f/(1+S) never steps over a root (sphere
 // tracing); the last bracket is refined by bisection to 1e-10 mm.
@@ -26,16 +26,27 @@
 //            direction t resolved at E into axial t_x = t.d and circumferential t_c = t.(d x r_E)
 //            (r_E the unit radial direction of E), B = atan2(t_c, t_x), unwrapped: 0 when the
 //            fibre runs along +d, +90 when it runs circumferentially counter-clockwise about d.
-// Times: each move's duration is the max over the machine's axes of |delta| / max_velocity, and
-// at least delta_s / max_fibre_speed when that is set; t_s accumulates durations from 0 at the
-// first point; the move into the first point of a circuit (c > 0) links it to the previous one.
+// Times: the feed plan of export/feed_plan.h over the machine axes (lathe2: A, X; others A, X, Y,
+// B), per-axis max_velocity and max_acceleration, and the fibre speed cap delta_s /
+// max_fibre_speed when that is set; t_s accumulates durations from 0 at the first point; the move
+// into the first point of a circuit (c > 0) links it to the previous one and counts in its time.
 // Feed F (the G-code dialect's convention): inverse time F = 60 / duration (1/min, G93), or per
 // minute F = 60 * |(delta of each machine axis)| / duration with degrees counted as mm (G94).
-// The first point of the plan has duration 0 and F 0 (a rapid positioning move).
+// The first point of the plan has duration 0 and F 0 (a rapid positioning move); a move without
+// motion has duration 0 and keeps the previous F.
+// Clearance (with a mandrel mesh): every dense eye point's distance to the mesh; below the
+// required clearance minus chord_tolerance it is an error naming the point.
+// Monotone axes (machine.monotone_axes, export/monotone_axes.h): per circuit, A monotone and X
+// monotone between its turning points; the eye is then recomputed from the axes.
+// Reversals: a reversal of an axis is a sign change between consecutive non-zero moves of its
+// resampled values; a pass is a CircuitSegment of kind Pass.
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
+#include "export/eye_envelope.h"
+#include "export/feed_plan.h"
 #include "geometry/axis.h"
 #include "geometry/mesh.h"
 #include "planner/machine_options.h"
@@ -59,20 +70,6 @@ struct AxisFrame {
 };
 
 AxisFrame make_axis_frame(const SpindleAxis& axis);
-
-/// The clearance envelope R_env(x) (or the fixed free-length mode).
-struct Envelope {
-  bool fixed_length = false;
-  double free_length = 0.0;  ///< mm, fixed_length mode
-  std::vector<double> x;     ///< mm, strictly increasing
-  std::vector<double> r;     ///< mm
-  double max_slope = 0.0;    ///< max |dr/dx|
-  double radius_at(double ax) const;
-};
-
-/// Builds the envelope from the machine options and the plan's mandrel profile.
-/// \throw InputError when clearance mode has an empty mandrel profile.
-Envelope make_envelope(const RadiusProfile& mandrel, const EnvelopeOptions& opts);
 
 struct EyeSolution {
   Vec3 eye = Vec3::Zero();
@@ -100,6 +97,7 @@ struct MachineState {
   Vec3 direction = Vec3::UnitZ();  ///< unit fibre direction at the eye (mandrel frame)
   double free_length = 0.0;        ///< mm
   double paid_out = 0.0;  ///< mm of fibre through the eye: laid length so far + free length
+  Vec3 radial = Vec3::UnitX();  ///< unit radial direction of the eye (robot pose; mandrel frame)
 };
 
 /// Min and max of one quantity.
@@ -118,15 +116,44 @@ struct Motion {
   /// The plan's layers (WindingPlan::layers; empty for a one-layer job): the G-code comments
   /// each layer and pauses between layers (export/gcode.h).
   std::vector<LayerSummary> layers;
+
+  std::string envelope;              ///< the eye envelope of the machine kind, in words
+
+  /// Clearance: the smallest distance of a dense eye point to the mandrel mesh (NaN: no mesh
+  /// given), the clearance required (mm) and where the minimum is.
+  double min_clearance = std::nan("");
+  double required_clearance = 0.0;
+  int min_clearance_circuit = -1, min_clearance_index = -1;
+
+  /// Reversals of the carriage X and the spindle A (see the header comment).
+  int carriage_reversals = 0;
+  int max_carriage_reversals_per_circuit = 0;
+  /// Carriage reversals whose fibre point is in the middle half (by arc length) of a pass.
+  int mid_pass_carriage_reversals = 0;
+  int spindle_reversals = 0;
+  int spindle_reversals_in_passes = 0;  ///< at a point strictly inside a pass
+  double max_tangent_change = 0.0;      ///< deg, largest change of the smoothed vs plan tangent
+  double max_monotone_change_x = 0.0;   ///< mm, largest change of X by monotone_axes
+  double max_monotone_change_a = 0.0;   ///< deg, largest change of A by monotone_axes
+
+  AxisLimitCheck limits;             ///< the feed plan measured against the axis limits
+  std::vector<double> circuit_time;  ///< s per circuit (in order), the link move included
 };
 
 /// True when the G-code feed convention is inverse time (G93).
 bool uses_inverse_time(const GcodeOptions& g);
 
+/// The feed limits of the machine's axes, in the order A, X, Y, B.
+std::array<FeedAxis, 4> feed_axes(const MachineOptions& opts);
+/// Number of axes the machine drives (lathe2: 2, A and X; others 4).
+int driven_axes(const MachineOptions& opts);
+
 /// Computes eye, axes, times and feeds of a plan. Circuits with no points are skipped.
+/// \param mandrel the mandrel mesh for the clearance check (nullptr: not checked)
 /// \throw InputError for an envelope inside the mandrel, a tangent that never leaves the
-///        envelope, or a machine value outside an axis's travel limits (naming the axis, the
-///        value and the point as circuit/index).
-Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts);
+///        envelope, an eye closer to the mandrel than the clearance, or a machine value outside
+///        an axis's travel limits (naming the axis, the value and the point as circuit/index).
+Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts,
+                      const Mesh* mandrel = nullptr);
 
 }  // namespace windplan

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "export/layup_report.h"
+#include "export/motion_report.h"
 #include "geometry/json.h"
 #include "planner/winding_options.h"
 #include "windplan_version.h"
@@ -244,6 +245,7 @@ std::string report_json(const WindingPlan& plan, const ExportResult& r) {
   range_json(j, "Y_mm", mo.y);
   range_json(j, "B_deg", mo.b);
   j.end_object();
+  motion_json(j, mo, r.has_replay ? &r.replay : nullptr);
   j.key("circuits").begin_array();
   for (const CircuitFigures& f : circuit_figures(plan, mo)) {
     j.begin_object();
@@ -390,7 +392,7 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
     << "| X [mm] | " << fmt("%.4f", mo.x.min) << " | " << fmt("%.4f", mo.x.max) << " |\n"
     << "| Y [mm] | " << fmt("%.4f", mo.y.min) << " | " << fmt("%.4f", mo.y.max) << " |\n"
     << "| B [deg] | " << fmt("%.4f", mo.b.min) << " | " << fmt("%.4f", mo.b.max) << " |\n\n"
-    << "## Circuits\n";
+    << motion_markdown(mo, r.has_replay ? &r.replay : nullptr) << "## Circuits\n";
   for (const CircuitFigures& f : circuit_figures(plan, mo)) {
     o << "\n### Circuit " << f.index << "\n\n| figure | value |\n|---|---|\n"
       << "| points (dense / machine) | " << f.points << " / " << f.machine_points << " |\n"
@@ -476,7 +478,8 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
     << "  axis Y           " << fmt("%.2f", mo.y.min) << " .. " << fmt("%.2f", mo.y.max) << " mm\n"
     << "  axis B           " << fmt("%.2f", mo.b.min) << " .. " << fmt("%.2f", mo.b.max) << " deg\n"
     << "  machine points   " << mo.states.size() << " of " << mo.dense_points
-    << " (chord deviation " << fmt("%.4f", mo.max_chord_deviation) << " mm)\n";
+    << " (chord deviation " << fmt("%.4f", mo.max_chord_deviation) << " mm)\n"
+    << motion_summary(mo, r.has_replay ? &r.replay : nullptr);
   o << layers_summary(plan, mo);  // layups only (export/layup_report.h)
   for (const StageTiming& t : m.timings) {
     o << "  time " << t.stage << std::string(t.stage.size() < 12 ? 12 - t.stage.size() : 1, ' ')

@@ -296,7 +296,7 @@ void reject_unknown_keys(const ConfigNode& n, const std::vector<std::string>& kn
 }
 
 void decode_envelope(ConfigNode n, EnvelopeOptions* e) {
-  reject_unknown_keys(n, {"clearance", "profile", "free_length"});
+  reject_unknown_keys(n, {"clearance", "profile", "free_length", "radius"});
   int modes = 0;
   modes += n.has("clearance");
   modes += n.has("profile");
@@ -304,6 +304,7 @@ void decode_envelope(ConfigNode n, EnvelopeOptions* e) {
   if (modes > 1) n.fail_here("give only one of clearance, profile, free_length");
   n.get("clearance", &e->clearance);
   n.get("free_length", &e->free_length);
+  n.get("radius", &e->radius);
   if (n.has("profile")) {
     const YAML::Node p = n.yaml()["profile"];
     if (!p.IsSequence()) n.fail("profile", "expected a list of [x, r] pairs (mm)");
@@ -333,15 +334,35 @@ void decode_axis(ConfigNode n, AxisOptions* a) {
   n.get("min", &a->min);
   n.get("max", &a->max);
   n.get("max_velocity", &a->max_velocity);
+  n.get("max_acceleration", &a->max_acceleration);
   n.finish();
   n.check(*a);
 }
 
-void decode_machine(ConfigNode n, MachineOptions* m) {
+void decode_machine(ConfigNode n, const std::filesystem::path& base, MachineOptions* m,
+                    bool in_profile = false) {
   if (!n.present()) return;
+  // A machine profile (its own YAML file of machine keys) first; the job's keys override it.
+  std::string profile;
+  if (!in_profile && n.get("profile", &profile)) {
+    if (profile.empty()) n.fail("profile", "must name a machine profile file");
+    const std::filesystem::path file = (base / profile).lexically_normal();
+    if (!std::filesystem::exists(file)) {
+      n.fail("profile", "the machine profile " + file.string() + " does not exist");
+    }
+    ConfigNode p = ConfigNode::load_file(file);
+    if (!p.present() || !p.yaml().IsMap()) {
+      throw ConfigError(file.string() + ": a machine profile must be a map of machine keys");
+    }
+    decode_machine(p, file.parent_path(), m, true);
+    m->profile = file.string();
+  }
   n.get_choice("kind", {"lathe2", "lathe4", "robot"}, &m->kind);
   n.get("chord_tolerance", &m->chord_tolerance);
   n.get("max_fibre_speed", &m->max_fibre_speed);
+  n.get("tangent_window", &m->tangent_window);
+  n.get("monotone_axes", &m->monotone_axes);
+  n.get("replay_tolerance", &m->replay_tolerance);
   decode_envelope(n.section("envelope"), &m->envelope);
   ConfigNode axes = n.section("axes");
   decode_axis(axes.section("A"), &m->a);
@@ -570,7 +591,7 @@ Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   }
   const std::filesystem::path base = job.path.parent_path();
   decode_mandrel(root.section("mandrel"), base, &job.mandrel);
-  decode_machine(root.section("machine"), &job.machine);
+  decode_machine(root.section("machine"), base, &job.machine);
   decode_output(root.section("output"), base, &job.output);
   decode_winding(root.section("winding"), &job.winding);
   decode_girth(root.section("girth"), &job.girth);

@@ -26,6 +26,13 @@ bool EnvelopeOptions::is_valid(std::string* why) const {
   if (!std::isfinite(free_length) || free_length < 0.0) {
     return fail(why, "free_length must be >= 0 mm (got " + std::to_string(free_length) + ")");
   }
+  if (!std::isfinite(radius) || radius < 0.0) {
+    return fail(why, "radius must be >= 0 mm (got " + std::to_string(radius) + ")");
+  }
+  if (radius > 0.0 && (!profile.empty() || free_length > 0.0)) {
+    return fail(why, "radius is the lathe2 cylinder of the clearance mode; not with profile or "
+                     "free_length");
+  }
   if (!profile.empty() && free_length > 0.0) {
     return fail(why, "give either profile or free_length, not both");
   }
@@ -50,6 +57,9 @@ bool AxisOptions::is_valid(std::string* why) const {
   if (!(min < max)) return fail(why, "min must be < max");
   if (!std::isfinite(max_velocity) || max_velocity <= 0.0) {
     return fail(why, "max_velocity must be > 0");
+  }
+  if (!std::isfinite(max_acceleration) || max_acceleration <= 0.0) {
+    return fail(why, "max_acceleration must be > 0 (got " + std::to_string(max_acceleration) + ")");
   }
   return true;
 }
@@ -79,6 +89,12 @@ bool MachineOptions::is_valid(std::string* why) const {
   }
   if (!std::isfinite(max_fibre_speed) || max_fibre_speed < 0.0) {
     return fail(why, "max_fibre_speed must be >= 0 mm/s");
+  }
+  if (!std::isfinite(tangent_window) || tangent_window < 0.0) {
+    return fail(why, "tangent_window must be >= 0 mm");
+  }
+  if (!std::isfinite(replay_tolerance) || replay_tolerance < 0.0) {
+    return fail(why, "replay_tolerance must be >= 0 mm (0: report only)");
   }
   std::string w;
   if (!envelope.is_valid(&w)) return fail(why, "envelope: " + w);

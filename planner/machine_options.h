@@ -22,6 +22,8 @@ struct EnvelopeOptions {
   std::vector<std::array<double, 2>>
       profile;               ///< [[x mm, r mm], ...], x strictly increasing, r > 0
   double free_length = 0.0;  ///< mm; > 0 selects the fixed-free-length mode
+  /// mm: lathe2 eye cylinder radius; 0 = the largest mandrel radius + clearance. >= 0
+  double radius = 0.0;
 
   /// "clearance", "profile" or "free_length", from which field is set.
   std::string mode() const;
@@ -39,6 +41,7 @@ struct AxisOptions {
   double max =
       std::numeric_limits<double>::infinity();  ///< travel limit (mm or deg), machine value
   double max_velocity = 100.0;                  ///< mm/s or deg/s, > 0
+  double max_acceleration = 1000.0;             ///< mm/s^2 or deg/s^2, > 0
 
   bool is_valid(std::string* why) const;
 };
@@ -66,31 +69,46 @@ struct MachineOptions {
   double chord_tolerance = 0.05;
   /// mm/s: upper bound on the fibre laying speed; 0 = no bound.
   double max_fibre_speed = 0.0;
+  /// mm: largest half-width of the arc-length window of the local quadratic fit that gives the
+  /// fibre tangents the eye is placed along (export/tangent_smoothing.h); 0 = the plan's tangents.
+  double tangent_window = 15.0;
+  /// Each circuit's spindle A monotone, its carriage X monotone between its two turning points
+  /// (export/monotone_axes.h).
+  bool monotone_axes = true;
+  /// mm: a program whose replay (export/replay.h) lays the fibre farther than this from the
+  /// planned path is not written by `windplan run`; 0 = replay and report only. >= 0
+  double replay_tolerance = 0.5;
+  /// The profile file the machine was read from (machine.profile), empty if none; for reports.
+  std::string profile;
   /// A spindle (deg), X carriage (mm), Y cross-feed (mm), B eye rotation (deg).
   AxisOptions a{"A",
                 1.0,
                 0.0,
                 -std::numeric_limits<double>::infinity(),
                 std::numeric_limits<double>::infinity(),
-                720.0};
+                720.0,
+                1440.0};
   AxisOptions x{"X",
                 1.0,
                 0.0,
                 -std::numeric_limits<double>::infinity(),
                 std::numeric_limits<double>::infinity(),
-                500.0};
+                500.0,
+                2000.0};
   AxisOptions y{"Y",
                 1.0,
                 0.0,
                 -std::numeric_limits<double>::infinity(),
                 std::numeric_limits<double>::infinity(),
-                200.0};
+                200.0,
+                1000.0};
   AxisOptions b{"B",
                 1.0,
                 0.0,
                 -std::numeric_limits<double>::infinity(),
                 std::numeric_limits<double>::infinity(),
-                360.0};
+                360.0,
+                1440.0};
   GcodeOptions gcode;
 
   bool is_valid(std::string* why) const;

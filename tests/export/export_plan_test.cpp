@@ -66,6 +66,15 @@ WindingPlan sample_plan(int n = 500, int circuits = 3) {
 
 Mesh sample_mesh() { return Mesh(test::open_cylinder(50, 700, 24, 10)); }
 
+// The sample plan's circuits are separate helices that all start at z = 0 (not one continuous
+// fibre), so its G-code replay (export/replay.h) deviates by design: these tests replay and report
+// only (replay_tolerance 0); the replay has its own tests.
+MachineOptions report_only() {
+  MachineOptions m;
+  m.replay_tolerance = 0;
+  return m;
+}
+
 // Tag balance of an XML document (test-only): every element opened is closed in order.
 bool xml_balanced(const std::string& s, std::string* why) {
   std::vector<std::string> stack;
@@ -102,7 +111,7 @@ std::vector<std::string> lines_of(const std::string& s) {
 TEST(ExportPlan, WritesEveryFileConsistently) {
   const fs::path d = temp_dir("all");
   const WindingPlan plan = sample_plan();
-  MachineOptions m;
+  MachineOptions m = report_only();
   m.kind = "lathe4";
   const ExportResult r = export_plan(plan, sample_mesh(), m, OutputOptions{}, d);
   const std::vector<std::string> expect = {
@@ -278,7 +287,7 @@ TEST(ExportPlan, TwoExportsAreByteIdentical) {
   const WindingPlan plan = sample_plan();
   const Mesh mesh = sample_mesh();
   for (const std::string dialect : {"linuxcnc", "marlin", "fanuc"}) {
-    MachineOptions m;
+    MachineOptions m = report_only();
     m.gcode.dialect = dialect;
     const fs::path a = temp_dir("det_a"), b = temp_dir("det_b");
     const ExportResult ra = export_plan(plan, mesh, m, OutputOptions{}, a);
@@ -299,7 +308,7 @@ TEST(ExportPlan, OutputDirectory) {
 TEST(ExportPlan, RepeatedCircuitIndicesStaySeparateCircuits) {
   WindingPlan plan = sample_plan(200, 3);
   for (Circuit& c : plan.circuits) c.index = 7;
-  MachineOptions m;
+  MachineOptions m = report_only();
   m.gcode.dialect = "fanuc";
   const fs::path d = temp_dir("dup");
   export_plan(plan, sample_mesh(), m, OutputOptions{}, d);
@@ -311,7 +320,7 @@ TEST(ExportPlan, RepeatedCircuitIndicesStaySeparateCircuits) {
 TEST(ExportPlan, JobSectionsDriveTheExport) {
   const Job job = load_job_from_string(
       "mandrel:\n  file: a.obj\n"
-      "machine:\n  kind: lathe4\n  gcode: {dialect: marlin}\n"
+      "machine:\n  kind: lathe4\n  replay_tolerance: 0\n  gcode: {dialect: marlin}\n"
       "  axes:\n    A: {letter: C}\n"
       "output:\n  ply: false\n  svg: false\n  viewer: false\n",
       "/jobs/tank.yaml");
@@ -331,7 +340,7 @@ TEST(ExportPlan, TimingsOnlyWhenAsked) {
   OutputOptions o;
   o.timings = true;
   o.ply = o.svg = o.csv = o.gcode = o.viewer = false;
-  const ExportResult r = export_plan(sample_plan(), sample_mesh(), MachineOptions{}, o, d);
+  const ExportResult r = export_plan(sample_plan(), sample_mesh(), report_only(), o, d);
   EXPECT_EQ(r.files, (std::vector<std::string>{"report.json", "report.md"}));
   EXPECT_NE(read_text_file(d / "report.json").find("\"girth\": 1.25"), std::string::npos);
   EXPECT_NE(read_text_file(d / "report.md").find("| helices | 2.500 |"), std::string::npos);
@@ -340,7 +349,7 @@ TEST(ExportPlan, TimingsOnlyWhenAsked) {
 
 TEST(ExportPlan, RobotWritesEyePoseAndNoGcode) {
   const fs::path d = temp_dir("robot");
-  MachineOptions m;
+  MachineOptions m = report_only();
   m.kind = "robot";
   const ExportResult r = export_plan(sample_plan(), sample_mesh(), m, OutputOptions{}, d);
   EXPECT_TRUE(fs::exists(d / "eye_pose.csv"));
@@ -353,7 +362,7 @@ TEST(ExportPlan, KilledExportLeavesOnlyCompleteFiles) {
   // A large plan (about 35 MB of files) so that the kill lands mid-export.
   const WindingPlan plan = sample_plan(20000, 12);
   const Mesh mesh = sample_mesh();
-  MachineOptions m;
+  MachineOptions m = report_only();
   m.kind = "lathe4";
   m.gcode.dialect = "fanuc";
   const fs::path ref = temp_dir("kill_ref");

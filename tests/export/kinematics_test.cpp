@@ -86,7 +86,7 @@ TEST(Kinematics, EyeOnConeAndDomeEnvelopes) {
     EnvelopeOptions eo;
     eo.clearance = 15;
     const Envelope env = make_envelope(prof, eo);
-    EXPECT_NEAR(env.max_slope, 0.3, 1e-15);
+    EXPECT_NEAR(env.max_slope, 0.3, 1e-12);
     std::vector<std::pair<Vec3, Vec3>> pts;
     for (int i = 0; i < 300; ++i) {
       const double x = -100 + 200 * w(rng), ph = u(rng);
@@ -149,6 +149,7 @@ TEST(Kinematics, HelixAxesAreLinearWithWindingAngleSlope) {
   m.kind = "lathe4";
   m.envelope.clearance = cl;
   m.chord_tolerance = 0.01;
+  m.tangent_window = 0;  // the exact tangents (the smoothing has its own test)
   const Motion mo = compute_motion(plan, m);
   ASSERT_GT(mo.states.size(), 20u);
   const double a = alpha * M_PI / 180;
@@ -170,7 +171,7 @@ TEST(Kinematics, HelixAxesAreLinearWithWindingAngleSlope) {
   EXPECT_LE(mo.max_chord_deviation, 0.01);
 }
 
-TEST(Kinematics, DurationsAreTheSlowestAxisAndTimeAccumulates) {
+TEST(Kinematics, FeedPlanKeepsEveryAxisWithinItsLimitsAndTimeAccumulates) {
   const WindingPlan plan = test::helix_plan(40, 55, 2, 801, 3);
   MachineOptions m;
   m.kind = "lathe4";
@@ -178,21 +179,28 @@ TEST(Kinematics, DurationsAreTheSlowestAxisAndTimeAccumulates) {
   m.x.max_velocity = 50;
   m.y.max_velocity = 20;
   m.b.max_velocity = 90;
+  m.x.max_acceleration = 200;
   const Motion mo = compute_motion(plan, m);
   ASSERT_FALSE(mo.states.empty());
   EXPECT_EQ(mo.states.front().t_s, 0.0);
-  EXPECT_FALSE(mo.inverse_time && false);
   for (std::size_t i = 1; i < mo.states.size(); ++i) {
     const MachineState& p = mo.states[i - 1];
     const MachineState& s = mo.states[i];
-    const double expect =
+    const double slowest =
         std::max({std::fabs(s.a_deg - p.a_deg) / 360, std::fabs(s.x_mm - p.x_mm) / 50,
-                  std::fabs(s.y_mm - p.y_mm) / 20, std::fabs(s.b_deg - p.b_deg) / 90, 1e-3});
-    EXPECT_NEAR(s.duration, expect, 1e-12);
+                  std::fabs(s.y_mm - p.y_mm) / 20, std::fabs(s.b_deg - p.b_deg) / 90});
+    EXPECT_GE(s.duration, slowest * (1 - 1e-12));
     EXPECT_NEAR(s.t_s, p.t_s + s.duration, 1e-9);
-    EXPECT_NEAR(s.feed, 60.0 / s.duration, 1e-9);  // linuxcnc: inverse time
+    if (s.duration > 0) EXPECT_NEAR(s.feed, 60.0 / s.duration, 1e-9);  // linuxcnc: inverse time
   }
   EXPECT_DOUBLE_EQ(mo.wind_time, mo.states.back().t_s);
+  EXPECT_LE(mo.limits.velocity_ratio, 1 + 1e-9);
+  EXPECT_LE(mo.limits.acceleration_ratio, 1 + 1e-9);
+  EXPECT_GT(mo.limits.acceleration_ratio, 0.1);
+  double sum = 0;
+  for (double t : mo.circuit_time) sum += t;
+  EXPECT_NEAR(sum, mo.wind_time, 1e-9);
+  ASSERT_EQ(mo.circuit_time.size(), 3u);
   // A fibre speed bound slows the moves down to s / v.
   m.max_fibre_speed = 10;
   const Motion slow = compute_motion(plan, m);
@@ -201,7 +209,7 @@ TEST(Kinematics, DurationsAreTheSlowestAxisAndTimeAccumulates) {
     const MachineState& s = slow.states[i];
     if (s.circuit != p.circuit) continue;
     const double laid = (s.paid_out - s.free_length) - (p.paid_out - p.free_length);
-    EXPECT_GE(s.duration, laid / 10 - 1e-12);
+    EXPECT_GE(s.duration, laid / 10 - 1e-9);
   }
   EXPECT_GT(slow.wind_time, mo.wind_time);
 }
@@ -216,9 +224,10 @@ TEST(Kinematics, PerMinuteFeedIsCombinedAxisSpeed) {
     const MachineState& p = mo.states[i - 1];
     const MachineState& s = mo.states[i];
     const double da = s.a_deg - p.a_deg, dx = s.x_mm - p.x_mm;
-    EXPECT_NEAR(s.duration, std::max({std::fabs(da) / 720, std::fabs(dx) / 500, 1e-3}), 1e-12);
-    EXPECT_NEAR(s.feed, 60 * std::hypot(da, dx) / s.duration, 1e-6 * s.feed);
+    EXPECT_GE(s.duration, std::max(std::fabs(da) / 720, std::fabs(dx) / 500) * (1 - 1e-12));
+    if (s.duration > 0) EXPECT_NEAR(s.feed, 60 * std::hypot(da, dx) / s.duration, 1e-6 * s.feed);
     EXPECT_EQ(s.b_deg, 0.0);
+    EXPECT_NEAR(s.y_mm, 60.0, 1e-9);  // the lathe2 eye cylinder: R + clearance
   }
 }
 
@@ -285,6 +294,7 @@ TEST(Kinematics, TravelLimitNamesAxisValueAndPoint) {
 TEST(Kinematics, FixedFreeLengthMode) {
   const WindingPlan plan = test::helix_plan(50, 45, 1, 200);
   MachineOptions m;
+  m.kind = "lathe4";  // a lathe2 cannot follow a free length (no cross-feed)
   m.envelope.free_length = 123.5;
   const Motion mo = compute_motion(plan, m);
   for (const MachineState& s : mo.states) {

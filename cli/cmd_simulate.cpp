@@ -1,0 +1,91 @@
+// windplan simulate <job.yaml> <program> [--json FILE]
+// Reads back a G-code program (windplan's or a user's edit, in the job's dialect), runs it through
+// the job's machine model and replays where the fibre lands (export/replay.h).
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "export/gcode_reader.h"
+#include "export/replay.h"
+#include "geometry/atomic_file.h"
+#include "geometry/errors.h"
+#include "geometry/json.h"
+#include "planner/job.h"
+#include "planner/pipeline.h"
+
+namespace windplan::cli {
+
+const char* const kSimulateHelp =
+    "usage: windplan simulate <job.yaml> <program> [--json FILE]\n\n"
+    "Reads back a G-code program in the job's dialect (machine.gcode.dialect; one windplan wrote\n"
+    "or one a user edited), runs it through the job's machine model and reconstructs where the\n"
+    "fibre lands on the mandrel from the eye position and spindle angle of every block. Prints\n"
+    "the largest deviation from the planned fibre path, the minimum eye-mandrel distance, axis\n"
+    "ranges, reversals, the axis velocity and acceleration against their limits and the wind\n"
+    "time, and writes them to a JSON file. Exit 1 for a program with an unknown word, another\n"
+    "dialect's words or a move beyond an axis's travel (the line is named), or when the\n"
+    "deviation exceeds machine.replay_tolerance (when that is > 0).\n\n"
+    "  --json FILE   the JSON report (default: <program>.simulate.json)\n";
+
+int run_simulate(const std::vector<std::string>& argv) {
+  const Args args(argv, {}, {"--json"});
+  args.expect_positional(2, "a job file and a G-code program");
+  const Job job = load_job(args.positional()[0]);
+  const std::filesystem::path program_file = args.positional()[1];
+  std::ifstream in(program_file, std::ios::binary);
+  if (!in) throw IoError(program_file.string() + ": cannot open the program");
+  std::ostringstream text;
+  text << in.rdbuf();
+  const GcodeProgram program = read_gcode(text.str(), job.machine, program_file.string());
+
+  PipelineOptions po;
+  const PipelineResult r = plan_job(job, po);
+  const ReplayResult rp = replay_program(program, r.plan, r.mandrel.mesh, job.machine);
+
+  JsonWriter j(2, 10);
+  j.begin_object();
+  j.field("job", r.plan.job_name);
+  j.field("program", program_file.string());
+  j.field("dialect", job.machine.gcode.dialect);
+  j.field("kind", job.machine.kind);
+  j.field("blocks", rp.blocks);
+  j.field("substeps", rp.substeps);
+  j.field("held_substeps", rp.held_substeps);
+  j.field("max_deviation_mm", rp.max_deviation);
+  j.field("max_deviation_line", rp.max_deviation_line);
+  j.field("mean_deviation_mm", rp.mean_deviation);
+  j.field("min_clearance_mm", rp.min_clearance);
+  j.field("min_clearance_line", rp.min_clearance_line);
+  j.field("wind_time_s", rp.wind_time);
+  j.field("carriage_reversals", rp.carriage_reversals);
+  j.field("spindle_reversals", rp.spindle_reversals);
+  j.field("max_velocity_ratio", rp.limits.velocity_ratio);
+  j.field("max_acceleration_ratio", rp.limits.acceleration_ratio);
+  j.key("axis_ranges").begin_object();
+  j.key("A_deg").begin_object().field("min", rp.a_min).field("max", rp.a_max).end_object();
+  j.key("X_mm").begin_object().field("min", rp.x_min).field("max", rp.x_max).end_object();
+  j.key("Y_mm").begin_object().field("min", rp.y_min).field("max", rp.y_max).end_object();
+  j.key("B_deg").begin_object().field("min", rp.b_min).field("max", rp.b_max).end_object();
+  j.end_object();
+  j.field("replay_seconds", rp.seconds);
+  j.end_object();
+  const std::filesystem::path out =
+      args.has("--json") ? std::filesystem::path(args.value("--json"))
+                         : std::filesystem::path(program_file.string() + ".simulate.json");
+  write_text_atomically(out, j.str() + "\n");
+  std::cout << rp.summary << "\n  report: " << out.string() << "\n";
+  if (job.machine.replay_tolerance > 0.0 && rp.max_deviation > job.machine.replay_tolerance) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%s:%d: the replay lays the fibre %.3f mm from the plan, more "
+                  "than machine.replay_tolerance %.3f mm",
+                  program_file.string().c_str(), rp.max_deviation_line, rp.max_deviation,
+                  job.machine.replay_tolerance);
+    throw InputError(buf);
+  }
+  return 0;
+}
+
+}  // namespace windplan::cli

@@ -1,0 +1,130 @@
+// windplan simulate and the machine section (profiles, limits) as subprocesses.
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include "tests/cli/cli_runner.h"
+#include "tests/test_data.h"
+
+namespace windplan::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+void write(const fs::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary);
+  out << text;
+}
+
+const char* const kJob =
+    "name: small\n"
+    "mandrel: {source: pipe, pipe: {radius: 50, length: 200}}\n"
+    "winding: {turns: 1, circuits: 2}\n";
+
+class CliSimulate : public CliTest {};
+
+TEST_F(CliSimulate, RunThenSimulateTheProgramWritesTheJson) {
+  write(dir_ / "job.yaml", kJob);
+  ASSERT_EQ(run({"run", (dir_ / "job.yaml").string(), "--out", (dir_ / "out").string()}).code, 0);
+  const YAML::Node report = YAML::LoadFile((dir_ / "out" / "report.json").string());
+  ASSERT_TRUE(report["motion"]["replay"]["max_deviation_mm"]);
+  const RunResult r = run({"simulate", (dir_ / "job.yaml").string(),
+                           (dir_ / "out" / "toolpath.ngc").string(), "--json",
+                           (dir_ / "sim.json").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("replay:"), std::string::npos) << r.out;
+  const YAML::Node j = YAML::LoadFile((dir_ / "sim.json").string());
+  // The replay of the same program by the run and by simulate agree.
+  EXPECT_DOUBLE_EQ(j["max_deviation_mm"].as<double>(),
+                   report["motion"]["replay"]["max_deviation_mm"].as<double>());
+  EXPECT_NEAR(j["wind_time_s"].as<double>(), report["summary"]["wind_time_s"].as<double>(), 1e-3);
+  EXPECT_GT(j["blocks"].as<int>(), 10);
+}
+
+TEST_F(CliSimulate, BadProgramsAreExitOneNamingTheLine) {
+  write(dir_ / "job.yaml", kJob);
+  write(dir_ / "unknown.ngc", "%\nG21 G90 G93\nG0 X0 A0\nG1 X1 A1 Q2 F10\nM2\n%\n");
+  RunResult r = run({"simulate", (dir_ / "job.yaml").string(), (dir_ / "unknown.ngc").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("unknown.ngc:4: unknown word Q2"), std::string::npos) << r.err;
+  write(dir_ / "marlin.gcode", "G21\nG90\nG94\nG0 X0 A0\nG92 A0\nG1 X1 A1 F100\nM84\n");
+  r = run({"simulate", (dir_ / "job.yaml").string(), (dir_ / "marlin.gcode").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("marlin.gcode:5: G92 belongs to a marlin program"), std::string::npos)
+      << r.err;
+  write(dir_ / "limit.yaml", std::string(kJob) + "machine: {axes: {X: {min: -10, max: 100}}}\n");
+  write(dir_ / "far.ngc", "G21 G90 G93\nG0 X0 A0\nG1 X120 A1 F10\nM2\n");
+  r = run({"simulate", (dir_ / "limit.yaml").string(), (dir_ / "far.ngc").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("far.ngc:3: axis X moves to 120"), std::string::npos) << r.err;
+}
+
+TEST_F(CliSimulate, MachineProfilesAndTheirErrors) {
+  // A shipped profile, with a job key overriding it.
+  const fs::path machines = source_dir() / "configs" / "machines";
+  write(dir_ / "job.yaml", std::string(kJob) + "machine: {profile: " +
+                               (machines / "lathe4.yaml").string() +
+                               ", gcode: {dialect: fanuc}}\n");
+  ASSERT_EQ(run({"run", (dir_ / "job.yaml").string(), "--out", (dir_ / "out").string()}).code, 0);
+  const YAML::Node report = YAML::LoadFile((dir_ / "out" / "report.json").string());
+  EXPECT_EQ(report["machine"]["kind"].as<std::string>(), "lathe4");
+  EXPECT_EQ(report["machine"]["dialect"].as<std::string>(), "fanuc");
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "toolpath.nc"));
+  // Missing, malformed, and a bad acceleration: one line naming the file and key.
+  write(dir_ / "missing.yaml", std::string(kJob) + "machine: {profile: nowhere.yaml}\n");
+  RunResult r = run({"run", (dir_ / "missing.yaml").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("nowhere.yaml does not exist"), std::string::npos) << r.err;
+  write(dir_ / "broken.yaml", "kind: [lathe2\n");
+  write(dir_ / "uses_broken.yaml", std::string(kJob) + "machine: {profile: broken.yaml}\n");
+  r = run({"run", (dir_ / "uses_broken.yaml").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("broken.yaml"), std::string::npos) << r.err;
+  write(dir_ / "acc.yaml", "kind: lathe2\naxes: {X: {max_acceleration: 0}}\n");
+  write(dir_ / "uses_acc.yaml", std::string(kJob) + "machine: {profile: acc.yaml}\n");
+  r = run({"run", (dir_ / "uses_acc.yaml").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("acc.yaml"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("max_acceleration must be > 0"), std::string::npos) << r.err;
+  write(dir_ / "unknown_key.yaml", "kind: lathe2\nspeed: 3\n");
+  write(dir_ / "uses_unknown.yaml", std::string(kJob) + "machine: {profile: unknown_key.yaml}\n");
+  r = run({"run", (dir_ / "uses_unknown.yaml").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("unknown_key.yaml:2"), std::string::npos) << r.err;
+}
+
+TEST_F(CliSimulate, EveryShippedJobMovesAsAMachineShould) {
+  // Issue #13's figures on every shipped job: at most 2 carriage reversals per circuit, none in
+  // the middle half of a pass, the spindle never reversing, every block within the axes' velocity
+  // and acceleration, and the eye at least the clearance (- 0.05 mm) from the mandrel mesh.
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(source_dir() / "configs")) {
+    if (e.path().extension() != ".yaml") continue;
+    ++n;
+    const fs::path out = dir_ / e.path().stem();
+    const RunResult r = run({"run", e.path().string(), "--out", out.string()});
+    ASSERT_EQ(r.code, 0) << e.path() << "\n" << r.err;
+    EXPECT_NE(r.out.find("reversals        carriage"), std::string::npos) << r.out;
+    const YAML::Node report = YAML::LoadFile((out / "report.json").string());
+    const YAML::Node m = report["motion"];
+    const bool robot = report["machine"]["kind"].as<std::string>() == "robot";
+    SCOPED_TRACE(e.path().string());
+    EXPECT_LE(m["max_carriage_reversals_per_circuit"].as<int>(), 2);
+    // The bent tube is no surface of revolution: its bends swing about the spindle, and one
+    // carriage reversal falls in the middle half of a pass (measured).
+    if (e.path().stem() != "bent_tube") EXPECT_EQ(m["mid_pass_carriage_reversals"].as<int>(), 0);
+    EXPECT_EQ(m["spindle_reversals_in_passes"].as<int>(), 0);
+    EXPECT_LE(m["max_velocity_ratio"].as<double>(), 1 + 1e-9);
+    EXPECT_LE(m["max_acceleration_ratio"].as<double>(), 1 + 1e-9);
+    EXPECT_GE(m["min_clearance_mm"].as<double>(), m["required_clearance_mm"].as<double>() - 0.05);
+    if (!robot) {  // robots have no G-code to replay; run refused any beyond replay_tolerance
+      EXPECT_TRUE(m["replay"].IsMap());
+    }
+  }
+  EXPECT_GE(n, 6);
+}
+
+}  // namespace
+}  // namespace windplan::test
