@@ -89,11 +89,22 @@ std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<
       }
       ends.push_back(static_cast<int>(cs.size()) - 1);
     };
+    // A friction turnaround is split at its apex (the axial extreme, where the carriage turns):
+    // the fibre runs out to it and back, so the carriage reverses between segments, not in one.
+    auto add_turnaround = [&](const std::vector<PassSample>& v, double phi, bool far_end) {
+      const int begin = static_cast<int>(cs.size());
+      add(v, phi, false);
+      int apex = begin;
+      for (int i = begin; i < static_cast<int>(cs.size()); ++i) {
+        if (far_end ? cs[i][0] > cs[apex][0] : cs[i][0] < cs[apex][0]) apex = i;
+      }
+      if (apex > begin && apex < ends.back()) ends.insert(ends.end() - 1, apex);
+    };
     const double d1 = (*turnarounds)[1].empty() ? 0.0 : (*turnarounds)[1].back().phi;
     add(smp, 0.0, false);
-    if (!(*turnarounds)[1].empty()) add((*turnarounds)[1], Phi, false);
+    if (!(*turnarounds)[1].empty()) add_turnaround((*turnarounds)[1], Phi, true);
     add(smp, Phi + d1, true);
-    if (!(*turnarounds)[0].empty()) add((*turnarounds)[0], 2.0 * Phi + d1, false);
+    if (!(*turnarounds)[0].empty()) add_turnaround((*turnarounds)[0], 2.0 * Phi + d1, false);
     const double A = pattern.advance;
     auto planned = [&](const std::array<double, 3>& q, double shift) {
       return point_on_axis_frame(axis, frame, q[0], q[1], q[2] + shift);
