@@ -4,15 +4,14 @@
 #include <cstdio>
 #include <sstream>
 
+#include "geometry/format_number.h"
+
 namespace windplan {
 
 namespace {
 
 std::string fmt(const char* f, double v) {
-  if (std::isnan(v)) return "-";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v + 0.0);
-  return buf;
+  return std::isnan(v) ? std::string("-") : format_number(f, v);
 }
 
 struct Totals {

@@ -4,15 +4,13 @@
 #include <cstdio>
 #include <sstream>
 
+#include "geometry/format_number.h"
+
 namespace windplan {
 
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v + 0.0);
-  return buf;
-}
+std::string fmt(const char* f, double v) { return format_number(f, v); }
 
 const char* const kAxisNames[4] = {"A", "X", "Y", "B"};
 

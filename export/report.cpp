@@ -7,6 +7,7 @@
 
 #include "export/layup_report.h"
 #include "export/motion_report.h"
+#include "geometry/format_number.h"
 #include "geometry/json.h"
 #include "planner/winding_options.h"
 #include "windplan_version.h"
@@ -15,11 +16,7 @@ namespace windplan {
 
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v + 0.0);
-  return buf;
-}
+std::string fmt(const char* f, double v) { return format_number(f, v); }
 
 /// Per-circuit figures.
 struct CircuitFigures {

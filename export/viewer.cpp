@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "geometry/errors.h"
+#include "geometry/format_number.h"
 #include "geometry/json.h"
 
 namespace windplan {
@@ -89,11 +90,7 @@ std::string b64_u32(const std::vector<std::uint32_t>& v) {
   return base64(bytes.data(), bytes.size());
 }
 
-std::string fmt(const char* f, double v) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, f, v + 0.0);
-  return buf;
-}
+std::string fmt(const char* f, double v) { return format_number(f, v); }
 
 // The mandrel after vertex clustering on a grid of `cell` mm (cell <= 0: as is), in the axis
 // frame: each cell's vertices merge into their mean, triangles that lose a corner are dropped.

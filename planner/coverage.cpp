@@ -8,6 +8,7 @@
 
 #include "geometry/closest_point.h"
 #include "geometry/errors.h"
+#include "geometry/format_number.h"
 #include "planner/cutlines.h"
 
 namespace windplan {
@@ -190,11 +191,7 @@ double cv(const std::vector<double>& v) {
   return m > 0.0 ? std::sqrt(q / v.size()) / m : 0.0;
 }
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v + 0.0);
-  return buf;
-}
+std::string fmt(const char* f, double v) { return format_number(f, v); }
 
 }  // namespace
 

@@ -1,0 +1,16 @@
+#pragma once
+// One number formatted with a printf conversion, for reports and messages:
+// format_number("%.3f", 1.5) == "1.500". Negative zero prints as 0 (v + 0.0).
+#include <cstdio>
+#include <string>
+
+namespace windplan {
+
+/// \param format a printf format with exactly one double conversion (e.g. "%.2f", "%g")
+inline std::string format_number(const char* format, double v) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, format, v + 0.0);
+  return buf;
+}
+
+}  // namespace windplan
