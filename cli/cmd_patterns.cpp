@@ -54,8 +54,7 @@ int run_patterns(const std::vector<std::string>& argv) {
                      "geodesic core plans the others; windplan helices reports their coverage)");
   }
   const WindingOptions& wo = job.winding;
-  const std::vector<Vec2> meridian = clip_meridian(
-      annulus_meridian(md.winding.mesh, md.axis), wo.start_station, wo.end_station);
+  const std::vector<Vec2> meridian = wound_meridian(md.winding.mesh, md.axis, wo);
   const PatternProblem pr = pattern_problem(meridian, wo);
   if (!pr.reachable) throw ConfigError(pr.why);
   std::vector<PatternCandidate> all = pattern_candidates(pr);

@@ -39,6 +39,15 @@ std::vector<Vec2> clip_meridian(const std::vector<Vec2>& m, double x0, double x1
   return out;
 }
 
+std::vector<Vec2> wound_meridian(const Mesh& annulus, const SpindleAxis& axis,
+                                 const WindingOptions& o) {
+  const std::vector<Vec2> whole = annulus_meridian(annulus, axis);
+  const std::array<double, 2> range = {whole.front().x(), whole.back().x()};
+  if (o.has_start_station()) check_station("winding.start_station", o.start_station, range);
+  if (o.has_end_station()) check_station("winding.end_station", o.end_station, range);
+  return clip_meridian(whole, o.start_station, o.end_station);
+}
+
 std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<int>& face_map,
                                          const SpindleAxis& axis, const ClairautPass& pass,
                                          const PatternCandidate& pattern,
@@ -175,11 +184,7 @@ std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<
 RevolutionWinding plan_revolution_winding(const Mesh& annulus, const std::vector<int>& face_map,
                                           const SpindleAxis& axis, const WindingOptions& o) {
   RevolutionWinding w;
-  const std::vector<Vec2> whole = annulus_meridian(annulus, axis);
-  const std::array<double, 2> range = {whole.front().x(), whole.back().x()};
-  if (o.has_start_station()) check_station("winding.start_station", o.start_station, range);
-  if (o.has_end_station()) check_station("winding.end_station", o.end_station, range);
-  w.meridian = clip_meridian(whole, o.start_station, o.end_station);
+  w.meridian = wound_meridian(annulus, axis, o);
   if (w.meridian.size() < 2) {
     throw ConfigError("winding.start_station / end_station: the stations leave no wound length");
   }

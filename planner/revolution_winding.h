@@ -57,6 +57,12 @@ double fibre_step(const WindingOptions& options);
 /// interpolated.
 std::vector<Vec2> clip_meridian(const std::vector<Vec2>& meridian, double x0, double x1);
 
+/// The wound meridian of a job: the annulus's meridian clipped to winding.start_station /
+/// end_station. \throw ConfigError naming the station key and its range for a station outside
+/// the wound region (check_station, planner/helix.h); as annulus_meridian.
+std::vector<Vec2> wound_meridian(const Mesh& annulus, const SpindleAxis& axis,
+                                 const WindingOptions& options);
+
 /// The circuits of a pattern on the annulus (see the header comment).
 /// \param face_map annulus face -> full-mesh face (empty: keep annulus faces)
 /// \param turnarounds per end, a friction turnaround's samples (phi from 0; planner/

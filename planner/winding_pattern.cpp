@@ -299,11 +299,13 @@ PatternCandidate choose_pattern(const PatternProblem& pr, const WindingOptions& 
     for (const PatternCandidate& k : pattern_candidates(pr)) {
       if (k.circuits == K) return k;
     }
-    // K far from the coverage count: search its p directly.
+    // K far from the coverage count: search its p directly (on domes over one Phi grid).
+    const PhiGrid g = pr.domes ? phi_grid(pr, pr.c_lo, pr.c_hi) : PhiGrid{};
     for (int p = 1; p < K; ++p) {
       if (std::gcd(p, K) != 1) continue;
-      PatternCandidate k = pattern_for(pr, K, p, pr.c_lo, pr.c_hi, pr.requested_c);
-      if (!std::isnan(k.c)) return k;
+      if (!pr.domes) return fill(pr, K, p, pr.requested_c);
+      const double c = closing_c(pr, g, K, p, pr.requested_c);
+      if (!std::isnan(c)) return fill(pr, K, p, c);
     }
     throw ConfigError("winding.circuits: no skip closes K=" + std::to_string(K) +
                       " circuits with a turnaround radius in " + mm(pr.c_lo) + " .. " +

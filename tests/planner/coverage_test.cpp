@@ -117,7 +117,9 @@ TEST(Coverage, CatchesACircuitTurnedByHalfABand) {
   const CoverageReport good = measure_coverage(mesh, SpindleAxis{}, rw.circuits, o);
   EXPECT_EQ(good.bare_fraction, 0.0);
   for (const StationCoverage& st : good.stations) {
-    if (st.station > 0 && st.station < Lc) EXPECT_LE(st.widest_overlap, 1.0) << st.station;
+    if (st.station > 0 && st.station < Lc) {
+      EXPECT_LE(st.widest_overlap, 1.0) << st.station;
+    }
   }
   // The planner bug: circuit 3 laid half a band (8 mm on the cylinder) off.
   const double turn = 8.0 / (R * std::cos(std::asin(rw.pattern.c / R)));
