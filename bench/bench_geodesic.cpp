@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -56,8 +57,9 @@ struct Pair {
 };
 
 struct SolverRun {
-  std::vector<double> init, refine, total, cpu, iterations, length, settled;
+  std::vector<double> init, refine, total, cpu, iterations, length, exact_ms, windows;
   int not_converged = 0;
+  int corrected = 0;  // pairs whose result came from the window search's corridor
   std::vector<std::string> failures;
 };
 
@@ -65,6 +67,25 @@ std::string fmt(double v, const char* f = "%.3g") {
   char b[64];
   std::snprintf(b, sizeof b, f, v);
   return b;
+}
+
+// Largest distance from the points of `a` to the polyline `b` (both ways: the larger).
+double polyline_gap(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  auto one_sided = [](const std::vector<Vec3>& p, const std::vector<Vec3>& q) {
+    double worst = 0.0;
+    for (const Vec3& x : p) {
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 1; k < q.size(); ++k) {
+        const Vec3 d = q[k] - q[k - 1];
+        const double t =
+            std::clamp((x - q[k - 1]).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+        best = std::min(best, (x - (q[k - 1] + t * d)).norm());
+      }
+      worst = std::max(worst, best);
+    }
+    return worst;
+  };
+  return std::max(one_sided(a, b), one_sided(b, a));
 }
 
 double load_average() {
@@ -83,6 +104,8 @@ int main(int argc, char** argv) {
   int steiner = GeodesicContext::kDefaultSteinerPoints;
   bool edge_starts = false, lbfgs = false, split = true;
   bool steiner_start = GeodesicOptions{}.steiner_start;
+  bool exact_windows = GeodesicOptions{}.exact_windows;
+  int landmarks = GeodesicContext::kDefaultLandmarks;
   std::filesystem::path write_pairs, reference;
   std::vector<std::filesystem::path> files;
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress shows when redirected to a file
@@ -111,6 +134,10 @@ int main(int argc, char** argv) {
       steiner = next();
     else if (a == "--edge-starts")
       edge_starts = next() != 0;
+    else if (a == "--landmarks")
+      landmarks = next();
+    else if (a == "--exact-windows")
+      exact_windows = next() != 0;
     else if (a == "--steiner-start")
       steiner_start = next() != 0;
     else if (a == "--split")
@@ -185,15 +212,15 @@ int main(int argc, char** argv) {
     const double load_ms = ms_since(t);
     t = Clock::now();
     double context_cpu = thread_cpu_ms();
-    const GeodesicContext ctx(mesh, PathMetric{}, steiner);
+    const GeodesicContext ctx(mesh, PathMetric{}, steiner, landmarks);
     context_cpu = thread_cpu_ms() - context_cpu;
     const double context_ms = ms_since(t);
     const std::string name = file.filename().string();
     std::printf(
-        "## %s: V=%d F=%d, load %.0f ms, context (edge graphs, Steiner k=%d) %.1f ms wall, "
-        "%.1f ms thread CPU\n",
-        name.c_str(), mesh.num_vertices(), mesh.num_faces(), load_ms, steiner, context_ms,
-        context_cpu);
+        "## %s: V=%d F=%d, load %.0f ms, context (edge graphs, Steiner k=%d, %d landmarks) "
+        "%.1f ms wall, %.1f ms thread CPU\n",
+        name.c_str(), mesh.num_vertices(), mesh.num_faces(), load_ms, steiner,
+        ctx.landmarks().count, context_ms, context_cpu);
 
     std::mt19937 rng(seed);
     std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
@@ -262,6 +289,7 @@ int main(int argc, char** argv) {
       options.steiner_start = steiner > 0 && steiner_start;
       options.two_starts = edge_starts || !options.steiner_start;
       options.split_at_vertices = split;
+      options.exact_windows = exact_windows;
       for (std::size_t i = 0; i < pairs.size(); ++i) {
         double cpu = thread_cpu_ms();
         OpenGeodesicResult r =
@@ -278,7 +306,40 @@ int main(int argc, char** argv) {
           r.refine_ms = std::min(r.refine_ms, again.refine_ms);
         }
         row.run.cpu.push_back(cpu);
-        row.run.settled.push_back(r.steiner_settled);
+        row.run.exact_ms.push_back(r.exact_ms);
+        row.run.windows.push_back(static_cast<double>(r.exact_windows));
+        if (std::getenv("WINDPLAN_BENCH_SPREAD") != nullptr) {
+          GeodesicOptions local = options;
+          local.exact_windows = false;
+          const OpenGeodesicResult l =
+              geodesic_between(ctx, SurfacePoint::at_vertex(pairs[i].source),
+                               SurfacePoint::at_vertex(pairs[i].target), local);
+          std::printf("SPREAD %s %d %d spread %.3e split %d local_excess %.3e windows %ld\n",
+                      name.c_str(), pairs[i].source, pairs[i].target, l.starts_spread,
+                      l.start, (l.summary.final_length - r.summary.final_length) /
+                      r.summary.final_length, r.exact_windows);
+        }
+        if (r.start == 4) {
+          // What the window search corrected: the local result on the same corridor, not
+          // converged tightly enough, or a locally shortest geodesic in another corridor.
+          ++row.run.corrected;
+          GeodesicOptions local = options;
+          local.exact_windows = false;
+          const OpenGeodesicResult l =
+              geodesic_between(ctx, SurfacePoint::at_vertex(pairs[i].source),
+                               SurfacePoint::at_vertex(pairs[i].target), local);
+          const double gap = polyline_gap(polyline(mesh, l.path), polyline(mesh, r.path));
+          const double len = r.summary.final_length;
+          notes.push_back(name + " corrected " + std::to_string(pairs[i].source) + "->" +
+                          std::to_string(pairs[i].target) + ": local excess " +
+                          fmt((l.summary.final_length - len) / len) + " (" +
+                          std::to_string(l.summary.pinned_vertices) + " vertices passed, start " +
+                          std::to_string(l.start) + "), exact " +
+                          std::to_string(r.summary.pinned_vertices) +
+                          " vertices passed; paths apart by " + fmt(gap / len) +
+                          " of the length: " +
+                          (gap < 1e-6 * len ? "same corridor (precision)" : "other corridor"));
+        }
         row.run.init.push_back(r.init_ms);
         row.run.refine.push_back(r.refine_ms);
         row.run.total.push_back(r.init_ms + r.refine_ms);
@@ -300,7 +361,9 @@ int main(int argc, char** argv) {
                             fmt(exact[i], "%.9g") + ", " + to_string(r.summary.termination) + ", " +
                             std::to_string(r.summary.reroutes) + " reroutes, " +
                             std::to_string(r.summary.pinned_vertices) + " vertices passed, start " +
-                            std::to_string(r.start) + ")");
+                            std::to_string(r.start) + ", window search " +
+                            (r.exact_complete ? "complete, " : "incomplete, ") +
+                            std::to_string(r.exact_windows) + " windows)");
           } else if (e < -1e-9) {
             notes.push_back(name + " " + row.solver + " " + std::to_string(pairs[i].source) + "->" +
                             std::to_string(pairs[i].target) + ": SHORTER than exact, excess " +
@@ -331,10 +394,11 @@ int main(int argc, char** argv) {
 
   std::printf(
       "\n| mesh | faces | solver | init ms (med / p90) | refine ms (med / p90) | "
-      "total ms (med / p90) | thread CPU ms per path (med / mean) | Steiner nodes settled (med) | "
-      "iterations (med / p90) | not conv. | exact pairs | "
+      "total ms (med / p90) | thread CPU ms per path (med / mean) | window search ms (med / p90) | "
+      "windows (med / p90) | corrected by windows | iterations (med / p90) | not conv. | "
+      "exact pairs | "
       "excess median | excess max | equal to exact (1e-9) | within 1e-4 |\n");
-  std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows) {
     int within = 0, equal = 0;
     for (double e : r.excess) {
@@ -345,13 +409,16 @@ int main(int argc, char** argv) {
     for (double c : r.run.cpu) mean_cpu += c / std::max<std::size_t>(1, r.run.cpu.size());
     const bool have = !r.excess.empty();
     std::printf(
-        "| %s | %d | %s | %s / %s | %s / %s | %s / %s | %s / %s | %s | %s / %s | %d | %d | %s | %s | "
+        "| %s | %d | %s | %s / %s | %s / %s | %s / %s | %s / %s | %s / %s | %s / %s | %d | %s / %s | "
+        "%d | %d | %s | %s | "
         "%s | %s |\n",
         r.mesh.c_str(), r.faces, r.solver.c_str(), fmt(quantile(r.run.init, 0.5)).c_str(),
         fmt(quantile(r.run.init, 0.9)).c_str(), fmt(quantile(r.run.refine, 0.5)).c_str(),
         fmt(quantile(r.run.refine, 0.9)).c_str(), fmt(quantile(r.run.total, 0.5)).c_str(),
         fmt(quantile(r.run.total, 0.9)).c_str(), fmt(quantile(r.run.cpu, 0.5)).c_str(),
-        fmt(mean_cpu).c_str(), fmt(quantile(r.run.settled, 0.5), "%.0f").c_str(),
+        fmt(mean_cpu).c_str(), fmt(quantile(r.run.exact_ms, 0.5)).c_str(),
+        fmt(quantile(r.run.exact_ms, 0.9)).c_str(), fmt(quantile(r.run.windows, 0.5), "%.0f").c_str(),
+        fmt(quantile(r.run.windows, 0.9), "%.0f").c_str(), r.run.corrected,
         fmt(quantile(r.run.iterations, 0.5), "%.0f").c_str(),
         fmt(quantile(r.run.iterations, 0.9), "%.0f").c_str(), r.run.not_converged,
         static_cast<int>(r.excess.size()),

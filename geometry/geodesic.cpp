@@ -34,6 +34,7 @@ bool GeodesicOptions::is_valid(std::string* why) const {
   if (max_iterations < 1) return fail("max_iterations must be >= 1");
   if (max_reroutes < 0) return fail("max_reroutes must be >= 0");
   if (lbfgs_memory < 1) return fail("lbfgs_memory must be >= 1");
+  if (max_windows < 0) return fail("max_windows must be >= 0 (0: no limit)");
   if (!(constraint_tolerance > 0.0)) return fail("constraint_tolerance must be > 0");
   if (max_outer_iterations < 1) return fail("max_outer_iterations must be >= 1");
   if (!(penalty_weight >= 0.0) || !std::isfinite(penalty_weight))

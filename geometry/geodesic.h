@@ -21,6 +21,7 @@
 
 #include "geometry/edge_path.h"
 #include "geometry/edge_path_steiner.h"
+#include "geometry/geodesic_windows.h"
 #include "geometry/mesh.h"
 #include "geometry/path_constraint.h"
 #include "geometry/path_metric.h"
@@ -69,6 +70,14 @@ struct GeodesicOptions {
   /// the context has one), whatever steiner_start says: legs are short, so their Steiner
   /// search is cheap.
   bool steiner_legs = true;
+  /// geodesic_between, Euclidean metric, both endpoints at vertices: after the starts above, a
+  /// bounded exact window propagation (geometry/geodesic_windows.h) looks for a path shorter
+  /// than the one found; when there is one, its corridor is refined and kept. This makes the
+  /// result the globally shortest geodesic (up to round-off) instead of a locally shortest one.
+  bool exact_windows = true;
+  /// Upper bound on the windows of that search per query (0: none); past it the local result
+  /// is kept.
+  long max_windows = 0;
   /// Upper bound on strip changes (reroutes) before giving up (0: 20 + 4 * crossings).
   int max_reroutes = 0;
   /// L-BFGS memory (pairs).
@@ -165,10 +174,16 @@ class GeodesicContext {
   /// 1e-4); as an extra start for the legs between the vertices a path passes (short, so cheap)
   /// it adds 2 of 50 (k = 2).
   static constexpr int kDefaultSteinerPoints = 2;
+  /// Landmarks of the exact window search by default (measured in bench/README.md).
+  static constexpr int kDefaultLandmarks = 0;
   /// \param steiner_points_per_edge k of the Steiner graph (0: none; ignored, i.e. none, under
   ///        an anisotropic metric).
+  /// \param landmarks exact distance fields of the window search's A* bounds
+  ///        (geometry/geodesic_windows.h; Euclidean metric only): each costs about one
+  ///        single-source exact distance field to build and makes later queries cheaper.
   GeodesicContext(const Mesh& mesh, PathMetric metric = {},
-                  int steiner_points_per_edge = kDefaultSteinerPoints);
+                  int steiner_points_per_edge = kDefaultSteinerPoints,
+                  int landmarks = kDefaultLandmarks);
   ~GeodesicContext();
   const Mesh& mesh() const { return mesh_; }
   const PathMetric& metric() const { return metric_; }
@@ -178,12 +193,19 @@ class GeodesicContext {
   const EdgeGraph& plain_graph() const { return plain_graph_; }
   /// The Steiner-point graph, or nullptr.
   const SteinerGraph* steiner_graph() const { return steiner_.get(); }
+  /// The window search's per-mesh data (geometry/geodesic_windows.h; empty unless the
+  /// metric is Euclidean).
+  const WindowMesh& window_mesh() const { return window_mesh_; }
+  /// The window search's landmarks (count 0: none).
+  const Landmarks& landmarks() const { return landmarks_; }
 
  private:
   const Mesh& mesh_;
   PathMetric metric_;
   EdgeGraph graph_, plain_graph_;
   std::unique_ptr<SteinerGraph> steiner_;
+  WindowMesh window_mesh_;
+  Landmarks landmarks_;
 };
 
 struct OpenGeodesicResult : GeodesicResult {
@@ -192,8 +214,14 @@ struct OpenGeodesicResult : GeodesicResult {
   EdgePath edge_path;      ///< diagnostics of the initial search (edge starts)
   int steiner_settled = 0; ///< nodes settled by the Steiner search (0 without one)
   /// Which start gave the result: 0 Steiner, 1 diagonal graph, 2 plain graph, 3 the legs
-  /// between the vertices passed (split_at_vertices).
+  /// between the vertices passed (split_at_vertices), 4 the exact window search.
   int start = 0;
+  double exact_ms = 0.0;   ///< the exact window search (part of refine_ms)
+  /// (longest - shortest) / shortest over the converged refinements of the starts.
+  double starts_spread = 0.0;
+  long exact_windows = 0;  ///< windows it created (0: not run)
+  /// The window search ran to its end: the result is the globally shortest geodesic.
+  bool exact_complete = false;
 };
 
 /// Geodesic between two surface points: start paths (Steiner graph, edge graphs; see

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "geometry/errors.h"
+#include "geometry/geodesic_windows.h"
 
 namespace windplan {
 
@@ -26,15 +27,52 @@ OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfaceP
 // Rounds of split_at_vertices (each one only while the path gets shorter).
 constexpr int kSplitRounds = 3;
 
+// The bounded exact window search below the length found; its corridor refined when shorter.
+void exact_window_pass(const GeodesicContext& context, int a, int b,
+                       const GeodesicOptions& options, OpenGeodesicResult* result) {
+  const auto t0 = Clock::now();
+  WindowSearchOptions search;
+  const bool have = result->summary.converged() && result->summary.final_length > 0.0;
+  // Only paths shorter by more than round-off are of interest.
+  if (have) search.upper_bound = result->summary.final_length * (1.0 - 1e-13);
+  search.max_windows = options.max_windows;
+  const WindowSearchResult w =
+      shortest_path_by_windows(context.mesh(), context.window_mesh(), a, b, search,
+                               &context.landmarks());
+  result->exact_windows = w.windows;
+  result->exact_complete = w.complete;
+  if (w.found) {
+    GeodesicOptions refine_options = options;
+    GeodesicResult r = refine_path(context.mesh(), w.path, context.metric(), refine_options);
+    result->summary.time_ms += r.summary.time_ms;
+    if (r.summary.converged() &&
+        (!have || r.summary.final_length < result->summary.final_length)) {
+      const double time = result->summary.time_ms;
+      result->path = std::move(r.path);
+      result->summary = r.summary;
+      result->summary.time_ms = time;
+      result->constraint_variables = std::move(r.constraint_variables);
+      result->start = 4;
+    }
+  }
+  result->exact_ms = ms_since(t0);
+  result->refine_ms += result->exact_ms;
+}
+
 }  // namespace
 
-GeodesicContext::GeodesicContext(const Mesh& mesh, PathMetric metric, int steiner_points_per_edge)
+GeodesicContext::GeodesicContext(const Mesh& mesh, PathMetric metric, int steiner_points_per_edge,
+                                 int landmarks)
     : mesh_(mesh),
       metric_(std::move(metric)),
       graph_(build_edge_graph(mesh, metric_, true)),
       plain_graph_(build_edge_graph(mesh, metric_, false)) {
   if (steiner_points_per_edge > 0 && metric_.kind() != PathMetric::Kind::Anisotropic) {
     steiner_ = std::make_unique<SteinerGraph>(mesh, metric_, steiner_points_per_edge);
+  }
+  if (metric_.kind() == PathMetric::Kind::Euclidean) {
+    window_mesh_ = prepare_window_mesh(mesh);
+    landmarks_ = compute_landmarks(mesh, window_mesh_, landmarks);
   }
 }
 
@@ -53,6 +91,7 @@ OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfaceP
   if (!steiner || options.two_starts) starts.push_back(1);
   if (options.two_starts && !context.graph().via.empty()) starts.push_back(2);
   bool have = false;
+  double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
   for (const int s : starts) {
     const auto t0 = Clock::now();
     EdgePath edge_path;
@@ -73,6 +112,10 @@ OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfaceP
     const auto t1 = Clock::now();
     GeodesicResult r = refine_path(mesh, init, context.metric(), options);
     result.refine_ms += ms_since(t1);
+    if (r.summary.converged()) {
+      shortest = std::min(shortest, r.summary.final_length);
+      longest = std::max(longest, r.summary.final_length);
+    }
     if (!have || (r.summary.converged() && (!result.summary.converged() ||
                                             r.summary.final_length < result.summary.final_length))) {
       const double time = result.summary.time_ms;
@@ -87,6 +130,7 @@ OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfaceP
       result.summary.time_ms += r.summary.time_ms;
     }
   }
+  result.starts_spread = longest > 0.0 ? (longest - shortest) / shortest : 0.0;
   return result;
 }
 
@@ -138,6 +182,10 @@ OpenGeodesicResult geodesic_between(const GeodesicContext& context, const Surfac
     result.summary.time_ms = time;
     result.constraint_variables = std::move(r.constraint_variables);
     result.start = 3;
+  }
+  if (options.exact_windows && !context.window_mesh().pseudo_source.empty() &&
+      a.kind == SurfacePoint::Kind::Vertex && b.kind == SurfacePoint::Kind::Vertex) {
+    exact_window_pass(context, a.element, b.element, options, &result);
   }
   return result;
 }

@@ -1,0 +1,586 @@
+// Bounded exact window propagation (see geometry/geodesic_windows.h).
+//
+// Window frame: a window lives on halfedge h and propagates into face(h). In h's frame from(h)
+// is the origin, to(h) is (L, 0), the third corner of face(h) has y > 0 and the unfolded
+// pseudo-source I = (sx, sy) has sy <= 0 (it lies on the side of face(twin(h))). A point (x, 0)
+// of the window's interval [b0, b1] is at distance sigma + |I - (x, 0)| from the source.
+#include "geometry/geodesic_windows.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <queue>
+
+#include "geometry/edge_path.h"
+#include "geometry/errors.h"
+
+namespace windplan {
+
+bool WindowSearchOptions::is_valid(std::string* why) const {
+  if (!(upper_bound > 0.0)) {
+    if (why) *why = "upper_bound must be > 0 (mesh units)";
+    return false;
+  }
+  if (max_windows < 0) {
+    if (why) *why = "max_windows must be >= 0 (0: no limit)";
+    return false;
+  }
+  return true;
+}
+
+WindowMesh prepare_window_mesh(const Mesh& mesh) {
+  WindowMesh w;
+  w.pseudo_source.assign(mesh.num_vertices(), 0);
+  constexpr double kTwoPi = 6.283185307179586;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (mesh.vertex_halfedge(v) < 0) continue;
+    w.pseudo_source[v] = mesh.is_boundary_vertex(v) || mesh.cone_angle(v) >= kTwoPi - 1e-9;
+  }
+  w.frame.resize(3 * static_cast<std::size_t>(mesh.num_interior_halfedges()));
+  for (int h = 0; h < mesh.num_interior_halfedges(); ++h) {
+    const Vec3& a = mesh.position(mesh.from(h));
+    const Vec3& b = mesh.position(mesh.to(h));
+    const Vec3& c = mesh.position(mesh.opposite_vertex(h));
+    const double len = (b - a).norm();
+    const double cx = len > 0.0 ? (c - a).dot(b - a) / len : 0.0;
+    w.frame[3 * h] = len;
+    w.frame[3 * h + 1] = cx;
+    w.frame[3 * h + 2] = std::sqrt(std::max(0.0, (c - a).squaredNorm() - cx * cx));
+  }
+  return w;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Vec2 {
+  double x, y;
+};
+Vec2 operator-(const Vec2& a, const Vec2& b) { return {a.x - b.x, a.y - b.y}; }
+double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
+double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
+double norm(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
+
+struct Window {
+  int h;
+  double len;  // length of h's edge
+  double b0, b1;
+  Vec2 source;   // I in h's frame
+  double sigma;  // distance of the pseudo-source from the source
+  int pseudo;    // pseudo-source vertex
+  int parent;    // window propagated into this one (-1: lit by `pseudo` directly)
+};
+
+struct Event {
+  double key;
+  int index;    // >= 0: window; < 0: vertex -(index + 1)
+  double dist;  // vertex events: the vertex's distance when pushed
+  bool operator>(const Event& o) const { return key > o.key; }
+};
+
+// Where the ray from I through X meets the line P + s (Q - P): s (NaN when parallel).
+double ray_hit(const Vec2& I, const Vec2& X, const Vec2& P, const Vec2& Q) {
+  const Vec2 d = X - I;
+  const double den = cross(Q - P, d);
+  if (den == 0.0) return std::numeric_limits<double>::quiet_NaN();
+  return cross(I - P, d) / den;
+}
+
+// Per-thread buffers reused across queries: vertex and halfedge records are valid when their
+// stamp is the query's (no O(V) clearing per query).
+struct Scratch {
+  unsigned stamp = 0;
+  std::vector<unsigned> vertex_stamp, halfedge_stamp;
+  std::vector<double> dist;
+  std::vector<int> provider_window, provider_vertex;
+  // One angle, one split (Xin and Wang): per halfedge h, the shortest distance to the corner
+  // opposite h that a window on h gave, and where that ray crossed h.
+  std::vector<double> split_dist, split_x;
+  std::vector<Window> windows;
+  std::vector<Event> queue;  // a min-heap on key
+  std::vector<int> outgoing;
+
+  void begin(const Mesh& mesh) {
+    const std::size_t nv = mesh.num_vertices(), nh = mesh.num_halfedges();
+    if (vertex_stamp.size() != nv || halfedge_stamp.size() != nh || ++stamp == 0) {
+      stamp = 1;
+      vertex_stamp.assign(nv, 0);
+      dist.resize(nv);
+      provider_window.resize(nv);
+      provider_vertex.resize(nv);
+      halfedge_stamp.assign(nh, 0);
+      split_dist.resize(nh);
+      split_x.resize(nh);
+    }
+    windows.clear();
+    queue.clear();
+  }
+};
+
+class Search {
+ public:
+  // target < 0: every vertex's distance (Dijkstra order, no bound).
+  Search(const Mesh& mesh, const WindowMesh& window_mesh, int source, int target,
+         const WindowSearchOptions& options, const Landmarks* landmarks = nullptr)
+      : mesh_(mesh),
+        pseudo_(window_mesh.pseudo_source),
+        frame_(window_mesh.frame.data()),
+        source_(source),
+        target_(target),
+        options_(options),
+        target_position_(target >= 0 ? mesh.position(target) : Vec3::Zero()),
+        landmarks_(target >= 0 && landmarks != nullptr && landmarks->count > 0 ? landmarks
+                                                                                 : nullptr),
+        scratch_(thread_scratch()),
+        windows_(scratch_.windows),
+        queue_(scratch_.queue),
+        outgoing_(scratch_.outgoing),
+        best_(options.upper_bound) {
+    scratch_.begin(mesh);
+    if (landmarks_ != nullptr) {
+      const int k = landmarks_->count;
+      target_landmark_.assign(landmarks_->dist.begin() + static_cast<std::size_t>(target) * k,
+                              landmarks_->dist.begin() + static_cast<std::size_t>(target + 1) * k);
+    }
+  }
+
+  // The distances of a full run (target < 0).
+  std::vector<double> distances() const {
+    std::vector<double> d(mesh_.num_vertices());
+    for (int v = 0; v < mesh_.num_vertices(); ++v) d[v] = dist(v);
+    return d;
+  }
+
+  WindowSearchResult run() {
+    WindowSearchResult result;
+    relax(source_, 0.0, -1, -1);
+    expand_vertex(source_, 0.0);
+    while (!queue_.empty() && !aborted_) {
+      std::pop_heap(queue_.begin(), queue_.end(), std::greater<Event>());
+      const Event e = queue_.back();
+      queue_.pop_back();
+      if (e.key >= best_) break;
+      if (e.index >= 0) {
+        propagate(e.index);
+        ++result.windows_propagated;
+      } else {
+        expand_vertex(-e.index - 1, e.dist);
+      }
+    }
+    result.windows = static_cast<long>(windows_.size());
+    result.vertex_events = vertex_events_;
+    result.complete = !aborted_;
+    if (target_ < 0 || aborted_ || !(dist(target_) < options_.upper_bound)) return result;
+    result.distance = dist(target_);
+    result.found = build_path(&result.path, &result.vertices_passed);
+    return result;
+  }
+
+ private:
+  static Scratch& thread_scratch() {
+    static thread_local Scratch scratch;
+    return scratch;
+  }
+  double dist(int v) const {
+    return scratch_.vertex_stamp[v] == scratch_.stamp ? scratch_.dist[v]
+                                                      : std::numeric_limits<double>::infinity();
+  }
+
+  void relax(int v, double d, int window, int from_vertex) {
+    if (!(d < dist(v))) return;
+    scratch_.vertex_stamp[v] = scratch_.stamp;
+    scratch_.dist[v] = d;
+    scratch_.provider_window[v] = window;
+    scratch_.provider_vertex[v] = from_vertex;
+    if (v == target_) {
+      best_ = std::min(best_, d);
+      return;
+    }
+    if (!pseudo_[v]) return;
+    double key = d;
+    if (target_ >= 0) key += std::max((mesh_.position(v) - target_position_).norm(),
+                                      landmark_bound(v, v, 0.0, 0.0));
+    if (key < best_) push({key, -(v + 1), d});
+  }
+
+  // Lights the edges opposite to v in its faces with v as the pseudo-source.
+  void expand_vertex(int v, double d) {
+    if (d > dist(v)) return;  // a later event carries the better distance
+    ++vertex_events_;
+    const Vec3& pv = mesh_.position(v);
+    outgoing_.clear();
+    const int first = mesh_.vertex_halfedge(v);
+    for (int o = first; o >= 0;) {
+      outgoing_.push_back(o);
+      o = mesh_.ccw_rotate(o);
+      if (o == first) break;
+    }
+    const bool all = v == source_ || mesh_.is_boundary_vertex(v) || !continuation_range(v);
+    for (std::size_t i = 0; i < outgoing_.size(); ++i) {
+      const int o = outgoing_[i];
+      relax(mesh_.to(o), d + mesh_.halfedge_length(o), -1, v);
+      const int p = mesh_.prev(o);
+      relax(mesh_.from(p), d + mesh_.halfedge_length(p), -1, v);
+      if (!all && !continues_[i]) continue;
+      const int h = mesh_.twin(mesh_.next(o));
+      if (mesh_.is_boundary_halfedge(h)) continue;
+      const Vec3& a = mesh_.position(mesh_.from(h));
+      const Vec3& b = mesh_.position(mesh_.to(h));
+      const double len = (b - a).norm();
+      if (!(len > 0.0)) continue;
+      const double x = (pv - a).dot(b - a) / len;
+      const double y = -std::sqrt(std::max(0.0, (pv - a).squaredNorm() - x * x));
+      add_window({h, len, 0.0, len, {x, y}, d, v, -1});
+    }
+  }
+
+  // A shortest path through the saddle v that arrived along direction u leaves it at an angle
+  // >= pi from -u on both sides (otherwise a path around v would be shorter): only the faces
+  // around v meeting that range need windows lit by v. Sets continues_ per outgoing_ entry;
+  // false when the arrival direction is unknown (then every face is lit).
+  bool continuation_range(int v) {
+    const std::size_t n = outgoing_.size();
+    corner_.resize(n + 1);
+    corner_[0] = 0.0;
+    for (std::size_t i = 0; i < n; ++i) corner_[i + 1] = corner_[i] + mesh_.corner_angle(outgoing_[i]);
+    const double total = corner_[n];
+    // The angle, counter-clockwise from outgoing_[0], of the direction back along the arrival.
+    double back = -1.0;
+    const int pw = scratch_.provider_window[v];
+    if (pw >= 0) {
+      const Window& w = windows_[pw];
+      const int o = mesh_.prev(w.h);  // v -> from(w.h) in face(w.h)
+      const double cx = frame_[3 * w.h + 1], cy = frame_[3 * w.h + 2];
+      const Vec2 ca{-cx, -cy}, ci{w.source.x - cx, w.source.y - cy};
+      const double beta = std::atan2(std::abs(cross(ca, ci)), dot(ca, ci));
+      for (std::size_t i = 0; i < n; ++i)
+        if (outgoing_[i] == o) back = corner_[i] + beta;
+    } else {
+      const int u = scratch_.provider_vertex[v];
+      for (std::size_t i = 0; i < n; ++i)
+        if (mesh_.to(outgoing_[i]) == u) back = corner_[i];
+    }
+    if (back < 0.0) return false;
+    constexpr double kPi = 3.141592653589793, kTol = 1e-9;
+    const double lo = kPi - kTol, hi = total - kPi + kTol;
+    continues_.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      double r0 = corner_[i] - back, r1 = corner_[i + 1] - back;
+      if (r0 < 0.0) {
+        r0 += total;
+        r1 += total;
+      }
+      // [r0, r1] and its copy one turn down, against [lo, hi].
+      continues_[i] = (r0 <= hi && r1 >= lo) || (r0 - total <= hi && r1 - total >= lo);
+    }
+    return true;
+  }
+
+  void add_window(Window w) {
+    const double len = w.len;
+    if (!(w.b1 - w.b0 > 1e-12 * len)) return;
+    if (!trim(&w)) return;
+    // min over x in [b0, b1] of |I - (x, 0)| + |(x, 0) - t|: the target at its distance r
+    // from the edge's line, unfolded to the other side (T = (tx, r)); the sum is convex in x
+    // with its minimum where I -> T crosses the line.
+    if (target_ < 0) {
+      push_window(w, w.sigma + norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0}));
+      return;
+    }
+    const Vec3& a = mesh_.position(mesh_.from(w.h));
+    const Vec3 at = target_position_ - a;
+    const double tx = at.dot(mesh_.position(mesh_.to(w.h)) - a) / len;
+    const Vec2 T{tx, std::sqrt(std::max(0.0, at.squaredNorm() - tx * tx))};
+    const Vec2& I = w.source;
+    const double cross_x = T.y - I.y > 0.0 ? I.x + (T.x - I.x) * (-I.y) / (T.y - I.y) : I.x;
+    const double x = std::clamp(cross_x, w.b0, w.b1);
+    const Vec2 X{x, 0.0};
+    double key = w.sigma + norm(X - I) + norm(T - X);
+    if (landmarks_ != nullptr) {
+      // Any x of the interval is within b1 of from(h) and len - b0 of to(h).
+      const double near = norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0});
+      key = std::max(key, w.sigma + near +
+                              landmark_bound(mesh_.from(w.h), mesh_.to(w.h), w.b1, len - w.b0));
+    }
+    push_window(w, key);
+  }
+
+  // ALT lower bound on d(x, t) for the points x within ra of vertex a and rb of vertex b:
+  // max over landmarks L of |d(L, t) - d(L, x)| with d(L, x) bracketed through a and b.
+  double landmark_bound(int a, int b, double ra, double rb) const {
+    if (landmarks_ == nullptr) return 0.0;
+    const int k = landmarks_->count;
+    const double* la = landmarks_->dist.data() + static_cast<std::size_t>(a) * k;
+    const double* lb = landmarks_->dist.data() + static_cast<std::size_t>(b) * k;
+    double bound = 0.0;
+    for (int i = 0; i < k; ++i) {
+      const double upper = std::min(la[i] + ra, lb[i] + rb);
+      const double lower = std::max(la[i] - ra, lb[i] - rb);
+      bound = std::max({bound, target_landmark_[i] - upper, lower - target_landmark_[i]});
+    }
+    return std::isfinite(bound) ? bound : 0.0;
+  }
+
+  void push(const Event& e) {
+    queue_.push_back(e);
+    std::push_heap(queue_.begin(), queue_.end(), std::greater<Event>());
+  }
+
+  void push_window(const Window& w, double key) {
+    if (!(key < best_)) return;
+    windows_.push_back(w);
+    push({key, static_cast<int>(windows_.size()) - 1, 0.0});
+    if (options_.max_windows > 0 && static_cast<long>(windows_.size()) > options_.max_windows)
+      aborted_ = true;
+  }
+
+  // The endpoint vertices' distances along the edge against the window's: g_A(x) = d(A) + x -
+  // (sigma + |I x|) has slope 1 - (slope of |I x|) >= 0, so A wins (g_A < 0) on a prefix of the
+  // interval, and B likewise on a suffix. Cuts those parts off (a little less, for round-off);
+  // false when nothing is left.
+  bool trim(Window* w) const {
+    const double tol = 1e-12 * w->len;
+    const Vec2 I = w->source;
+    const double da = dist(mesh_.from(w->h));
+    if (da + w->b1 < w->sigma + norm(I - Vec2{w->b1, 0.0})) return false;
+    if (da + w->b0 < w->sigma + norm(I - Vec2{w->b0, 0.0})) {
+      // d(A) + x = sigma + |I x|, i.e. 2 x (k + sx) = sx^2 + sy^2 - k^2 with k = d(A) - sigma.
+      const double k = da - w->sigma, den = 2.0 * (k + I.x);
+      if (den > 0.0) w->b0 = std::max(w->b0, (I.x * I.x + I.y * I.y - k * k) / den - tol);
+    }
+    const double db = dist(mesh_.to(w->h));
+    if (db + (w->len - w->b0) < w->sigma + norm(I - Vec2{w->b0, 0.0})) return false;
+    if (db + (w->len - w->b1) < w->sigma + norm(I - Vec2{w->b1, 0.0})) {
+      const double k = db - w->sigma, sx = w->len - I.x, den = 2.0 * (k + sx);
+      if (den > 0.0) w->b1 = std::min(w->b1, w->len - (sx * sx + I.y * I.y - k * k) / den + tol);
+    }
+    return w->b1 - w->b0 > tol;
+  }
+
+  void propagate(int index) {
+    Window w = windows_[index];
+    const int h = w.h;
+    const double len = w.len;
+    if (!trim(&w)) return;
+    const int c = mesh_.opposite_vertex(h);
+    const double cx = frame_[3 * h + 1], cy = frame_[3 * h + 2];
+    if (!(cy > 0.0)) return;  // degenerate face
+    const Vec2 A{0.0, 0.0}, B{len, 0.0}, C{cx, cy}, I = w.source;
+    // The ray from I through C meets the edge at xc.
+    const double xc = I.x + (cx - I.x) * (-I.y) / (cy - I.y);
+    const double tol = 1e-12 * len;
+    // One angle, one split: when a ray through another window on h reached C more cheaply
+    // (crossing h at x*), the rays of this window that cross the segment x* -> C are beaten at
+    // the crossing point (there d_w >= d_w(C) - |PC| > d*(C) - |PC| = d*), hence beyond it: a
+    // child on the far side of that segment keeps only the part whose rays do not cross it.
+    double keep_left = w.b1, keep_right = w.b0;  // left child within x <= keep_left, ...
+    const double dc = w.sigma + norm(C - I);
+    const bool recorded = scratch_.halfedge_stamp[h] == scratch_.stamp;
+    if (recorded && dc > scratch_.split_dist[h]) {
+      const double xs = scratch_.split_x[h];
+      if (xc < xs) keep_right = xs;  // rays in (xc, xs) cross x* -> C to reach C -> B
+      if (xc > xs) keep_left = xs;   // rays in (xs, xc) cross it to reach A -> C
+    }
+    if (xc >= w.b0 - tol && xc <= w.b1 + tol) {
+      // This window's ray reaches C: a real path (dc of a window whose cone misses C is no
+      // path, but it still bounds that window's distances on the segment x* -> C above).
+      relax(c, dc, index, -1);
+      if (!recorded || dc < scratch_.split_dist[h]) {
+        scratch_.halfedge_stamp[h] = scratch_.stamp;
+        scratch_.split_dist[h] = dc;
+        scratch_.split_x[h] = xc;
+      }
+    }
+    const int hp = mesh_.prev(h), hn = mesh_.next(h);
+    const double lac = frame_[3 * hp], lcb = frame_[3 * hn];
+    // Rays through [b0, min(b1, xc)] leave through A -> C: the child on twin(prev(h)), frame A.
+    if (w.b0 < std::min(xc, keep_left)) {
+      const int g = mesh_.twin(hp);
+      if (!mesh_.is_boundary_halfedge(g)) {
+        const double hi = std::min({w.b1, xc, keep_left});
+        const double s0 = std::clamp(ray_hit(I, {w.b0, 0.0}, A, C), 0.0, 1.0);
+        const double s1 = hi >= xc ? 1.0 : std::clamp(ray_hit(I, {hi, 0.0}, A, C), 0.0, 1.0);
+        const Vec2 e{cx / lac, cy / lac};
+        // ICH's third check: B beats the child at its end nearest A, hence everywhere on it
+        // (moving towards C, the ray from I turns towards A -> C no less than the line from B).
+        const Vec2 p0{s0 * cx, s0 * cy};
+        const bool beaten = dist(mesh_.to(h)) + norm(p0 - B) < w.sigma + norm(p0 - I);
+        if (s1 > s0 && !beaten)
+          add_window(
+              {g, lac, s0 * lac, s1 * lac, {dot(I, e), cross(e, I)}, w.sigma, w.pseudo, index});
+      }
+    }
+    // Rays through [max(b0, xc), b1] leave through C -> B: the child on twin(next(h)), frame C.
+    if (w.b1 > std::max(xc, keep_right)) {
+      const int g = mesh_.twin(hn);
+      if (!mesh_.is_boundary_halfedge(g)) {
+        const double lo = std::max({w.b0, xc, keep_right});
+        const double s0 = lo <= xc ? 0.0 : std::clamp(ray_hit(I, {lo, 0.0}, C, B), 0.0, 1.0);
+        const double s1 = std::clamp(ray_hit(I, {w.b1, 0.0}, C, B), 0.0, 1.0);
+        const Vec2 e{(len - cx) / lcb, -cy / lcb};
+        const Vec2 r = I - C;
+        // The same with A at the child's end nearest B.
+        const Vec2 p1{cx + s1 * (len - cx), cy - s1 * cy};
+        const bool beaten = dist(mesh_.from(h)) + norm(p1 - A) < w.sigma + norm(p1 - I);
+        if (s1 > s0 && !beaten)
+          add_window(
+              {g, lcb, s0 * lcb, s1 * lcb, {dot(r, e), cross(e, r)}, w.sigma, w.pseudo, index});
+      }
+    }
+  }
+
+  // The legs between the pseudo-sources the path passes, from the providers back from the
+  // target, joined at those vertices.
+  bool build_path(SurfacePath* path, std::vector<int>* passed) const {
+    std::vector<SurfacePath> legs;
+    std::vector<int> joints;
+    int u = target_;
+    for (int guard = 0; u != source_; ++guard) {
+      if (guard > mesh_.num_vertices()) return false;
+      SurfacePath leg;
+      leg.end = SurfacePoint::at_vertex(u);
+      int v = -1;
+      if (scratch_.provider_window[u] >= 0) {
+        std::vector<int> chain;
+        for (int w = scratch_.provider_window[u]; w >= 0; w = windows_[w].parent) chain.push_back(w);
+        std::reverse(chain.begin(), chain.end());
+        v = windows_[chain.front()].pseudo;
+        for (const int w : chain) {
+          const Window& x = windows_[w];
+          leg.halfedges.push_back(mesh_.twin(x.h));
+          leg.lambdas.push_back(std::clamp(1.0 - 0.5 * (x.b0 + x.b1) / x.len, 0.0, 1.0));
+        }
+        leg.start_face = mesh_.face(leg.halfedges.front());
+      } else {
+        v = scratch_.provider_vertex[u];
+        if (v < 0) return false;
+        for (const int o : mesh_.outgoing_halfedges(v)) {
+          if (mesh_.to(o) == u || mesh_.from(mesh_.prev(o)) == u) {
+            leg.start_face = mesh_.face(o);
+            break;
+          }
+        }
+        if (leg.start_face < 0) return false;
+      }
+      leg.start = SurfacePoint::at_vertex(v);
+      legs.push_back(std::move(leg));
+      if (v != source_) joints.push_back(v);
+      u = v;
+    }
+    if (legs.empty()) return false;
+    std::reverse(legs.begin(), legs.end());
+    std::reverse(joints.begin(), joints.end());
+    SurfacePath joined = legs.front();
+    for (std::size_t i = 1; i < legs.size(); ++i) {
+      joined = join_at_vertex(mesh_, joined, legs[i], joints[i - 1]);
+      if (joined.start_face < 0) return false;
+    }
+    *path = std::move(joined);
+    *passed = std::move(joints);
+    return true;
+  }
+
+  const Mesh& mesh_;
+  const std::vector<char>& pseudo_;
+  const double* frame_;
+  const int source_, target_;
+  const WindowSearchOptions options_;
+  const Vec3 target_position_;
+  const Landmarks* landmarks_;
+  std::vector<double> target_landmark_;
+  Scratch& scratch_;
+  std::vector<Window>& windows_;
+  std::vector<Event>& queue_;
+  std::vector<int>& outgoing_;
+  std::vector<double> corner_;
+  std::vector<char> continues_;
+  double best_;
+  long vertex_events_ = 0;
+  bool aborted_ = false;
+};
+
+}  // namespace
+
+namespace {
+
+void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
+                  std::initializer_list<int> vertices) {
+  for (const int v : vertices) {
+    if (v < 0 || v >= mesh.num_vertices()) {
+      throw InputError("vertex " + std::to_string(v) + " out of range (the mesh has " +
+                       std::to_string(mesh.num_vertices()) + " vertices)");
+    }
+  }
+  if (static_cast<int>(window_mesh.pseudo_source.size()) != mesh.num_vertices() ||
+      window_mesh.frame.size() != 3 * static_cast<std::size_t>(mesh.num_interior_halfedges())) {
+    throw ConfigError("window search: the window mesh (prepare_window_mesh) is not this mesh's");
+  }
+}
+
+}  // namespace
+
+std::vector<double> geodesic_distances_by_windows(const Mesh& mesh,
+                                                  const WindowMesh& window_mesh,
+                                                  int source) {
+  check_inputs(mesh, window_mesh, {source});
+  Search search(mesh, window_mesh, source, -1, WindowSearchOptions{});
+  search.run();
+  return search.distances();
+}
+
+Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh,
+                            int count) {
+  Landmarks l;
+  if (count <= 0 || mesh.num_vertices() == 0) return l;
+  // Farthest-point choice: the first is the vertex farthest along the bounding box diagonal,
+  // each next one the vertex farthest (geodesically) from those chosen.
+  const Vec3 diagonal = mesh.bounding_box().diagonal();
+  int next = -1;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (mesh.vertex_halfedge(v) < 0) continue;
+    if (next < 0 || mesh.position(v).dot(diagonal) > mesh.position(next).dot(diagonal)) next = v;
+  }
+  if (next < 0) return l;
+  std::vector<std::vector<double>> fields;
+  std::vector<double> nearest(mesh.num_vertices(), std::numeric_limits<double>::infinity());
+  while (static_cast<int>(fields.size()) < count && next >= 0) {
+    l.vertices.push_back(next);
+    fields.push_back(geodesic_distances_by_windows(mesh, window_mesh, next));
+    next = -1;
+    double far = 0.0;
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      nearest[v] = std::min(nearest[v], fields.back()[v]);
+      if (std::isfinite(nearest[v]) && nearest[v] > far) {
+        far = nearest[v];
+        next = v;
+      }
+    }
+  }
+  l.count = static_cast<int>(fields.size());
+  l.dist.resize(static_cast<std::size_t>(mesh.num_vertices()) * l.count);
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    for (int k = 0; k < l.count; ++k) l.dist[static_cast<std::size_t>(v) * l.count + k] = fields[k][v];
+  return l;
+}
+
+WindowSearchResult shortest_path_by_windows(const Mesh& mesh,
+                                            const WindowMesh& window_mesh, int source,
+                                            int target, const WindowSearchOptions& options,
+                                            const Landmarks* landmarks) {
+  const auto t0 = Clock::now();
+  check_inputs(mesh, window_mesh, {source, target});
+  std::string why;
+  if (!options.is_valid(&why)) throw ConfigError("window search: " + why);
+  if (landmarks != nullptr &&
+      landmarks->dist.size() != static_cast<std::size_t>(mesh.num_vertices()) * landmarks->count)
+    throw ConfigError("window search: landmark fields do not match the mesh");
+  WindowSearchResult result;
+  if (source != target)
+    result = Search(mesh, window_mesh, source, target, options, landmarks).run();
+  result.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace windplan
