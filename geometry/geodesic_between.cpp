@@ -27,6 +27,11 @@ OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfaceP
 // Rounds of split_at_vertices (each one only while the path gets shorter).
 constexpr int kSplitRounds = 3;
 
+// split_at_vertices: the legs between the vertices the path passes, solved on their own.
+void split_at_passed_vertices(const GeodesicContext& context, const SurfacePoint& a,
+                              const SurfacePoint& b, const GeodesicOptions& options,
+                              const EdgePathOptions& edge_options, OpenGeodesicResult* result);
+
 // The bounded exact window search below the length found; its corridor refined when shorter.
 void exact_window_pass(const GeodesicContext& context, int a, int b,
                        const GeodesicOptions& options, OpenGeodesicResult* result) {
@@ -45,6 +50,14 @@ void exact_window_pass(const GeodesicContext& context, int a, int b,
     GeodesicOptions refine_options = options;
     GeodesicResult r = refine_path(context.mesh(), w.path, context.metric(), refine_options);
     result->summary.time_ms += r.summary.time_ms;
+    // A refinement stopped by its reroute or iteration limits on the exact corridor, at the
+    // window search's distance, is the global minimum: converged in the sense that matters.
+    if (!r.summary.converged() && std::abs(r.summary.final_length - w.distance) <=
+                                      1e-12 * w.distance) {
+      r.summary.message = std::string("stopped (") + to_string(r.summary.termination) +
+                          ") at the exact window distance";
+      r.summary.termination = GeodesicTermination::Converged;
+    }
     if (r.summary.converged() &&
         (!have || r.summary.final_length < result->summary.final_length)) {
       const double time = result->summary.time_ms;
@@ -140,7 +153,21 @@ OpenGeodesicResult geodesic_between(const GeodesicContext& context, const Surfac
                                     const SurfacePoint& b, const GeodesicOptions& options,
                                     const EdgePathOptions& edge_options) {
   OpenGeodesicResult result = best_of_starts(context, a, b, options, edge_options);
-  if (!options.split_at_vertices || !result.summary.converged()) return result;
+  if (options.split_at_vertices && result.summary.converged())
+    split_at_passed_vertices(context, a, b, options, edge_options, &result);
+  if (options.exact_windows && !context.window_mesh().pseudo_source.empty() &&
+      a.kind == SurfacePoint::Kind::Vertex && b.kind == SurfacePoint::Kind::Vertex) {
+    exact_window_pass(context, a.element, b.element, options, &result);
+  }
+  return result;
+}
+
+namespace {
+
+void split_at_passed_vertices(const GeodesicContext& context, const SurfacePoint& a,
+                              const SurfacePoint& b, const GeodesicOptions& options,
+                              const EdgePathOptions& edge_options, OpenGeodesicResult* out) {
+  OpenGeodesicResult& result = *out;
   // A geodesic through a saddle vertex v leaves v in any direction within an angle: the legs
   // a -> v and v -> b are independent shortest-path problems, and each may have a shorter
   // geodesic in another corridor than the one the whole path's strip fixed. Solve the legs
@@ -183,11 +210,8 @@ OpenGeodesicResult geodesic_between(const GeodesicContext& context, const Surfac
     result.constraint_variables = std::move(r.constraint_variables);
     result.start = 3;
   }
-  if (options.exact_windows && !context.window_mesh().pseudo_source.empty() &&
-      a.kind == SurfacePoint::Kind::Vertex && b.kind == SurfacePoint::Kind::Vertex) {
-    exact_window_pass(context, a.element, b.element, options, &result);
-  }
-  return result;
 }
+
+}  // namespace
 
 }  // namespace windplan
