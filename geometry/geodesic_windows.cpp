@@ -76,7 +76,6 @@ struct Window {
 struct Event {
   double key;
   int index;    // >= 0: window; < 0: vertex -(index + 1)
-  double dist;  // vertex events: the vertex's distance when pushed
   bool operator>(const Event& o) const { return key > o.key; }
 };
 
@@ -98,6 +97,9 @@ struct Scratch {
   // One angle, one split (Xin and Wang): per halfedge h, the shortest distance to the corner
   // opposite h that a window on h gave, and where that ray crossed h.
   std::vector<double> split_dist, split_x;
+  // The target in each halfedge's frame (see Search::target_in_frame).
+  std::vector<unsigned> target_stamp;
+  std::vector<Vec2> target_frame;
   std::vector<Window> windows;
   std::vector<Event> queue;  // a min-heap on key
   std::vector<int> outgoing;
@@ -113,6 +115,8 @@ struct Scratch {
       halfedge_stamp.assign(nh, 0);
       split_dist.resize(nh);
       split_x.resize(nh);
+      target_stamp.assign(nh, 0);
+      target_frame.resize(nh);
     }
     windows.clear();
     queue.clear();
@@ -166,7 +170,9 @@ class Search {
         propagate(e.index);
         ++result.windows_propagated;
       } else {
-        expand_vertex(-e.index - 1, e.dist);
+        const int v = -e.index - 1;
+        // Stale when the vertex got a shorter distance (and a new event) since.
+        if (vertex_key(v, dist(v)) == e.key) expand_vertex(v, dist(v));
       }
     }
     result.windows = static_cast<long>(windows_.size());
@@ -199,10 +205,26 @@ class Search {
       return;
     }
     if (!pseudo_[v]) return;
-    double key = d;
-    if (target_ >= 0) key += std::max((mesh_.position(v) - target_position_).norm(),
-                                      landmark_bound(v, v, 0.0, 0.0));
-    if (key < best_) push({key, -(v + 1), d});
+    const double key = vertex_key(v, d);
+    if (key < best_) push({key, -(v + 1)});
+  }
+
+  // The target in h's frame, unfolded to the side y > 0 (cached per halfedge and query).
+  Vec2 target_in_frame(int h) {
+    if (scratch_.target_stamp[h] == scratch_.stamp) return scratch_.target_frame[h];
+    const Vec3& a = mesh_.position(mesh_.from(h));
+    const Vec3 at = target_position_ - a;
+    const double tx = at.dot(mesh_.position(mesh_.to(h)) - a) / frame_[3 * h];
+    const Vec2 T{tx, std::sqrt(std::max(0.0, at.squaredNorm() - tx * tx))};
+    scratch_.target_stamp[h] = scratch_.stamp;
+    scratch_.target_frame[h] = T;
+    return T;
+  }
+
+  double vertex_key(int v, double d) const {
+    if (target_ < 0) return d;
+    return d + std::max((mesh_.position(v) - target_position_).norm(),
+                        landmark_bound(v, v, 0.0, 0.0));
   }
 
   // Lights the edges opposite to v in its faces with v as the pseudo-source.
@@ -289,10 +311,7 @@ class Search {
       push_window(w, w.sigma + norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0}));
       return;
     }
-    const Vec3& a = mesh_.position(mesh_.from(w.h));
-    const Vec3 at = target_position_ - a;
-    const double tx = at.dot(mesh_.position(mesh_.to(w.h)) - a) / len;
-    const Vec2 T{tx, std::sqrt(std::max(0.0, at.squaredNorm() - tx * tx))};
+    const Vec2 T = target_in_frame(w.h);
     const Vec2& I = w.source;
     const double cross_x = T.y - I.y > 0.0 ? I.x + (T.x - I.x) * (-I.y) / (T.y - I.y) : I.x;
     const double x = std::clamp(cross_x, w.b0, w.b1);
@@ -331,7 +350,7 @@ class Search {
   void push_window(const Window& w, double key) {
     if (!(key < best_)) return;
     windows_.push_back(w);
-    push({key, static_cast<int>(windows_.size()) - 1, 0.0});
+    push({key, static_cast<int>(windows_.size()) - 1});
     if (options_.max_windows > 0 && static_cast<long>(windows_.size()) > options_.max_windows)
       aborted_ = true;
   }
