@@ -99,6 +99,14 @@ void friction_json(JsonWriter& j, const FrictionFigures& f) {
   j.field("planned_slippage", f.pass_lambda);
   j.field("measured_max_slippage", f.pass_measured);
   j.field("length_mm", f.pass_length);
+  j.field("transition", f.transition);
+  if (f.transition) {  // a friction transition on each pass (unequal openings)
+    j.field("transition_from_c_mm", f.transition_c[0]);
+    j.field("transition_to_c_mm", f.transition_c[1]);
+    j.field("transition_friction_length_mm", f.transition_length);
+    j.field("transition_axial_length_mm", f.transition_axial);
+    j.field("transition_turn_deg", f.transition_angle_deg);
+  }
   j.end_object();
   j.key("ends").begin_array();
   for (int e = 0; e < 2; ++e) {
@@ -350,8 +358,15 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
       << fmt("%.4f", ff.mu) << "; |k_g/k_n| planned and measured on the laid points.\n\n"
       << "| where | planned | measured max | friction length [mm] | along the axis [mm] | "
          "turn [deg] |\n|---|---|---|---|---|---|\n"
-      << "| passes (geodesic) | " << fmt("%.4f", ff.pass_lambda) << " | "
-      << fmt("%.4f", ff.pass_measured) << " | 0 | - | - |\n";
+      << (ff.transition
+              ? "| passes (a friction transition from r sin a = " +
+                    fmt("%.2f", ff.transition_c[0]) + " to " + fmt("%.2f", ff.transition_c[1]) +
+                    " mm) | " + fmt("%.4f", ff.pass_lambda) + " | " +
+                    fmt("%.4f", ff.pass_measured) + " | " + fmt("%.1f", ff.transition_length) +
+                    " per pass | " + fmt("%.1f", ff.transition_axial) + " | " +
+                    fmt("%.2f", ff.transition_angle_deg) + " |\n"
+              : "| passes (geodesic) | " + fmt("%.4f", ff.pass_lambda) + " | " +
+                    fmt("%.4f", ff.pass_measured) + " | 0 | - | - |\n");
     for (int e = 0; e < 2; ++e) {
       if (!ff.at_end[e]) continue;
       o << "| " << kEndName[e] << " turnaround | " << fmt("%.4f", ff.lambda[e]) << " | "
@@ -440,7 +455,13 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
     << "  max slippage     " << fmt("%.4f", m.max_slippage) << "\n";
   const PatternInfo& pi = m.pattern_info;
   const FrictionFigures& ff = m.friction_turnarounds;
-  if (ff.planned) {
+  if (ff.planned && ff.transition) {
+    o << "  friction         on the passes: |k_g/k_n| planned " << fmt("%.4f", ff.pass_lambda)
+      << ", measured <= " << fmt("%.4f", ff.pass_measured) << " (mu " << fmt("%.3f", ff.mu)
+      << "), " << fmt("%.1f", ff.transition_length) << " mm of each pass from r sin a = "
+      << fmt("%.2f", ff.transition_c[0]) << " to " << fmt("%.2f", ff.transition_c[1])
+      << " mm; geodesic turnarounds on the domes\n";
+  } else if (ff.planned) {
     o << "  turnarounds      friction, no pins: |k_g/k_n| planned " << fmt("%.4f", std::max(ff.lambda[0], ff.lambda[1]))
       << ", measured <= " << fmt("%.4f", std::max(ff.measured[0], ff.measured[1])) << " (mu "
       << fmt("%.3f", ff.mu) << "), " << fmt("%.1f", std::max(ff.length[0], ff.length[1]))

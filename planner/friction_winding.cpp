@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -26,87 +27,173 @@ std::string num(double v, int digits) {
 
 const char* end_name(int e) { return e == 0 ? "start" : "far"; }
 
-// The turnarounds, pass angle and circuit advance at one lambda.
+// One planned variant: the friction parts and the circuit advance at one lambda and c.
 struct Trial {
-  double lambda = 0.0, c = 0.0;
-  int unreached = -1;  // an end where friction never turns the fibre back to c
-  bool fits = true;    // the joins leave a geodesic pass between them
+  double lambda = 0.0, c = 0.0, delta = 0.0;  // delta: the domes' turnarounds moved (transition)
+  std::array<bool, 2> fe = {false, false};    // friction turnaround per end
+  int unreached = -1;  // an end where friction never brings r sin a to c
+  bool fits = true;    // the friction parts leave a geodesic pass between them, in the region
   std::array<FrictionTurnaround, 2> t;
-  double phi = 0.0, advance = 0.0;
+  FrictionTransition tr;
+  double phi = 0.0, advance = kNaN;
+  bool ok() const { return unreached < 0 && fits && std::isfinite(advance); }
 };
 
 struct Setup {
   const PatternProblem* pr;
   MeridianLine line;
-  std::array<bool, 2> fe;
-  std::array<double, 2> apex_s;
-  double c, step;
+  std::vector<double> cum;  // meridian length at each meridian point
+  bool transition = false;
+  std::array<double, 2> apex_s = {0.0, 0.0};  // turnarounds: the apex per end
+  double c = 0.0, step = 2.0, c_top = 0.0;
+  double span_lo = 0.0, span_hi = 0.0;  // transition: the largest-radius part (meridian s)
 };
 
-Trial evaluate(const Setup& su, double lambda, double c) {
+// Meridian length where r crosses `r` first, walking in from end `e` (NaN: nowhere).
+double crossing_from_end(const std::vector<Vec2>& m, const std::vector<double>& cum, double r,
+                         int e) {
+  const int n = static_cast<int>(m.size());
+  for (int k = 1; k < n; ++k) {
+    const int i = e == 0 ? k - 1 : n - 1 - k, j = i + 1;
+    const double a = m[i].y() - r, b = m[j].y() - r;
+    if (a * b <= 0.0 && a != b) return cum[i] + (cum[j] - cum[i]) * a / (a - b);
+  }
+  return kNaN;
+}
+
+Trial evaluate_turnarounds(const Setup& su, double lambda, double c) {
+  const PatternProblem& pr = *su.pr;
   Trial tr;
   tr.lambda = lambda;
   tr.c = c;
   for (int e : {0, 1}) {
-    if (!su.fe[e]) continue;
-    tr.t[e] = friction_turnaround(su.line, e, su.apex_s[e], c, lambda, su.step);
+    tr.fe[e] = pr.narrows ? std::abs(c - pr.apex_c[e]) > 1e-6 * pr.largest_radius
+                          : pr.end_radius[e] >= su.c;
+  }
+  for (int e : {0, 1}) {
+    if (!tr.fe[e]) continue;
+    tr.t[e] = friction_turnaround(su.line, e, su.apex_s[e], c, lambda, su.step, pr.narrows);
     if (!tr.t[e].reached) {
       tr.unreached = e;
       return tr;
     }
   }
-  const double x0 = su.fe[0] ? tr.t[0].join_x : kNaN;
-  const double x1 = su.fe[1] ? tr.t[1].join_x : kNaN;
-  if (su.fe[0] && su.fe[1] && !(x0 < x1)) {
+  const double x0 = tr.fe[0] ? tr.t[0].join_x : kNaN;
+  const double x1 = tr.fe[1] ? tr.t[1].join_x : kNaN;
+  if (tr.fe[0] && tr.fe[1] && !(x0 < x1)) {
     tr.fits = false;
     return tr;
   }
   try {
-    const std::vector<Vec2> m = clip_meridian(su.pr->meridian, x0, x1);
+    const std::vector<Vec2> m = clip_meridian(pr.meridian, x0, x1);
     if (m.size() < 2) throw InputError("no pass");
     tr.phi = clairaut_pass_angle(m, c);
   } catch (const InputError&) {
     tr.fits = false;
     return tr;
   }
-  tr.advance = 2.0 * tr.phi + (su.fe[0] ? tr.t[0].angle : 0.0) + (su.fe[1] ? tr.t[1].angle : 0.0);
+  tr.advance = 2.0 * tr.phi + (tr.fe[0] ? tr.t[0].angle : 0.0) + (tr.fe[1] ? tr.t[1].angle : 0.0);
   return tr;
+}
+
+// The transition's axial extent on a cylinder of radius R (closed form, planner/semi_geodesic.h).
+double transition_extent(double R, double c0, double c1, double lambda) {
+  return R * std::abs(R / c0 - R / c1) / lambda;
+}
+
+Trial evaluate_transition(const Setup& su, double lambda, double delta) {
+  const PatternProblem& pr = *su.pr;
+  Trial tr;
+  tr.lambda = lambda;
+  tr.delta = delta;
+  const double c0 = pr.apex_c[0] + delta, c1 = pr.apex_c[1] + delta;
+  tr.c = c0;
+  const double R = pr.largest_radius;
+  const double start = 0.5 * (su.span_lo + su.span_hi) - 0.5 * transition_extent(R, c0, c1, lambda);
+  if (!(c0 <= su.c_top && c1 <= su.c_top) || start < su.span_lo) {
+    tr.fits = false;
+    return tr;
+  }
+  tr.tr = friction_transition(su.line, start, c0, c1, lambda, su.span_hi, su.step);
+  if (!tr.tr.reached) {
+    tr.fits = false;
+    return tr;
+  }
+  try {
+    tr.phi = clairaut_pass_angle(clip_meridian(pr.meridian, kNaN, tr.tr.start_x), c0) +
+             clairaut_pass_angle(clip_meridian(pr.meridian, tr.tr.end_x, kNaN), c1);
+  } catch (const InputError&) {
+    tr.fits = false;
+    return tr;
+  }
+  tr.advance = 2.0 * (tr.phi + tr.tr.angle);
+  return tr;
+}
+
+// The smallest slippage in (bound, 1] for which `ok(lambda)` holds (NaN: none up to 1).
+double needed_slippage(double bound, const std::function<bool(double)>& ok) {
+  if (!ok(1.0)) return kNaN;
+  double lo = bound, hi = 1.0;
+  for (int it = 0; it < 10; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (ok(mid) ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+std::string would_need(double lambda, const WindingOptions& o) {
+  if (std::isnan(lambda)) return "no slippage up to 1 would do it";
+  return "it would need winding.slippage >= " + num(std::ceil(lambda * 1000.0) / 1000.0, 3) +
+         (lambda > o.mu ? " (above winding.mu = " + num(o.mu, 3) + ": the fibre would slip)"
+                        : " (<= winding.mu = " + num(o.mu, 3) + ")");
 }
 
 [[noreturn]] void refuse(const Setup& su, const Trial& tr, const WindingOptions& o) {
   const PatternProblem& pr = *su.pr;
   const std::string head = "winding.slippage = " + num(o.slippage, 3) + ": ";
-  const std::string raise = "raise winding.slippage (<= winding.mu = " + num(o.mu, 3) + ")";
+  const double need = needed_slippage(
+      o.slippage, [&](double l) { return evaluate_turnarounds(su, l, su.c).ok(); });
+  const std::string alt = ", raise the winding angle, or wind that end on pins (slippage 0)";
   if (tr.unreached >= 0) {
     const FrictionTurnaround& t = tr.t[tr.unreached];
+    const bool up = su.c > t.apex_r;
     throw ConfigError(head + "at the " + end_name(tr.unreached) + " end friction turns the " +
-                      "fibre around on the parallel r = " + num(t.apex_r, 2) + " mm (apex half a " +
-                      "band in from the end) but brings r sin a only down to " + num(t.lowest, 2) +
-                      " mm within the wound region, not to the passes' " + "Clairaut constant " +
-                      num(su.c, 2) + " mm (" + pr.requested_by + "); " + raise +
-                      ", raise the winding angle, or wind that end on pins (slippage 0)");
+                      "fibre around on the parallel r = " + num(t.apex_r, 2) + " mm (" +
+                      (pr.narrows ? "the dome's turnaround" : "apex half a band in from the end") +
+                      ") but brings r sin a only " + (up ? "up" : "down") + " to " +
+                      num(t.lowest, 2) + " mm within the wound region, not to the passes' " +
+                      "Clairaut constant " + num(su.c, 2) + " mm (" + pr.requested_by + "); " +
+                      would_need(need, o) +
+                      (pr.narrows ? "; or ask a winding angle nearer the geodesic's" : alt));
   }
-  double need = 0.0;
+  double total = 0.0;
   std::ostringstream per;
   for (int e : {0, 1}) {
-    if (!su.fe[e]) continue;
+    if (!tr.fe[e]) continue;
     const double ext = std::abs(tr.t[e].apex_x - tr.t[e].join_x) + 0.5 * pr.band_width;
-    need += ext;
+    total += ext;
     per << (per.tellp() > 0 ? ", " : "") << num(ext, 1) << " mm at the " << end_name(e) << " end";
   }
   const double region = pr.meridian.back().x() - pr.meridian.front().x();
-  throw ConfigError(head + "the friction turnarounds need " + num(need, 1) +
+  throw ConfigError(head + "the friction turnarounds need " + num(total, 1) +
                     " mm along the axis (" + per.str() + ": from the pass angle " +
                     num(std::asin(std::min(1.0, su.c / pr.largest_radius)) * 180.0 / M_PI, 2) +
-                    " deg to 90 deg at |k_g/k_n| <= " + num(o.slippage, 3) + ", apex half a " +
-                    "band in from the end) and a geodesic pass between them, but the wound " +
-                    "region is " + num(region, 1) + " mm long; " + raise +
-                    ", raise the winding angle, or wind a longer region");
+                    " deg to 90 deg at |k_g/k_n| <= " + num(o.slippage, 3) + ") and a geodesic " +
+                    "pass between them, but the wound region is " + num(region, 1) +
+                    " mm long; " + would_need(need, o) + alt);
 }
 
-// The candidates to close, in the order the job asks.
+// The candidates to close, in the order the job asks. A friction plan's advance is not the
+// geodesic's, so on domes every skip coprime to K is a candidate (not only those a geodesic
+// closes in the window).
 std::vector<PatternCandidate> candidates(const PatternProblem& pr, const WindingOptions& o) {
-  std::vector<PatternCandidate> all = pattern_candidates(pr);
+  PatternProblem open = pr;
+  if (pr.narrows) {
+    open.domes = false;
+    open.end_radius = {pr.largest_radius, pr.largest_radius};  // every (K, p), dwell ends
+    open.c_lo = open.c_hi = pr.requested_c;
+  }
+  std::vector<PatternCandidate> all = pattern_candidates(open);
   if (o.circuits > 0) {
     const int K = o.circuits;
     all.erase(std::remove_if(all.begin(), all.end(),
@@ -115,7 +202,7 @@ std::vector<PatternCandidate> candidates(const PatternProblem& pr, const Winding
     if (all.empty()) {
       for (int p = K == 1 ? 0 : 1; p < std::max(1, K); ++p) {
         if (std::gcd(p, K) == 1)
-          all.push_back(pattern_for(pr, K, p, pr.c_lo, pr.c_hi, pr.requested_c));
+          all.push_back(pattern_for(open, K, p, open.c_lo, open.c_hi, open.requested_c));
       }
     }
   }
@@ -127,136 +214,351 @@ std::vector<PatternCandidate> candidates(const PatternProblem& pr, const Winding
   return all;
 }
 
+// A one-parameter family of trials, u on a grid in order.
+struct Family {
+  std::vector<double> u;
+  std::vector<Trial> trial;  // not ok(): a hole, no bracket across it
+};
+
+template <typename Eval>
+Family family(const std::vector<double>& u, Eval eval) {
+  Family f;
+  f.u = u;
+  for (double x : u) f.trial.push_back(eval(x));
+  return f;
+}
+
+// The trial nearest `prefer` (in u) whose advance closes (K, p): 2 pi (m + p / K), m whole;
+// brackets on the grid bisected on u. not ok() when none; *u_out its u.
+template <typename Eval>
+Trial close_on(const Family& f, Eval eval, int K, int p, double prefer, double* u_out) {
+  const double base = kTwoPi * p / std::max(1, K);
+  Trial best;
+  best.fits = false;
+  double best_u = kNaN;
+  for (std::size_t i = 1; i < f.u.size(); ++i) {
+    const Trial &a = f.trial[i - 1], &b = f.trial[i];
+    if (!a.ok() || !b.ok()) continue;
+    const double lo = std::min(a.advance, b.advance), hi = std::max(a.advance, b.advance);
+    for (double m = std::ceil((lo - base) / kTwoPi - 1e-12); base + kTwoPi * m <= hi; m += 1.0) {
+      const double T = base + kTwoPi * m;
+      double u0 = f.u[i - 1], u1 = f.u[i];
+      const bool rising = b.advance >= a.advance;
+      bool hole = false;
+      for (int it = 0; it < 60; ++it) {
+        const double um = 0.5 * (u0 + u1);
+        const Trial t = eval(um);
+        if (!t.ok()) {
+          hole = true;
+          break;
+        }
+        ((t.advance < T) == rising ? u0 : u1) = um;
+      }
+      if (hole) continue;
+      const double root = 0.5 * (u0 + u1);
+      const Trial t = eval(root);
+      if (!t.ok() || std::abs(t.advance - T) > 1e-6) continue;
+      if (std::isnan(best_u) || std::abs(root - prefer) < std::abs(best_u - prefer)) {
+        best_u = root;
+        best = t;
+      }
+    }
+  }
+  if (u_out) *u_out = best_u;
+  return best;
+}
+
+// One way to close a pattern: a family of trials, how to evaluate between its grid points, and
+// the parameter preferred.
+struct Closer {
+  Family family;
+  std::function<Trial(double)> eval;
+  double prefer = 0.0;
+};
+
+// The first K (in candidate order) that closes, by the first closer that closes it, with the
+// skip whose parameter is nearest that closer's `prefer`; false when none.
+bool pick(const std::vector<PatternCandidate>& cands, const std::vector<Closer>& closers,
+          PatternCandidate* cand, Trial* trial) {
+  for (std::size_t i = 0; i < cands.size();) {
+    std::size_t j = i;
+    while (j < cands.size() && cands[j].circuits == cands[i].circuits) ++j;
+    for (const Closer& cl : closers) {
+      double best_u = kNaN;
+      for (std::size_t k = i; k < j; ++k) {
+        double u = kNaN;
+        const Trial t = close_on(cl.family, cl.eval, cands[k].circuits, cands[k].skip, cl.prefer, &u);
+        if (t.ok() && (std::isnan(best_u) || std::abs(u - cl.prefer) < std::abs(best_u - cl.prefer))) {
+          best_u = u;
+          *cand = cands[k];
+          *trial = t;
+        }
+      }
+      if (!std::isnan(best_u)) return true;
+    }
+    i = j;
+  }
+  return false;
+}
+
+std::vector<double> grid(double a, double b, int n) {
+  std::vector<double> g;
+  for (int i = 0; i <= n; ++i) g.push_back(a + (b - a) * i / n);
+  return g;
+}
+
 FrictionWinding result(const Setup& su, const PatternCandidate& cand, const Trial& best,
                        double bound) {
   const PatternProblem& pr = *su.pr;
   FrictionWinding w;
-  w.friction_end = su.fe;
-  w.turnarounds = best.t;
+  w.requested_c = pr.requested_c;
+  if (getenv("FDBG")) fprintf(stderr, "result lambda %.4f c %.3f fe %d%d joins %.2f %.2f apex %.2f %.2f reached %d %d len %.1f %.1f\n", best.lambda, best.c, best.fe[0], best.fe[1], best.t[0].join_x, best.t[1].join_x, best.t[0].apex_x, best.t[1].apex_x, best.t[0].reached, best.t[1].reached, best.t[0].length, best.t[1].length);
   w.slippage = best.lambda;
   w.bound = bound;
-  const double x0 = su.fe[0] ? best.t[0].join_x : kNaN;
-  const double x1 = su.fe[1] ? best.t[1].join_x : kNaN;
-  w.pass = clairaut_pass(clip_meridian(pr.meridian, x0, x1), best.c, {su.step});
   w.pattern = cand;
+  if (su.transition) {
+    const FrictionTransition& T = best.tr;
+    w.transition = true;
+    w.transition_path = T;
+    const double c1 = T.c_to;
+    const ClairautPass p0 =
+        clairaut_pass(clip_meridian(pr.meridian, kNaN, T.start_x), T.c_from, {su.step});
+    const ClairautPass p1 = clairaut_pass(clip_meridian(pr.meridian, T.end_x, kNaN), c1, {su.step});
+    ClairautPass& out = w.pass;
+    out.c = T.c_from;
+    out.turns_around = {p0.turns_around[0], p1.turns_around[1]};
+    out.samples = p0.samples;
+    for (std::size_t i = 1; i < T.samples.size(); ++i) {
+      PassSample q = T.samples[i];
+      q.phi += p0.angle;
+      q.length += p0.length;
+      out.samples.push_back(q);
+    }
+    for (std::size_t i = 1; i < p1.samples.size(); ++i) {
+      PassSample q = p1.samples[i];
+      q.phi += p0.angle + T.angle;
+      q.length += p0.length + T.length;
+      out.samples.push_back(q);
+    }
+    out.angle = p0.angle + T.angle + p1.angle;
+    out.length = p0.length + T.length + p1.length;
+    w.pattern.moved = best.delta;
+  } else {
+    w.friction_end = best.fe;
+    w.turnarounds = best.t;
+    const double x0 = best.fe[0] ? best.t[0].join_x : kNaN;
+    const double x1 = best.fe[1] ? best.t[1].join_x : kNaN;
+    w.pass = clairaut_pass(clip_meridian(pr.meridian, x0, x1), best.c, {su.step});
+    w.pattern.moved = best.c - pr.requested_c;
+  }
   w.pattern.c = best.c;
-  w.pattern.moved = best.c - pr.requested_c;
   const double sa = std::min(1.0, best.c / pr.largest_radius);
   w.pattern.angle_deg = std::asin(sa) * 180.0 / M_PI;
   w.pattern.dwell = {0.0, 0.0};
   w.pattern.advance = best.advance;
-  w.pattern.turns_per_pass = best.phi / kTwoPi;
+  // Turns of a whole pass (friction parts included) on a vessel; between the joins at pipe ends.
+  w.pattern.turns_per_pass = pr.narrows ? best.advance / (2.0 * kTwoPi) : best.phi / kTwoPi;
   return w;
+}
+
+[[noreturn]] void no_pattern(const WindingOptions& o, const std::string& how) {
+  throw ConfigError("winding.slippage = " + num(o.slippage, 3) + ": no pattern" +
+                    (o.circuits > 0 ? " with circuits " + std::to_string(o.circuits) : "") +
+                    (o.skip > 0 ? " and skip " + std::to_string(o.skip) : "") + " closes " + how +
+                    "; raise winding.slippage (<= winding.mu), widen winding.turnaround_window " +
+                    "or change winding.pattern");
+}
+
+double window_of(const PatternProblem& pr, const WindingOptions& o) {
+  return std::isfinite(o.turnaround_window) ? o.turnaround_window : 0.25 * pr.band_width;
+}
+
+// Geodesic domes on their own turnarounds joined by a friction transition on the cylinder.
+FrictionWinding plan_transition(Setup& su, const WindingOptions& o) {
+  const PatternProblem& pr = *su.pr;
+  const double R = pr.largest_radius;
+  // The largest-radius part of the meridian, where the transition lies.
+  const std::vector<Vec2>& m = pr.meridian;
+  su.span_lo = kNaN;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (m[i].y() < 0.999 * R) continue;  // the cylinder (a mesh section wavers by ~5e-4 R)
+    if (std::isnan(su.span_lo)) su.span_lo = su.cum[i];
+    su.span_hi = su.cum[i];
+  }
+  const double bound = o.slippage;
+  const double c0 = pr.apex_c[0], c1 = pr.apex_c[1];
+  const double span = su.span_hi - su.span_lo;
+  const double lambda_min = span > 0.0 ? transition_extent(R, c0, c1, span) : kNaN;
+  auto at = [&](double u) { return evaluate_transition(su, 1.0 / u, 0.0); };
+  if (!at(1.0 / bound).ok()) {
+    const double need = needed_slippage(bound, [&](double l) { return at(1.0 / l).ok(); });
+    throw ConfigError("winding.slippage = " + num(bound, 3) + ": the domes turn around on " +
+                      num(c0, 2) + " and " + num(c1, 2) + " mm (each polar opening + half the " +
+                      "band) and the passes join them by friction on the cylinder, which needs " +
+                      num(transition_extent(R, c0, c1, bound), 1) + " mm of its " + num(span, 1) +
+                      " mm at |k_g/k_n| <= " + num(bound, 3) + "; " + would_need(need, o) +
+                      ", or give winding.angle (friction on the domes instead)");
+  }
+  // lambda from the bound down to what fills the cylinder, evenly in 1 / lambda.
+  const double u_max = 1.0 / std::max(lambda_min * 1.0001, bound / 8.0);
+  const Family lam = family(grid(1.0 / bound, std::max(1.0 / bound, u_max), 64), at);
+  // Per K: lambda first, then both turnarounds outward by delta in the window at the bound.
+  auto moved = [&](double d) { return evaluate_transition(su, bound, d); };
+  const std::vector<Closer> closers = {
+      {lam, at, 1.0 / bound}, {family(grid(0.0, window_of(pr, o), 64), moved), moved, 0.0}};
+  PatternCandidate cand;
+  Trial t;
+  PatternProblem low = pr;  // the bands are widest along the circumference at the lower angle
+  low.requested_c = std::min(c0, c1);
+  if (pick(candidates(low, o), closers, &cand, &t)) return result(su, cand, t, bound);
+  no_pattern(o, "with a friction transition at |k_g/k_n| in " + num(1.0 / u_max, 3) + " .. " +
+                    num(bound, 3) + " (nor at " + num(bound, 3) + " with the turnarounds moved " +
+                    "out within winding.turnaround_window)");
+}
+
+// winding.turns on domes with friction: the c whose whole pass makes those turns at the bound.
+double c_for_turns(const Setup& su, const WindingOptions& o) {
+  const PatternProblem& pr = *su.pr;
+  const double target = pr.turns * 2.0 * kTwoPi;  // the circuit advance
+  auto at = [&](double lambda, int n) {
+    return family(grid(0.1 * pr.largest_radius, su.c_top, n),
+                  [&](double c) { return evaluate_turnarounds(su, lambda, c); });
+  };
+  // The turns a pass can make at lambda (a grid of c).
+  auto range = [](const Family& f, double* lo, double* hi) {
+    *lo = std::numeric_limits<double>::infinity();
+    *hi = -*lo;
+    for (const Trial& t : f.trial) {
+      if (!t.ok()) continue;
+      *lo = std::min(*lo, t.advance / (2.0 * kTwoPi));
+      *hi = std::max(*hi, t.advance / (2.0 * kTwoPi));
+    }
+  };
+  const Family f = at(o.slippage, 96);
+  double best = kNaN;
+  for (std::size_t i = 1; i < f.u.size(); ++i) {
+    const Trial &a = f.trial[i - 1], &b = f.trial[i];
+    if (!a.ok() || !b.ok() || (a.advance - target) * (b.advance - target) > 0.0) continue;
+    double x0 = f.u[i - 1], x1 = f.u[i];
+    for (int it = 0; it < 60; ++it) {
+      const double xm = 0.5 * (x0 + x1);
+      const Trial t = evaluate_turnarounds(su, o.slippage, xm);
+      if (!t.ok()) break;
+      ((t.advance < target) == (b.advance >= a.advance) ? x0 : x1) = xm;
+    }
+    const double root = 0.5 * (x0 + x1);
+    if (std::isnan(best) || std::abs(root - pr.requested_c) < std::abs(best - pr.requested_c))
+      best = root;
+  }
+  if (std::isfinite(best)) return best;
+  double lo = 0.0, hi = 0.0;
+  range(f, &lo, &hi);
+  const double need = needed_slippage(o.slippage, [&](double l) {
+    double a = 0.0, b = 0.0;
+    range(at(l, 24), &a, &b);
+    return a <= pr.turns && pr.turns <= b;
+  });
+  throw ConfigError("winding.turns = " + format_turns(pr.turns) + ": with the passes turning " +
+                    "around at " + num(pr.apex_c[0], 2) + " and " + num(pr.apex_c[1], 2) +
+                    " mm and friction up to |k_g/k_n| = " + num(o.slippage, 3) + " on the domes " +
+                    (std::isfinite(lo) ? "a pass makes " + num(lo, 3) + " .. " + num(hi, 3) +
+                                             " turns"
+                                       : std::string("no pass reaches the cylinder")) +
+                    "; " + would_need(need, o));
 }
 
 }  // namespace
 
 bool wants_friction_turnarounds(const PatternProblem& pr, const WindingOptions& o) {
-  if (!(o.slippage > 0.0) || pr.domes || !pr.reachable) return false;
+  if (!(o.slippage > 0.0) || !pr.reachable) return false;
+  if (pr.narrows) {
+    const double tol = 1e-6 * pr.largest_radius;
+    if (pr.requested_by == "winding.angle" || std::isfinite(pr.turns)) {
+      return std::abs(pr.requested_c - pr.apex_c[0]) > tol ||
+             std::abs(pr.requested_c - pr.apex_c[1]) > tol || std::isfinite(pr.turns);
+    }
+    return std::abs(pr.apex_c[0] - pr.apex_c[1]) > tol;
+  }
+  if (pr.domes) return false;
   return pr.end_radius[0] >= pr.requested_c || pr.end_radius[1] >= pr.requested_c;
 }
 
-FrictionWinding plan_friction_winding(const PatternProblem& pr, const WindingOptions& o) {
+FrictionWinding plan_friction_winding(const PatternProblem& problem, const WindingOptions& o) {
+  PatternProblem pr = problem;  // winding.turns on domes: requested_c is solved below
   const double step = std::clamp(0.125 * o.band_width, 0.25, 2.0);
-  Setup su{&pr, MeridianLine(pr.meridian), {false, false}, {0.0, 0.0}, pr.requested_c, step};
-  for (int e : {0, 1}) su.fe[e] = pr.end_radius[e] >= su.c;
+  Setup su{&pr, MeridianLine(pr.meridian, 0.5 * o.band_width), {}};
+  su.cum = {0.0};
+  for (std::size_t i = 1; i < pr.meridian.size(); ++i) {
+    su.cum.push_back(su.cum.back() + (pr.meridian[i] - pr.meridian[i - 1]).norm());
+  }
+  su.c = pr.requested_c;
+  su.step = step;
+  su.c_top = 0.999 * pr.largest_radius;  // a pass at R never leaves the largest parallel
+  if (pr.narrows && !(pr.requested_by == "winding.angle" || std::isfinite(pr.turns))) {
+    su.transition = true;
+    return plan_transition(su, o);
+  }
   const double half_band = 0.5 * pr.band_width;
-  su.apex_s = {half_band, su.line.length() - half_band};
   for (int e : {0, 1}) {
-    if (su.fe[e] && !(su.line.point(su.apex_s[e]).y() > su.c)) {
-      throw ConfigError("winding.slippage: the " + std::string(end_name(e)) + " end's radius " +
-                        num(su.line.point(su.apex_s[e]).y(), 2) + " mm is not above the " +
-                        "turnaround radius " + num(su.c, 2) + " mm (" + pr.requested_by +
-                        "): no friction turnaround can start there");
+    if (pr.narrows) {
+      su.apex_s[e] = crossing_from_end(pr.meridian, su.cum, pr.apex_c[e], e);
+      if (std::isnan(su.apex_s[e])) {
+        throw ConfigError("winding.turnaround: the " + std::string(end_name(e)) + " dome never " +
+                          "reaches the radius " + num(pr.apex_c[e], 2) + " mm");
+      }
+    } else {
+      su.apex_s[e] = e == 0 ? half_band : su.line.length() - half_band;
     }
+  }
+  if (!pr.narrows) {
+    for (int e : {0, 1}) {
+      if (pr.end_radius[e] >= su.c && !(su.line.point(su.apex_s[e]).y() > su.c)) {
+        throw ConfigError("winding.slippage: the " + std::string(end_name(e)) + " end's radius " +
+                          num(su.line.point(su.apex_s[e]).y(), 2) + " mm is not above the " +
+                          "turnaround radius " + num(su.c, 2) + " mm (" + pr.requested_by +
+                          "): no friction turnaround can start there");
+      }
+    }
+  }
+  if (std::isfinite(pr.turns)) pr.requested_c = su.c = c_for_turns(su, o);
+  const double bound = o.slippage;
+  {
+    const Trial first = evaluate_turnarounds(su, bound, su.c);
+    if (!first.ok()) refuse(su, first, o);
   }
   // lambda from the bound down to bound / 4, evenly in 1 / lambda.
-  const double bound = o.slippage;
-  constexpr int kGrid = 96;
-  std::vector<Trial> grid;
-  for (int i = 0; i <= kGrid; ++i) {
-    const double u = (1.0 + 3.0 * i / kGrid) / bound;
-    Trial tr = evaluate(su, 1.0 / u, su.c);
-    if (tr.unreached >= 0 || !tr.fits) {
-      if (i == 0) refuse(su, tr, o);
+  auto at = [&](double u) { return evaluate_turnarounds(su, 1.0 / u, su.c); };
+  Family lam = family(grid(1.0 / bound, 4.0 / bound, 96), at);
+  for (std::size_t i = 1; i < lam.trial.size(); ++i) {  // up to the first that does not fit
+    if (!lam.trial[i].ok()) {
+      lam.u.resize(i);
+      lam.trial.resize(i);
       break;
     }
-    grid.push_back(std::move(tr));
   }
-  for (const PatternCandidate& cand : candidates(pr, o)) {
-    const int K = cand.circuits, p = cand.skip;
-    const double base = kTwoPi * p / std::max(1, K);
-    for (std::size_t i = 0; i < grid.size(); ++i) {
-      const double a = grid[i == 0 ? 0 : i - 1].advance, b = grid[i].advance;
-      const double lo = std::min(a, b), hi = std::max(a, b);
-      const double m = std::ceil((lo - base) / kTwoPi - 1e-12);
-      const double T = base + kTwoPi * m;
-      if (T > hi + 1e-12) continue;
-      // Bisect on 1 / lambda between the two grid points.
-      double u0 = 1.0 / grid[i == 0 ? 0 : i - 1].lambda, u1 = 1.0 / grid[i].lambda;
-      const bool rising = b >= a;
-      for (int it = 0; it < 60 && i > 0; ++it) {
-        const double um = 0.5 * (u0 + u1);
-        const Trial t = evaluate(su, 1.0 / um, su.c);
-        ((t.advance < T) == rising ? u0 : u1) = um;
-      }
-      const Trial best = evaluate(su, 1.0 / (i == 0 ? u0 : 0.5 * (u0 + u1)), su.c);
-      if (best.unreached >= 0 || !best.fits) continue;
-      return result(su, cand, best, bound);
-    }
-  }
-  // No lambda closes it (on domes friction moves r sin a slowly, so the turnarounds soon
-  // outgrow the region as lambda falls): at lambda = bound, move the passes' c within
-  // winding.turnaround_window, keeping it below the friction ends' radii.
-  const double win =
-      std::isfinite(o.turnaround_window) ? o.turnaround_window : 0.25 * pr.band_width;
-  double c_lo = std::max(1e-3 * su.c, su.c - win), c_hi = su.c + win;
+  std::vector<Closer> closers = {{lam, at, 1.0 / bound}};
+  // No lambda closes it (on domes lowering lambda soon makes the turnarounds outgrow the
+  // region): at lambda = bound, move c within winding.turnaround_window, below the pipe ends'
+  // radii and on the same side of each dome's turnaround.
+  const double win = window_of(pr, o);
+  double c_lo = std::max(1e-3 * su.c, su.c - win), c_hi = std::min(su.c + win, su.c_top);
   for (int e : {0, 1}) {
-    if (su.fe[e]) c_hi = std::min(c_hi, pr.end_radius[e] * (1.0 - 1e-9));
-  }
-  std::vector<Trial> cg;
-  for (int i = 0; i <= kGrid && c_hi > c_lo; ++i) {
-    Trial tr = evaluate(su, bound, c_lo + (c_hi - c_lo) * i / kGrid);
-    if (tr.unreached < 0 && tr.fits)
-      cg.push_back(std::move(tr));
-    else
-      cg.push_back(Trial{});  // a hole: no bracket across it
-  }
-  for (const PatternCandidate& cand : candidates(pr, o)) {
-    const int K = cand.circuits, p = cand.skip;
-    const double base = kTwoPi * p / std::max(1, K);
-    double best_c = kNaN;
-    for (std::size_t i = 1; i < cg.size(); ++i) {
-      if (cg[i - 1].c == 0.0 || cg[i].c == 0.0) continue;
-      const double a = cg[i - 1].advance, b = cg[i].advance;
-      const double lo = std::min(a, b), hi = std::max(a, b);
-      for (double m = std::ceil((lo - base) / kTwoPi - 1e-12); base + kTwoPi * m <= hi; m += 1.0) {
-        const double T = base + kTwoPi * m;
-        double x0 = cg[i - 1].c, x1 = cg[i].c;
-        const bool rising = b >= a;
-        for (int it = 0; it < 60; ++it) {
-          const double xm = 0.5 * (x0 + x1);
-          const Trial t = evaluate(su, bound, xm);
-          if (t.unreached >= 0 || !t.fits) break;
-          ((t.advance < T) == rising ? x0 : x1) = xm;
-        }
-        const double root = 0.5 * (x0 + x1);
-        if (std::isnan(best_c) || std::abs(root - su.c) < std::abs(best_c - su.c)) best_c = root;
-      }
+    const double eps = 1e-6 * pr.largest_radius;
+    if (pr.narrows) {
+      if (su.c > pr.apex_c[e]) c_lo = std::max(c_lo, pr.apex_c[e] + eps);
+      if (su.c < pr.apex_c[e]) c_hi = std::min(c_hi, pr.apex_c[e] - eps);
+    } else if (pr.end_radius[e] >= su.c) {
+      c_hi = std::min(c_hi, pr.end_radius[e] * (1.0 - 1e-9));
     }
-    if (std::isnan(best_c)) continue;
-    const Trial best = evaluate(su, bound, best_c);
-    if (best.unreached >= 0 || !best.fits) continue;
-    return result(su, cand, best, bound);
   }
-  throw ConfigError("winding.slippage = " + num(bound, 3) + ": no pattern" +
-                    (o.circuits > 0 ? " with circuits " + std::to_string(o.circuits) : "") +
-                    (o.skip > 0 ? " and skip " + std::to_string(o.skip) : "") +
-                    " closes with a friction turnaround at |k_g/k_n| in " + num(bound / 4.0, 3) +
-                    " .. " + num(bound, 3) + " (nor at " + num(bound, 3) + " with the turnaround " +
-                    "radius within winding.turnaround_window) that fits the wound region; raise " +
-                    "winding.slippage (<= winding.mu), widen winding.turnaround_window or change " +
-                    "winding.pattern");
+  auto cat = [&](double c) { return evaluate_turnarounds(su, bound, c); };
+  if (c_hi > c_lo) closers.push_back({family(grid(c_lo, c_hi, 96), cat), cat, su.c});
+  PatternCandidate cand;
+  Trial t;
+  if (pick(candidates(pr, o), closers, &cand, &t)) return result(su, cand, t, bound);
+  no_pattern(o, "with a friction turnaround at |k_g/k_n| in " + num(bound / 4.0, 3) + " .. " +
+                    num(bound, 3) + " (nor at " + num(bound, 3) + " with the passes' Clairaut " +
+                    "constant within winding.turnaround_window) that fits the wound region");
 }
 
 FrictionFigures friction_figures(const FrictionWinding& w, const std::vector<Circuit>& circuits,
@@ -275,12 +577,24 @@ FrictionFigures friction_figures(const FrictionWinding& w, const std::vector<Cir
     f.angle_deg[e] = t.angle * 180.0 / M_PI;
     f.pass_angle_deg[e] = t.pass_angle * 180.0 / M_PI;
   }
-  // Roles of the segments in circuit order.
-  std::vector<int> roles = {-1};  // -1: a pass, 0 / 1: the turnaround at that end
-  if (w.friction_end[1]) roles.push_back(1);
-  roles.push_back(-1);
-  if (w.friction_end[0]) roles.push_back(0);
+  if (w.transition) {
+    const FrictionTransition& T = w.transition_path;
+    f.transition = true;
+    f.pass_lambda = T.slippage;
+    f.transition_c = {T.c_from, T.c_to};
+    f.transition_length = T.length;
+    f.transition_axial = std::abs(T.end_x - T.start_x);
+    f.transition_angle_deg = T.angle * 180.0 / M_PI;
+  }
   for (const Circuit& c : circuits) {
+    // Roles of the segments in circuit order: out pass, far turnaround, return pass, start
+    // turnaround; revolution_circuits splits each turnaround at its apex (two segments).
+    const int n_fe = static_cast<int>(w.friction_end[0]) + static_cast<int>(w.friction_end[1]);
+    const int per = c.segments.size() == static_cast<std::size_t>(2 + 2 * n_fe) ? 2 : 1;
+    std::vector<int> roles = {-1};  // -1: a pass, 0 / 1: the turnaround at that end
+    for (int k = 0; k < per && w.friction_end[1]; ++k) roles.push_back(1);
+    roles.push_back(-1);
+    for (int k = 0; k < per && w.friction_end[0]; ++k) roles.push_back(0);
     for (std::size_t i = 0; i < c.segments.size(); ++i) {
       const CircuitSegment& seg = c.segments[i];
       const int role = roles[i % roles.size()];

@@ -154,7 +154,8 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     plan.metrics.pattern =
         "K=" + std::to_string(pc.circuits) + ", skip p=" + std::to_string(pc.skip) +
         ", advance " + fixed(pi.advance_deg, 3) + " deg per circuit, closes after " +
-        std::to_string(pc.circuits) + " circuits; turnaround radius " + fixed(pc.c, 2) + " mm" +
+        std::to_string(pc.circuits) + " circuits; " +
+        (rw.friction ? "the passes' r sin a " : "turnaround radius ") + fixed(pc.c, 2) + " mm" +
         (std::abs(pc.moved) > 5e-3 ? " (" + pi.requested_by + " asks " +
                                          fixed(pi.requested_radius, 2) + " mm: moved " +
                                          fixed(pc.moved, 2) + " mm to close the pattern)"
@@ -163,9 +164,21 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     if (rw.friction) {  // friction turnarounds (planner/friction_winding.h)
       FrictionFigures& ff = plan.metrics.friction_turnarounds;
       ff = friction_figures(rw.friction_plan, plan.circuits, wo.mu);
-      plan.metrics.pattern += "; friction turnarounds at |k_g/k_n| = " +
-                              fixed(rw.friction_plan.slippage, 4) + " (winding.slippage " +
-                              fixed(wo.slippage, 3) + "), no pins";
+      const FrictionWinding& fw = rw.friction_plan;
+      plan.metrics.pattern +=
+          fw.transition
+              ? "; geodesic domes turning around on " + fixed(fw.transition_path.c_from, 2) +
+                    " and " + fixed(fw.transition_path.c_to, 2) + " mm, joined by a friction " +
+                    "transition on the cylinder at |k_g/k_n| = " + fixed(fw.slippage, 4) +
+                    " over " + fixed(ff.transition_axial, 1) + " mm (winding.slippage " +
+                    fixed(wo.slippage, 3) + ")"
+          : rw.problem.narrows
+              ? "; the passes turn around on the parallels r = " +
+                    fixed(rw.problem.apex_c[0], 2) + " and " + fixed(rw.problem.apex_c[1], 2) +
+                    " mm by friction on the domes at |k_g/k_n| = " + fixed(fw.slippage, 4) +
+                    " (winding.slippage " + fixed(wo.slippage, 3) + ")"
+              : "; friction turnarounds at |k_g/k_n| = " + fixed(fw.slippage, 4) +
+                    " (winding.slippage " + fixed(wo.slippage, 3) + "), no pins";
     }
     r.passes = circuit_pass_reports(plan.circuits, md.axis, "clairaut");
   } else {

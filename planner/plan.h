@@ -148,6 +148,13 @@ struct FrictionFigures {
   std::array<double, 2> axial = {0.0, 0.0};     ///< mm along the axis from the join to the apex
   std::array<double, 2> angle_deg = {0.0, 0.0}; ///< mandrel turn over one turnaround (deg)
   std::array<double, 2> pass_angle_deg = {0.0, 0.0};  ///< winding angle where the pass joins
+  /// A friction transition on the passes (a vessel with unequal openings): r sin a goes from one
+  /// dome's turnaround radius to the other's at |k_g/k_n| = pass_lambda.
+  bool transition = false;
+  std::array<double, 2> transition_c = {0.0, 0.0};  ///< the two geodesics' c (mm), start first
+  double transition_length = 0.0;  ///< mm of each pass's fibre friction carries
+  double transition_axial = 0.0;   ///< mm along the axis
+  double transition_angle_deg = 0.0;  ///< mandrel turn over it (deg)
 };
 
 /// Figures of a plan, reported in the summary, report.json and report.md.

@@ -194,6 +194,7 @@ RevolutionWinding plan_revolution_winding(const Mesh& annulus, const std::vector
   if (wants_friction_turnarounds(w.problem, o)) {
     w.friction = true;
     w.friction_plan = plan_friction_winding(w.problem, o);
+    w.problem.requested_c = w.friction_plan.requested_c;
     w.pattern = w.friction_plan.pattern;
     w.pass = w.friction_plan.pass;
   } else {

@@ -22,13 +22,51 @@ bool SemiGeodesicOptions::is_valid(std::string* why) const {
   return true;
 }
 
-MeridianLine::MeridianLine(const std::vector<Vec2>& points) : pts_(points) {
+MeridianLine::MeridianLine(const std::vector<Vec2>& points, double window) : pts_(points) {
   if (pts_.size() < 2) throw InputError("semi_geodesic: a meridian needs at least 2 points");
+  if (!(window >= 0.0) || !std::isfinite(window)) {
+    throw InputError("semi_geodesic: the curvature window must be >= 0 mm");
+  }
   cum_.push_back(0.0);
   for (std::size_t i = 1; i < pts_.size(); ++i) {
     cum_.push_back(cum_.back() + (pts_[i] - pts_[i - 1]).norm());
   }
   if (!(cum_.back() > 0.0)) throw InputError("semi_geodesic: the meridian has no length");
+  if (window == 0.0) return;
+  // Turning angles at the vertices between segments with a length (tangent angle atan2(dr, dx);
+  // a turn towards the axis is negative for a meridian running towards larger x), spread with
+  // a hat of half-width `window` and unit integral, sampled on a grid.
+  std::vector<double> at, turn;
+  double prev = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t i = 1; i < pts_.size(); ++i) {
+    const Vec2 d = pts_[i] - pts_[i - 1];
+    if (!(d.norm() > 0.0)) continue;
+    const double th = std::atan2(d.y(), d.x());
+    if (std::isfinite(prev)) {
+      at.push_back(cum_[i - 1]);
+      turn.push_back(std::remainder(th - prev, 2.0 * M_PI));
+    }
+    prev = th;
+  }
+  grid_h_ = std::min(0.125 * window, 0.5 * length());
+  const int n = static_cast<int>(std::ceil(length() / grid_h_)) + 1;
+  kappa_.assign(n, 0.0);
+  for (std::size_t j = 0; j < at.size(); ++j) {
+    const int lo = std::max(0, static_cast<int>(std::floor((at[j] - window) / grid_h_)));
+    const int hi = std::min(n - 1, static_cast<int>(std::ceil((at[j] + window) / grid_h_)));
+    for (int i = lo; i <= hi; ++i) {
+      const double w = 1.0 - std::abs(i * grid_h_ - at[j]) / window;
+      if (w > 0.0) kappa_[i] -= turn[j] * w / window;
+    }
+  }
+}
+
+double MeridianLine::curvature(double s) const {
+  if (kappa_.empty() || !(s >= 0.0) || !(s <= length())) return 0.0;
+  const double u = s / grid_h_;
+  const int i = std::min(static_cast<int>(kappa_.size()) - 2, static_cast<int>(u));
+  const double f = u - i;
+  return (1.0 - f) * kappa_[i] + f * kappa_[i + 1];
 }
 
 int MeridianLine::segment(double s) const {
@@ -72,7 +110,7 @@ std::array<double, 3> semi_geodesic_rate(const MeridianLine& m, const MeridianSt
     throw InputError(s.str());
   }
   const double sa = std::sin(y.a), ca = std::cos(y.a);
-  const double kn = sa * sa * std::abs(t.x()) / r;
+  const double kn = std::abs(m.curvature(y.s) * ca * ca + sa * sa * std::abs(t.x()) / r);
   return {ca, -sa * t.y() / r + side * lambda * kn, sa / r};
 }
 
@@ -102,7 +140,7 @@ PassSample sample_of(const MeridianLine& m, const MeridianState& y, double lengt
 }  // namespace semi_geodesic_detail
 
 FrictionTurnaround friction_turnaround(const MeridianLine& m, int end, double apex_s, double c,
-                                       double lambda, double step) {
+                                       double lambda, double step, bool on_meridian) {
   if (!(lambda > 0.0) || !std::isfinite(lambda)) {
     throw InputError("friction_turnaround: the slippage must be > 0");
   }
@@ -114,27 +152,42 @@ FrictionTurnaround friction_turnaround(const MeridianLine& m, int end, double ap
   const Vec2 apex = m.point(apex_s);
   t.apex_x = apex.x();
   t.apex_r = apex.y();
-  if (!(c > 0.0 && c < apex.y())) {
+  if (!(c > 0.0) || !(std::abs(c - apex.y()) > 1e-9 * apex.y())) {
     std::ostringstream s;
-    s << "friction_turnaround: the Clairaut constant " << c << " mm must be in (0, " << apex.y()
-      << " mm), the apex radius";
+    s << "friction_turnaround: the Clairaut constant " << c << " mm must be > 0 and differ from "
+      << "the apex radius " << apex.y() << " mm";
     throw InputError(s.str());
   }
+  // Leaving the apex at the far end the fibre runs back (a > pi/2): sigma = +1 turns a towards
+  // pi, lowering r sin a; at the start end a < pi/2 and sigma = -1 lowers it. Raising: the other.
+  const bool lower = c < apex.y();
   SemiGeodesicOptions o;
   o.slippage = lambda;
-  o.side = end == 1 ? 1 : -1;
+  o.side = (end == 1 ? 1 : -1) * (lower ? 1 : -1);
   o.step = step;
   o.max_length = 200.0 * std::max(m.length(), apex.y());
-  // Leaving half: from the apex until r sin a falls to c.
+  if (!lower && !on_meridian) {  // raising r sin a is bounded by r: stop off the meridian
+    o.s_min = -0.5 * m.length();
+    o.s_max = 1.5 * m.length();
+    o.max_length = 20.0 * (m.length() + 2.0 * M_PI * apex.y());
+  }
+  if (on_meridian) {
+    o.s_min = 0.0;
+    o.s_max = m.length();
+    o.max_length = 20.0 * (m.length() + 2.0 * M_PI * apex.y());
+  }
+  // Leaving half: from the apex until r sin a reaches c.
   const SemiGeodesicPath half = semi_geodesic(m, MeridianState{apex_s, 0.5 * M_PI, 0.0}, o,
                                               [c](const MeridianLine& ml, const MeridianState& y) {
                                                 return ml.point(y.s).y() * std::sin(y.a) - c;
                                               });
-  t.reached = half.event;
+  // Beyond the meridian's ends (on_meridian false): the caller's fit check says how far.
+  t.reached = half.event && (!on_meridian || (half.end.s >= 0.0 && half.end.s <= m.length()));
   t.lowest = apex.y();
   for (std::size_t i = 0; i < half.samples.size(); ++i) {
     if (half.s[i] < 0.0 || half.s[i] > m.length()) break;  // off the meridian's ends
-    t.lowest = std::min(t.lowest, half.samples[i].r * std::sin(half.samples[i].angle));
+    const double q = half.samples[i].r * std::sin(half.samples[i].angle);
+    if (std::abs(q - c) < std::abs(t.lowest - c)) t.lowest = q;
   }
   const Vec2 join = m.point(half.end.s);
   t.join_s = half.end.s;
@@ -152,6 +205,46 @@ FrictionTurnaround friction_turnaround(const MeridianLine& m, int end, double ap
   for (std::size_t i = 1; i < h.size(); ++i) {
     t.samples.push_back({h[i].x, h[i].r, ph + h[i].phi, lh + h[i].length, h[i].angle});
   }
+  return t;
+}
+
+FrictionTransition friction_transition(const MeridianLine& m, double start_s, double c_from,
+                                       double c_to, double lambda, double s_max, double step) {
+  if (!(lambda > 0.0) || !std::isfinite(lambda)) {
+    throw InputError("friction_transition: the slippage must be > 0");
+  }
+  const Vec2 p0 = m.point(start_s);
+  for (double c : {c_from, c_to}) {
+    if (!(c > 0.0 && c < p0.y())) {
+      std::ostringstream s;
+      s << "friction_transition: the Clairaut constant " << c << " mm must be in (0, " << p0.y()
+        << " mm), the radius where the transition starts";
+      throw InputError(s.str());
+    }
+  }
+  FrictionTransition t;
+  t.slippage = lambda;
+  t.c_from = c_from;
+  t.c_to = c_to;
+  t.start_s = start_s;
+  t.start_x = p0.x();
+  SemiGeodesicOptions o;
+  o.slippage = lambda;
+  o.side = c_to > c_from ? 1 : -1;  // a < pi/2: a larger a raises r sin a
+  o.step = step;
+  o.s_max = s_max;
+  o.max_length = 200.0 * std::max(m.length(), p0.y());
+  const SemiGeodesicPath path =
+      semi_geodesic(m, MeridianState{start_s, std::asin(c_from / p0.y()), 0.0}, o,
+                    [c_to](const MeridianLine& ml, const MeridianState& y) {
+                      return ml.point(y.s).y() * std::sin(y.a) - c_to;
+                    });
+  t.reached = path.event && path.end.s <= s_max;
+  t.end_s = path.end.s;
+  t.end_x = m.point(path.end.s).x();
+  t.length = path.length;
+  t.angle = path.end.phi;
+  t.samples = path.samples;
   return t;
 }
 

@@ -28,21 +28,33 @@
 // (the step halves until the two estimates agree to `tolerance`, and grows again after easy
 // steps; never longer than `step`), so the path runs through a = pi/2 (where ds/dl = 0) with no
 // singularity. Events (the turnaround's end, r sin a = c) are located by bisection on the last
-// step. The meridian polyline is a chain of truncated cones: within a segment k_m = 0, so k_n is
-// the parallel's term only; the meridian's curvature sits at the vertices and is left out of the
-// friction term (on a pipe or cone, where the friction turnarounds are planned, there is none).
-// Beyond its end points the meridian continues along its end segments' lines (so a turnaround
-// that does not fit can say how long it would be).
+// step. The meridian polyline is a chain of truncated cones whose curvature sits at the
+// vertices; k_m is that curvature spread over a window (MeridianLine's `curvature_window`: the
+// turning angles smoothed with a hat of that half-width, so k_m is continuous and a sphere's
+// polyline gives 1 / R). It matters on domes: on a sphere k_n = 1 / R in every direction, while
+// the parallel's term alone gives sin^2(a) / R; left out (window 0; on a pipe or a cone k_m = 0
+// anyway) friction at lambda 0.2 raises r sin a on a hemispherical dome of radius 100 from an
+// apex on r = 30 to 40 mm by 63 deg from the pole, but to only 36.2 mm over the whole dome
+// without it (tests/planner/semi_geodesic_test.cpp). Beyond its end points the meridian continues along its end segments'
+// lines (so a turnaround that does not fit can say how long it would be).
 //
 // A friction turnaround at an end of the meridian (planner/friction_winding.h uses it): its apex
 // (a = pi/2) on the parallel at meridian length s_apex; from there the fibre leaves back into
-// the wound region under friction lambda until r sin a falls to the pass's Clairaut constant c,
-// where the geodesic pass takes over tangentially (same angle). The arriving half is the mirror
-// image (a -> pi - a, same s, phi reversed): one ODE with the same sigma runs through the apex.
+// the wound region under friction lambda until r sin a reaches the pass's Clairaut constant c,
+// where the geodesic pass takes over tangentially (same angle). c below the apex radius: friction
+// lowers r sin a (a pipe end, or a dome wound at a lower angle than its geodesic); above it: it
+// raises r sin a (a dome wound at a higher angle, more turns, than the geodesic turning around
+// on the same parallel). The arriving half is the mirror image (a -> pi - a, same s, phi
+// reversed): one ODE with the same sigma runs through the apex.
+//
+// A friction transition on a pass (friction_transition): from a point where the fibre runs at
+// the geodesic with constant c_from, friction lambda carries r sin a to c_to, where the geodesic
+// with c_to takes over: how a pass joins two domes whose turnarounds differ.
 // Units: mm, radians.
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -59,6 +71,9 @@ struct SemiGeodesicOptions {
   double tolerance = 1e-10;  ///< per-step error of the step-doubling estimate (rad, > 0)
   /// Stop after this much fibre (mm, > 0): a path that never meets its event.
   double max_length = 1e5;
+  /// Stop (no event) where the path leaves [s_min, s_max] of the meridian (mm).
+  double s_min = -std::numeric_limits<double>::infinity();
+  double s_max = std::numeric_limits<double>::infinity();
   bool is_valid(std::string* why) const;
 };
 
@@ -72,9 +87,14 @@ struct MeridianState {
 /// A meridian polyline by arc length, extended beyond its ends along its end segments.
 class MeridianLine {
  public:
-  /// \throw InputError for fewer than 2 points or a zero-length polyline
-  explicit MeridianLine(const std::vector<Vec2>& points);
+  /// \param curvature_window half-width of the hat the vertices' turning angles are spread
+  ///        over for curvature() (mm; 0: curvature() is 0, the parallel's term only)
+  /// \throw InputError for fewer than 2 points, a zero-length polyline or a negative window
+  explicit MeridianLine(const std::vector<Vec2>& points, double curvature_window = 0.0);
   double length() const { return cum_.back(); }
+  /// k_m at meridian length s (1/mm): > 0 where the meridian bends towards the axis (a dome,
+  /// for a meridian running from the smaller axial position to the larger); 0 beyond the ends.
+  double curvature(double s) const;
   /// Point (x, r) at meridian length s (extrapolated beyond [0, length()]).
   Vec2 point(double s) const;
   /// Unit tangent (dx/ds, dr/ds) of the segment holding s (the end segments beyond the ends).
@@ -86,6 +106,8 @@ class MeridianLine {
   int segment(double s) const;
   std::vector<Vec2> pts_;
   std::vector<double> cum_;
+  double grid_h_ = 0.0;        // spacing of the curvature samples (mm; 0: no curvature)
+  std::vector<double> kappa_;  // k_m at s = i * grid_h_
 };
 
 /// (ds/dl, da/dl, dphi/dl) of the semi-geodesic ODE at `y` (see the header comment).
@@ -123,16 +145,40 @@ struct FrictionTurnaround {
   /// Samples from the join through the apex back to the join, phi from 0 to angle; `angle` in
   /// (0, pi) as the fibre runs (towards the end, then back).
   std::vector<PassSample> samples;
-  bool reached = true;  ///< false: friction never brought r sin a down to c
-  /// The smallest r sin a the leaving half reached on the meridian (mm; c when reached).
+  bool reached = true;  ///< false: friction never brought r sin a to c on the meridian
+  /// The r sin a nearest c the leaving half reached on the meridian (mm; c when reached).
   double lowest = 0.0;
 };
 
 /// The turnaround at `end` of `m` with its apex at meridian length apex_s, slippage lambda > 0
-/// and the pass's Clairaut constant c (< the apex radius).
-/// \throw InputError for lambda <= 0, c >= the apex radius or a bad step.
+/// and the pass's Clairaut constant c (> 0, not the apex radius: below it friction lowers
+/// r sin a from the apex, above it raises it).
+/// \throw InputError for lambda <= 0, c <= 0, c within 1e-9 of the apex radius or a bad step.
+/// \param on_meridian true: the turnaround must join the pass on the meridian (a dome: beyond
+///        its ends there is no mandrel), else it is not reached; false: the meridian's end lines
+///        carry it on (a pipe end: the caller says how much longer the region would have to be)
 FrictionTurnaround friction_turnaround(const MeridianLine& m, int end, double apex_s, double c,
-                                       double lambda, double step = 2.0);
+                                       double lambda, double step = 2.0, bool on_meridian = false);
+
+/// A friction transition along a pass (see the header comment).
+struct FrictionTransition {
+  double slippage = 0.0;           ///< lambda used (the same at every point)
+  double c_from = 0.0, c_to = 0.0;  ///< Clairaut constants of the geodesics it joins (mm)
+  double start_s = 0.0, start_x = 0.0;  ///< where it leaves the c_from geodesic (mm)
+  double end_s = 0.0, end_x = 0.0;      ///< where the c_to geodesic takes over (mm)
+  double length = 0.0;  ///< fibre length carried by friction (mm)
+  double angle = 0.0;   ///< the mandrel's turn over it (rad)
+  /// From start to end, phi and length from 0, `angle` the winding angle in (0, pi/2).
+  std::vector<PassSample> samples;
+  bool reached = true;  ///< false: r sin a did not reach c_to before s_max
+};
+
+/// The transition from the geodesic with Clairaut constant c_from at meridian length start_s,
+/// running towards larger s, to c_to, at slippage lambda > 0, within s <= s_max.
+/// \throw InputError for lambda <= 0, c_from or c_to not in (0, r) at start_s, or a bad step.
+FrictionTransition friction_transition(const MeridianLine& m, double start_s, double c_from,
+                                       double c_to, double lambda, double s_max,
+                                       double step = 2.0);
 
 // ---- template implementation ----
 
@@ -188,6 +234,7 @@ SemiGeodesicPath semi_geodesic(const MeridianLine& m, const MeridianState& start
     p.samples.push_back(sample_of(m, y, l));
     p.s.push_back(y.s);
     if (p.event) break;
+    if (y.s < o.s_min || y.s > o.s_max) break;  // off the region: no event
     if (err < 0.03 * o.tolerance) h *= 2.0;
   }
   p.end = y;

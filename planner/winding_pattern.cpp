@@ -149,6 +149,21 @@ PatternProblem pattern_problem(const std::vector<Vec2>& meridian, const WindingO
   const double r_open = std::max(pr.end_radius[0], pr.end_radius[1]);
   const bool narrows = pr.end_radius[0] < 0.95 * R && pr.end_radius[1] < 0.95 * R;
   const double c_top = largest_turnaround(meridian);
+  pr.narrows = narrows;
+  const bool friction_domes = narrows && o.slippage > 0.0;
+  if (friction_domes) {
+    for (int e : {0, 1}) {
+      pr.apex_c[e] = std::isfinite(o.turnaround) ? o.turnaround
+                                                 : pr.end_radius[e] + 0.5 * o.band_width;
+      if (!(pr.apex_c[e] > pr.end_radius[e] && pr.apex_c[e] <= c_top)) {
+        throw ConfigError("winding.turnaround = " + mm(pr.apex_c[e]) + " mm: with " +
+                          "winding.slippage the passes turn around on this parallel at both " +
+                          "domes, so it must lie between the polar openings (" +
+                          mm(pr.end_radius[0]) + ", " + mm(pr.end_radius[1]) + " mm) and " +
+                          mm(c_top) + " mm");
+      }
+    }
+  }
   auto check = [&](double c, const std::string& key, const std::string& value) {
     if (!(c <= c_top)) {
       throw ConfigError(key + " = " + value + " puts the turnaround at or beyond the largest " +
@@ -187,7 +202,11 @@ PatternProblem pattern_problem(const std::vector<Vec2>& meridian, const WindingO
     const double lo = narrows ? r_open : 1e-9 * R;
     const double hi = narrows ? c_top : std::min(pr.end_radius[0], pr.end_radius[1]);
     const double target = kTwoPi * o.turns;
-    const double c = solve_phi(meridian, target, lo, hi);
+    double c = solve_phi(meridian, target, lo, hi);
+    if (friction_domes) {  // the friction plan solves c for the turns (friction_winding.h)
+      pr.turns = o.turns;
+      if (std::isnan(c)) c = std::max(pr.apex_c[0], pr.apex_c[1]);
+    }
     if (std::isnan(c)) {
       const double at_lo = clairaut_pass_angle(meridian, lo) / kTwoPi;
       const double at_hi = clairaut_pass_angle(meridian, hi) / kTwoPi;
@@ -198,7 +217,8 @@ PatternProblem pattern_problem(const std::vector<Vec2>& meridian, const WindingO
           << " turns per pass with its turnaround at the polar opening (" << mm(lo)
           << " mm) and more as the turnaround moves out; use turns >= "
           << format_turns(std::ceil(100.0 * at_lo) / 100.0)
-          << " or winding.turnaround / winding.angle";
+          << ", winding.turnaround / winding.angle, or winding.slippage (<= mu) to turn "
+             "around at the opening by friction";
       } else {
         s << "between the ends makes at most " << format_turns(at_hi)
           << " turns per pass (the geodesic turn limit)";

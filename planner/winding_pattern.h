@@ -23,6 +23,7 @@
 // candidates: the plan's coverage is measured on its laid bands (planner/coverage.h).
 // Units: mm, radians unless a field says deg.
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,15 @@ struct PatternProblem {
   /// says how many it can); the passes cannot be Clairaut geodesics.
   bool reachable = true;
   std::string why;
+  /// Both ends narrow (a vessel's domes), whatever c is asked.
+  bool narrows = false;
+  /// With winding.slippage > 0 on a vessel: per dome, the parallel its passes turn around on
+  /// (winding.turnaround, default that end's opening + B / 2): the passes' c on the cylinder
+  /// (requested_c) reaches it by friction on the dome (planner/friction_winding.h). NaN otherwise.
+  std::array<double, 2> apex_c = {std::nan(""), std::nan("")};
+  /// winding.turns with winding.slippage > 0 on a vessel: the turns per pass the friction plan
+  /// solves its c for (requested_c is then only a start); NaN otherwise.
+  double turns = std::nan("");
 };
 
 /// Sets up the problem from the meridian and the job's winding options: the requested c from

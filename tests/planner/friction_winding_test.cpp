@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "geometry/errors.h"
 #include "planner/coverage.h"
@@ -167,73 +168,179 @@ TEST(FrictionWinding, BadSlippageNamesTheKey) {
 namespace windplan {
 namespace {
 
-// Beyond the geodesic reach of the domes: a pass at a winding angle whose Clairaut constant is
-// below the polar opening turns around by friction on both domes; with unequal openings a
-// pass whose c lies between them turns around geodesically on the small opening's dome and by
-// friction on the large one. Every laid point within mu, no bare band.
-TEST(FrictionWinding, DomesBeyondTheGeodesicReachAndUnequalOpenings) {
-  // Friction moves r sin a slowly on a vessel (d(r sin a)/ds = -lambda r sin^2 a / R on the
-  // cylinder): the apexes half a (narrow) band in from the openings, c a little below.
-  const double R = 100, L = 1000;
-  const std::vector<Vec2> small = test::capsule_meridian(R, L, 20, 120, 30);
-  const std::vector<Vec2> large = test::capsule_meridian(R, L, 30, 120, 30);
-  std::vector<Vec2> unequal(small.begin(), small.begin() + 120 + 31);  // dome r0 20, cylinder
-  unequal.insert(unequal.end(), large.end() - 120, large.end());       // dome r1 30
-  struct Case {
-    const char* name;
-    std::vector<Vec2> meridian;
-    double c;
-    std::array<bool, 2> friction;
-  };
-  for (const Case& k : {Case{"openings 20, c 18.5", small, 18.5, {true, true}},
-                        Case{"openings 20 / 30, c 28.5", unequal, 28.5, {false, true}}}) {
-    SCOPED_TRACE(k.name);
-    const Mesh mesh = test::revolve(k.meridian, 128);
-    WindingOptions o;
-    o.band_width = 4;
-    o.mu = 0.25;
-    o.turnaround = k.c;
-    o.circuits = 5;  // few circuits keep the test short (no full cover); skip: auto
-    o.turnaround_window = 6;
-    // At 10 deg a fibre crosses a 4.9 mm facet of this mesh over 26 mm: measure the curvatures
-    // over more than that, or the flat facets read as k_n = 0.
-    o.curvature_window = 40;  // mm: the pattern closes by moving c (lambda alone cannot)
-    EXPECT_THROW(plan_revolution_winding(mesh, {}, SpindleAxis{}, o), ConfigError);
-    o.slippage = 0.2;
-    const RevolutionWinding w = plan_revolution_winding(mesh, {}, SpindleAxis{}, o);
-    ASSERT_TRUE(w.friction);
-    EXPECT_EQ(w.friction_plan.friction_end, k.friction);
-    EXPECT_EQ(w.geodesic_end[0], !k.friction[0]);
-    EXPECT_LE(w.friction_plan.slippage, 0.2);
-    double worst = 0.0, top = 0.0;
-    for (const Circuit& c : w.circuits) {
-      for (const FibrePoint& q : c.points) {
-        if (q.slippage > o.mu) {
-          ADD_FAILURE() << "circuit " << c.index << " at " << q.position.transpose() << " s " << q.s
-                        << " k_n " << q.k_n << " k_g " << q.k_g << " of " << c.points.back().s;
-        }
-        worst = std::max(worst, q.slippage);
-        top = std::max(top, q.winding_angle);
-      }
+// The smallest radius and the largest |k_g/k_n| of a plan's laid points, per end (x below or
+// above the middle).
+struct Laid {
+  std::array<double, 2> r_min = {1e9, 1e9};
+  double worst = 0.0, top = 0.0;
+};
+Laid laid(const std::vector<Circuit>& circuits, double x_mid) {
+  Laid l;
+  for (const Circuit& c : circuits) {
+    for (const FibrePoint& q : c.points) {
+      const int e = q.position.z() < x_mid ? 0 : 1;
+      l.r_min[e] = std::min(l.r_min[e], q.position.head<2>().norm());
+      l.worst = std::max(l.worst, q.slippage);
+      l.top = std::max(l.top, q.winding_angle);
     }
-    EXPECT_LE(worst, o.mu);
-    EXPECT_GT(top, 89.0);
-    // The far end's apex stays half a band in from the opening, above it.
-    EXPECT_GT(w.friction_plan.turnarounds[1].apex_r, k.meridian.back().y());
   }
-  // Too far below the opening for the bound: the error names the key and the reach.
-  const Mesh mesh = test::revolve(small, 128);
+  return l;
+}
+
+double parse_after(const std::string& s, const std::string& key) {
+  const std::size_t at = s.find(key);
+  return at == std::string::npos ? std::nan("") : std::atof(s.c_str() + at + key.size());
+}
+
+// Beyond the geodesic turns of a vessel: a geodesic turning around at the boss (opening + B / 2)
+// makes a fixed number of turns per pass; asked for more (winding.turns) or for a lower angle
+// (winding.angle), the passes keep turning around at the boss and friction on the domes carries
+// r sin a between the boss and the cylinder's c. Without winding.slippage the geodesic moves
+// its turnaround off the boss instead (more turns) or the job is refused (a lower angle).
+TEST(FrictionWinding, VesselBeyondItsGeodesicTurnsTurnsAroundAtTheBoss) {
+  const double R = 100, L = 300, r0 = 30, B = 16;
+  const std::vector<Vec2> m = test::capsule_meridian(R, L, r0, 120, 30);
+  const Mesh mesh = test::revolve(m, 128);
+  const double boss = r0 + B / 2;
+  const double geodesic_turns = clairaut_pass_angle(m, boss) / kTwoPi;
   WindingOptions o;
-  o.band_width = 4;
-  o.mu = 0.25;
-  o.slippage = 0.2;
-  o.turnaround = 12;
+  o.band_width = B;
+  o.mu = 0.2;
+  o.curvature_window = 40;  // mm: over more than a facet at these angles
+  o.turns = geodesic_turns + 0.06;
+  o.turns_given = true;
+  {
+    const RevolutionWinding geo = plan_revolution_winding(mesh, {}, SpindleAxis{}, o);
+    EXPECT_FALSE(geo.friction);
+    EXPECT_GT(laid(geo.circuits, L / 2).r_min[0], boss + 2.0);  // moved off the boss
+  }
+  o.slippage = 0.15;
+  WindingOptions lower = o;
+  lower.turns_given = false;
+  lower.angle = std::asin(33.0 / R) * 180.0 / M_PI;  // c 33 mm, below the boss
+  for (const WindingOptions& k : {o, lower}) {
+    SCOPED_TRACE(k.turns_given ? "more turns" : "a lower angle");
+    const RevolutionWinding w = plan_revolution_winding(mesh, {}, SpindleAxis{}, k);
+    ASSERT_TRUE(w.friction);
+    EXPECT_FALSE(w.friction_plan.transition);
+    EXPECT_EQ(w.friction_plan.friction_end, (std::array<bool, 2>{true, true}));
+    EXPECT_LE(w.friction_plan.slippage, 0.15);
+    if (k.turns_given) {
+      EXPECT_GT(w.pattern.c, boss);
+      // The pattern closes by lambda or by c within the window: the turns move a little.
+      EXPECT_NEAR(w.pattern.turns_per_pass, o.turns, 0.03);
+      EXPECT_GT(w.pattern.turns_per_pass, geodesic_turns + 0.03);
+    } else {
+      EXPECT_LT(w.pattern.c, boss);
+    }
+    const Laid l = laid(w.circuits, L / 2);
+    EXPECT_NEAR(l.r_min[0], boss, 0.6);  // turns around at the boss, both domes
+    EXPECT_NEAR(l.r_min[1], boss, 0.6);
+    EXPECT_GT(l.top, 89.0);
+    EXPECT_LE(l.worst, o.mu);
+    EXPECT_EQ(measure_coverage(mesh, SpindleAxis{}, w.circuits, {B, 12}).bare_fraction, 0.0);
+  }
+  // Far below the boss at little friction: refused, naming the key and the slippage that would
+  // reach; that slippage does.
+  WindingOptions far = lower;
+  far.angle = std::asin(24.0 / R) * 180.0 / M_PI;
+  far.slippage = 0.05;
+  far.mu = 1.0;
+  try {
+    plan_revolution_winding(mesh, {}, SpindleAxis{}, far);
+    FAIL() << "c 24 at slippage 0.05 accepted";
+  } catch (const ConfigError& e) {
+    const std::string w = e.what();
+    EXPECT_EQ(w.rfind("winding.slippage = 0.050: ", 0), 0u) << w;
+    EXPECT_NE(w.find("only down to"), std::string::npos) << w;
+    const double need = parse_after(w, "would need winding.slippage >= ");
+    ASSERT_TRUE(need > 0.05 && need < 1.0) << w;
+    far.slippage = need;
+    far.turnaround_window = 8;
+    EXPECT_NO_THROW(plan_revolution_winding(mesh, {}, SpindleAxis{}, far)) << need;
+  }
+}
+
+// Unequal polar openings: each dome turns around geodesically on its own boss (opening + B / 2)
+// and the passes join the two on the cylinder by friction. On a cylinder of radius R the
+// transition from c_0 to c_1 at lambda spans R |R / c_0 - R / c_1| / lambda of axis
+// (planner/semi_geodesic.h).
+TEST(FrictionWinding, UnequalOpeningsJoinGeodesicDomesOnTheCylinder) {
+  const double R = 100, L = 300, B = 16;
+  const std::vector<Vec2> small = test::capsule_meridian(R, L, 30, 120, 30);
+  const std::vector<Vec2> large = test::capsule_meridian(R, L, 34, 120, 30);
+  std::vector<Vec2> m(small.begin(), small.begin() + 120 + 31);  // dome r0 30, cylinder
+  m.insert(m.end(), large.end() - 120, large.end());             // dome r1 34
+  const Mesh mesh = test::revolve(m, 128);
+  WindingOptions o;
+  o.band_width = B;
+  o.mu = 0.2;
+  o.curvature_window = 40;
+  o.slippage = 0.15;
+  const RevolutionWinding w = plan_revolution_winding(mesh, {}, SpindleAxis{}, o);
+  ASSERT_TRUE(w.friction);
+  const FrictionWinding& f = w.friction_plan;
+  ASSERT_TRUE(f.transition);
+  EXPECT_EQ(w.geodesic_end, (std::array<bool, 2>{true, true}));
+  EXPECT_LE(f.slippage, 0.15);
+  const FrictionTransition& T = f.transition_path;
+  const double moved = w.pattern.moved;
+  EXPECT_GE(moved, 0.0);
+  EXPECT_LE(moved, B / 4 + 1e-9);
+  EXPECT_NEAR(T.c_from, 38.0 + moved, 1e-6);
+  EXPECT_NEAR(T.c_to, 42.0 + moved, 1e-6);
+  EXPECT_NEAR(T.end_x - T.start_x, R * (R / T.c_from - R / T.c_to) / f.slippage, 0.01 * L);
+  EXPECT_GE(T.start_x, 0.0);  // on the cylinder
+  EXPECT_LE(T.end_x, L);
+  const Laid l = laid(w.circuits, L / 2);
+  EXPECT_NEAR(l.r_min[0], T.c_from, 0.3);  // geodesic turnarounds on each boss
+  EXPECT_NEAR(l.r_min[1], T.c_to, 0.3);
+  EXPECT_LE(l.worst, o.mu);
+  EXPECT_EQ(measure_coverage(mesh, SpindleAxis{}, w.circuits, {B, 12}).bare_fraction, 0.0);
+  // Too little friction for the cylinder: the error gives what it would need, near the closed
+  // form R |R / c_0 - R / c_1| / (the cylinder's length).
+  o.slippage = 0.05;
   try {
     plan_revolution_winding(mesh, {}, SpindleAxis{}, o);
-    FAIL() << "c 12 accepted";
+    FAIL() << "slippage 0.05 accepted";
   } catch (const ConfigError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("winding.slippage = 0.200: ", 0), 0u) << e.what();
-    EXPECT_NE(std::string(e.what()).find("only down to"), std::string::npos) << e.what();
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("winding.slippage = 0.050: ", 0), 0u) << msg;
+    const double need = parse_after(msg, "would need winding.slippage >= ");
+    EXPECT_NEAR(need, R * (R / 38.0 - R / 42.0) / L, 0.01) << msg;
+  }
+}
+
+// The shipped friction vessels: configs/vessel_friction.yaml (more turns than the geodesic at
+// the bosses) and configs/vessel_unequal.yaml (openings 30 and 34 mm): every laid point within
+// mu, no bare band, the turnarounds on the bosses.
+TEST(FrictionWinding, ShippedVesselsWindByFriction) {
+  for (const char* name : {"vessel_friction", "vessel_unequal"}) {
+    SCOPED_TRACE(name);
+    Job job = load_job(test::source_dir() / "configs" / (std::string(name) + ".yaml"));
+    job.cutlines.clear();
+    const PipelineResult r = plan_job(job);
+    ASSERT_TRUE(r.clairaut);
+    const PlanMetrics& m = r.plan.metrics;
+    ASSERT_TRUE(m.friction_turnarounds.planned);
+    EXPECT_LE(r.revolution.friction_plan.slippage, job.winding.slippage);
+    EXPECT_EQ(m.coverage.bare_fraction, 0.0);
+    const double B = job.winding.band_width;
+    const std::array<double, 2> boss = {job.mandrel.vessel.dome_start.polar_opening + B / 2,
+                                        job.mandrel.vessel.dome_end.polar_opening + B / 2};
+    const Laid l = laid(r.plan.circuits, job.mandrel.vessel.length / 2);
+    EXPECT_LE(l.worst, job.winding.mu);
+    const bool unequal = std::string(name) == "vessel_unequal";
+    EXPECT_EQ(r.revolution.friction_plan.transition, unequal);
+    for (int e : {0, 1}) {
+      const double expect = unequal ? boss[e] + r.revolution.pattern.moved : boss[e];
+      EXPECT_NEAR(l.r_min[e], expect, 0.6) << e;
+    }
+    if (!unequal) {
+      const double geodesic = clairaut_pass_angle(r.revolution.meridian, boss[0]) / kTwoPi;
+      EXPECT_GT(m.turns_per_pass, geodesic + 0.03);  // 0.636 at the bosses
+      EXPECT_NEAR(m.turns_per_pass, job.winding.turns, 0.03);
+    }
   }
 }
 

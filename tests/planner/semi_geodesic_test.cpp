@@ -95,7 +95,51 @@ TEST(SemiGeodesic, TooLittleFrictionOnAWideningConeNeverTurns) {
   const FrictionTurnaround strong = friction_turnaround(m, 1, m.length() - 5, 80.0, 0.6, 2.0);
   EXPECT_TRUE(strong.reached);
   EXPECT_THROW(friction_turnaround(m, 1, 10.0, 30.0, 0.0), InputError);
-  EXPECT_THROW(friction_turnaround(m, 1, 10.0, 60.0, 0.3), InputError);  // c above the apex
+  // c at the apex radius: nothing to turn.
+  EXPECT_THROW(friction_turnaround(m, 1, 10.0, m.point(10.0).y(), 0.3), InputError);
+}
+
+// A hemispherical dome of radius R (polar angle theta from the axis, r = R sin theta): k_n = 1 / R
+// in every direction, so d(r sin a)/dtheta = +-lambda R sin theta and a turnaround with its apex
+// on r_a reaches r sin a = r_a +- lambda R (cos theta_a - cos theta) at theta. The meridian is a
+// 400-segment polyline: its curvature comes from the vertices' turning angles, smoothed.
+TEST(SemiGeodesic, FrictionOnASphericalDomeFollowsTheClosedForm) {
+  const double R = 100, r0 = 20, lambda = 0.2, r_apex = 30;
+  const double th0 = std::asin(r0 / R);
+  std::vector<Vec2> pts;
+  for (int i = 0; i <= 400; ++i) {
+    const double th = th0 + (0.5 * M_PI - th0) * i / 400;
+    pts.push_back({-R * std::cos(th), R * std::sin(th)});
+  }
+  pts.push_back({100.0, R});
+  const MeridianLine m(pts, 2.0);
+  EXPECT_NEAR(m.curvature(0.5 * R * (0.5 * M_PI - th0)), 1.0 / R, 2e-3 / R);  // chords
+  EXPECT_NEAR(m.curvature(R * (0.5 * M_PI - th0) + 50.0), 0.0, 1e-12);  // the cylinder
+  const double tha = std::asin(r_apex / R);
+  const double apex_s = R * (tha - th0);
+  for (double c : {40.0, 25.0}) {
+    SCOPED_TRACE(c);
+    const double sign = c > r_apex ? 1.0 : -1.0;
+    const double cos_join = std::cos(tha) - sign * (c - r_apex) / (lambda * R);
+    const FrictionTurnaround t = friction_turnaround(m, 0, apex_s, c, lambda, 1.0);
+    ASSERT_TRUE(t.reached);
+    EXPECT_NEAR(t.join_r, R * std::sqrt(1.0 - cos_join * cos_join), 0.05);
+    EXPECT_NEAR(t.pass_angle, std::asin(c / t.join_r), 1e-9);
+    // Every sample on the closed form: r sin a = r_a +- lambda R (cos theta_a - cos theta).
+    double worst = 0.0;
+    for (const PassSample& q : t.samples) {
+      const double cos_th = -q.x / R;
+      worst = std::max(worst, std::abs(q.r * std::sin(q.angle) -
+                                       (r_apex + sign * lambda * R * (std::cos(tha) - cos_th))));
+    }
+    EXPECT_LT(worst, 0.05);
+  }
+  // Without the meridian's curvature (window 0) friction only has the parallel's term
+  // sin^2(a) / R: it raises r sin a far less.
+  const MeridianLine flat(pts);
+  const FrictionTurnaround weak = friction_turnaround(flat, 0, apex_s, 40.0, lambda, 1.0);
+  EXPECT_FALSE(weak.reached);
+  EXPECT_LT(weak.lowest, 37.0);  // 36.2 mm
 }
 
 }  // namespace
