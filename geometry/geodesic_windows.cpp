@@ -87,7 +87,8 @@ double ray_hit(const Vec2& I, const Vec2& X, const Vec2& P, const Vec2& Q) {
   return cross(I - P, d) / den;
 }
 
-// Per-thread buffers reused across queries: vertex and halfedge records are valid when their
+// Per-thread buffers reused across queries (about 20 bytes per vertex and per halfedge, plus
+// 64 per window of the largest search so far): vertex and halfedge records are valid when their
 // stamp is the query's (no O(V) clearing per query).
 struct Scratch {
   unsigned stamp = 0;
@@ -97,9 +98,6 @@ struct Scratch {
   // One angle, one split (Xin and Wang): per halfedge h, the shortest distance to the corner
   // opposite h that a window on h gave, and where that ray crossed h.
   std::vector<double> split_dist, split_x;
-  // The target in each halfedge's frame (see Search::target_in_frame).
-  std::vector<unsigned> target_stamp;
-  std::vector<Vec2> target_frame;
   std::vector<Window> windows;
   std::vector<Event> queue;  // a min-heap on key
   std::vector<int> outgoing;
@@ -115,8 +113,6 @@ struct Scratch {
       halfedge_stamp.assign(nh, 0);
       split_dist.resize(nh);
       split_x.resize(nh);
-      target_stamp.assign(nh, 0);
-      target_frame.resize(nh);
     }
     windows.clear();
     queue.clear();
@@ -209,16 +205,12 @@ class Search {
     if (key < best_) push({key, -(v + 1)});
   }
 
-  // The target in h's frame, unfolded to the side y > 0 (cached per halfedge and query).
-  Vec2 target_in_frame(int h) {
-    if (scratch_.target_stamp[h] == scratch_.stamp) return scratch_.target_frame[h];
+  // The target in h's frame, unfolded to the side y > 0.
+  Vec2 target_in_frame(int h) const {
     const Vec3& a = mesh_.position(mesh_.from(h));
     const Vec3 at = target_position_ - a;
     const double tx = at.dot(mesh_.position(mesh_.to(h)) - a) / frame_[3 * h];
-    const Vec2 T{tx, std::sqrt(std::max(0.0, at.squaredNorm() - tx * tx))};
-    scratch_.target_stamp[h] = scratch_.stamp;
-    scratch_.target_frame[h] = T;
-    return T;
+    return {tx, std::sqrt(std::max(0.0, at.squaredNorm() - tx * tx))};
   }
 
   double vertex_key(int v, double d) const {
