@@ -156,7 +156,10 @@ int main(int argc, char** argv) {
       std::printf(
           "usage: bench_geodesic [--pairs N] [--targets-per-source K] [--exact-sources S]\n"
           "       [--exact-sources-small S] [--seed N] [--repeat R] [--quick] [--steiner K]\n"
-          "       [--edge-starts 0|1] [--lbfgs] [mesh files...]\n"
+          "       [--edge-starts 0|1] [--lbfgs] [--exact-windows 0|1] [--landmarks L]\n"
+          "       [mesh files...]\n"
+          "--exact-windows 0: no exact window pass (the local starts only)\n"
+          "--landmarks L: the context's window search uses L landmark fields (default 0)\n"
           "--steiner K: Steiner points per edge of the start graph (0: edge-graph starts only)\n"
           "--edge-starts 1: also refine from the two edge-graph starts\n"
           "--lbfgs: also run the paper's L-BFGS solver\n"
@@ -308,17 +311,6 @@ int main(int argc, char** argv) {
         row.run.cpu.push_back(cpu);
         row.run.exact_ms.push_back(r.exact_ms);
         row.run.windows.push_back(static_cast<double>(r.exact_windows));
-        if (std::getenv("WINDPLAN_BENCH_SPREAD") != nullptr) {
-          GeodesicOptions local = options;
-          local.exact_windows = false;
-          const OpenGeodesicResult l =
-              geodesic_between(ctx, SurfacePoint::at_vertex(pairs[i].source),
-                               SurfacePoint::at_vertex(pairs[i].target), local);
-          std::printf("SPREAD %s %d %d spread %.3e split %d local_excess %.3e windows %ld\n",
-                      name.c_str(), pairs[i].source, pairs[i].target, l.starts_spread,
-                      l.start, (l.summary.final_length - r.summary.final_length) /
-                      r.summary.final_length, r.exact_windows);
-        }
         if (r.start == 4) {
           // What the window search corrected: the local result on the same corridor, not
           // converged tightly enough, or a locally shortest geodesic in another corridor.

@@ -23,15 +23,16 @@
 // A* towards the target, pruned at the length found): it either proves that no path is shorter
 // or returns the corridor of the shortest one, which the refinement straightens and which is
 // kept. Why this route (bench/README.md, "Globally shortest geodesics", 50 pairs per mesh against
-// MMP exact distances): every pair the local starts missed (4 to 10 of 50 per mesh) lay in
-// another corridor, 1e-4 to 6e-3 of the length away, with excesses from 4e-10 to 1.2e-4 -- none
+// MMP exact distances): every pair the local starts missed (4 to 13 of 50 per mesh) lay in
+// another corridor, 8e-6 to 9e-2 of the length away, with excesses from 8e-11 to 2.4e-4 -- none
 // was a convergence (precision) issue, even at a 7e-9 excess with no vertex passed -- so a
 // tighter tolerance or a final polish could not help; a Steiner-point start graph found fewer
 // exact paths than the edge starts at 2-6x their time (its ~1e-3 excess is larger than the gaps
 // between competing geodesics); that the starts agree does not predict exactness (10 of the 17
 // misses on 20K, 100K and kitten had both starts at the same length). The window search makes
 // 50 of 50 exact on all four benchmark meshes; it costs one A* region per query (median 22K
-// windows at 20K faces, 290K on the 106K-face kitten), the time per path given in the README.
+// windows at 20K faces, 290K on the 106K-face kitten, 1.07M at 300K): 0.66-1.1x FlipOut's time
+// per path, 3-15x the local starts' (bench/README.md).
 #include <memory>
 #include <string>
 #include <vector>
@@ -234,8 +235,6 @@ struct OpenGeodesicResult : GeodesicResult {
   /// between the vertices passed (split_at_vertices), 4 the exact window search.
   int start = 0;
   double exact_ms = 0.0;   ///< the exact window search (part of refine_ms)
-  /// (longest - shortest) / shortest over the converged refinements of the starts.
-  double starts_spread = 0.0;
   long exact_windows = 0;  ///< windows it created (0: not run)
   /// The window search ran to its end: the result is the globally shortest geodesic.
   bool exact_complete = false;

@@ -104,7 +104,6 @@ OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfaceP
   if (!steiner || options.two_starts) starts.push_back(1);
   if (options.two_starts && !context.graph().via.empty()) starts.push_back(2);
   bool have = false;
-  double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
   for (const int s : starts) {
     const auto t0 = Clock::now();
     EdgePath edge_path;
@@ -125,10 +124,6 @@ OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfaceP
     const auto t1 = Clock::now();
     GeodesicResult r = refine_path(mesh, init, context.metric(), options);
     result.refine_ms += ms_since(t1);
-    if (r.summary.converged()) {
-      shortest = std::min(shortest, r.summary.final_length);
-      longest = std::max(longest, r.summary.final_length);
-    }
     if (!have || (r.summary.converged() && (!result.summary.converged() ||
                                             r.summary.final_length < result.summary.final_length))) {
       const double time = result.summary.time_ms;
@@ -143,7 +138,6 @@ OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfaceP
       result.summary.time_ms += r.summary.time_ms;
     }
   }
-  result.starts_spread = longest > 0.0 ? (longest - shortest) / shortest : 0.0;
   return result;
 }
 
