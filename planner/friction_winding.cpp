@@ -595,6 +595,8 @@ FrictionFigures friction_figures(const FrictionWinding& w, const std::vector<Cir
     for (int k = 0; k < per && w.friction_end[1]; ++k) roles.push_back(1);
     roles.push_back(-1);
     for (int k = 0; k < per && w.friction_end[0]; ++k) roles.push_back(0);
+    // A split start turnaround leads the circuit (it starts at its apex): rotate right by one.
+    if (per == 2 && w.friction_end[0]) std::rotate(roles.rbegin(), roles.rbegin() + 1, roles.rend());
     for (std::size_t i = 0; i < c.segments.size(); ++i) {
       const CircuitSegment& seg = c.segments[i];
       const int role = roles[i % roles.size()];
