@@ -57,8 +57,6 @@ int run_patterns(const std::vector<std::string>& argv) {
   const std::vector<Vec2> meridian = wound_meridian(md.winding.mesh, md.axis, wo);
   const PatternProblem pr = pattern_problem(meridian, wo);
   if (!pr.reachable) throw ConfigError(pr.why);
-  std::vector<PatternCandidate> all = pattern_candidates(pr);
-  if (static_cast<int>(all.size()) > top) all.resize(top);
   struct Row {
     PatternCandidate k;
     CoverageReport cov;
@@ -67,6 +65,17 @@ int run_patterns(const std::vector<std::string>& argv) {
   CoverageOptions co;
   co.band_width = wo.band_width;
   co.stations = wo.coverage_stations;
+  // With winding.slippage the run winds a friction plan (planner/friction_winding.h), closed by
+  // its slippage or c: the one row is that plan, measured like the others.
+  const bool friction = wants_friction_turnarounds(pr, wo);
+  std::vector<PatternCandidate> all;
+  if (friction) {
+    const RevolutionWinding w = plan_revolution_winding(md.winding.mesh, {}, md.axis, wo);
+    rows.push_back({w.pattern, measure_coverage(md.winding.mesh, md.axis, w.circuits, co)});
+  } else {
+    all = pattern_candidates(pr);
+    if (static_cast<int>(all.size()) > top) all.resize(top);
+  }
   for (const PatternCandidate& k : all) {
     const ClairautPass pass = clairaut_pass(meridian, k.c, {fibre_step(wo)});
     const std::vector<Circuit> circuits =
@@ -81,6 +90,7 @@ int run_patterns(const std::vector<std::string>& argv) {
     j.field("requested_radius", pr.requested_c);
     j.field("largest_radius", pr.largest_radius);
     j.field("domes", pr.domes);
+    j.field("friction", friction);
     j.field("window_lo", pr.c_lo);
     j.field("window_hi", pr.c_hi);
     j.key("patterns").begin_array();
@@ -107,17 +117,19 @@ int run_patterns(const std::vector<std::string>& argv) {
     return 0;
   }
   std::ostringstream s;
-  char buf[256];
+  char buf[512];
   std::snprintf(buf, sizeof buf,
                 "patterns: %s: %s asks a turnaround radius of %.2f mm (%.2f deg on R = %.2f mm); "
                 "%s\n",
                 job.name.c_str(), pr.requested_by.c_str(), pr.requested_c,
                 std::asin(std::min(1.0, pr.requested_c / pr.largest_radius)) * 180.0 / M_PI,
                 pr.largest_radius,
-                pr.domes ? "geodesic turnarounds on both domes, radius searched in the window"
-                         : "dwell ends: the dwells close every pattern");
+                friction ? "winding.slippage > 0: the friction plan the run winds (closed by "
+                           "its slippage or c; docs/config.md, \"Friction turnarounds\")"
+                : pr.domes ? "geodesic turnarounds on both domes, radius searched in the window"
+                           : "dwell ends: the dwells close every pattern");
   s << buf;
-  if (pr.domes) {
+  if (pr.domes && !friction) {
     std::snprintf(buf, sizeof buf, "  window %.2f .. %.2f mm\n", pr.c_lo, pr.c_hi);
     s << buf;
   }

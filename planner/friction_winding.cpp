@@ -5,7 +5,9 @@
 #include <functional>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <sstream>
+#include <utility>
 
 #include "geometry/errors.h"
 #include "planner/revolution_winding.h"
@@ -228,73 +230,104 @@ Family family(const std::vector<double>& u, Eval eval) {
   return f;
 }
 
-// The trial nearest `prefer` (in u) whose advance closes (K, p): 2 pi (m + p / K), m whole;
-// brackets on the grid bisected on u. not ok() when none; *u_out its u.
+// The trial where advance(u) = T between u0 and u1 (a0, a1 their advances, on either side of T):
+// regula falsi with the Illinois step (the advance is smooth in u), ~10 evaluations instead of
+// bisection's 60. not ok() when a trial between fails (a hole) or it does not converge.
 template <typename Eval>
-Trial close_on(const Family& f, Eval eval, int K, int p, double prefer, double* u_out) {
+Trial root_between(Eval eval, double u0, double a0, double u1, double a1, double T,
+                   double* u_out) {
+  double f0 = a0 - T, f1 = a1 - T;
+  int side = 0;
+  const Trial none;  // advance NaN: not ok()
+  for (int it = 0; it < 80; ++it) {
+    const double um = f1 != f0 ? u1 - f1 * (u1 - u0) / (f1 - f0) : 0.5 * (u0 + u1);
+    const Trial t = eval(um);
+    if (!t.ok()) return none;
+    const double fm = t.advance - T;
+    if (std::abs(fm) <= 1e-10 || std::abs(u1 - u0) <= 1e-13 * std::max(1.0, std::abs(um))) {
+      *u_out = um;
+      return std::abs(fm) <= 1e-6 ? t : none;
+    }
+    if ((fm < 0.0) == (f1 < 0.0)) {
+      u1 = um;
+      f1 = fm;
+      if (side == -1) f0 *= 0.5;  // Illinois: halve the stale end's value
+      side = -1;
+    } else {
+      u0 = um;
+      f0 = fm;
+      if (side == 1) f1 *= 0.5;
+      side = 1;
+    }
+  }
+  return none;
+}
+
+// Where a family's advance crosses 2 pi (m + p / K), m whole: the grid interval, the target and
+// the crossing interpolated linearly (refined by root_between only when chosen).
+struct Crossing {
+  std::size_t interval = 0;  // between grid points interval - 1 and interval
+  double target = 0.0, u_est = 0.0;
+};
+
+std::vector<Crossing> crossings(const Family& f, int K, int p) {
+  std::vector<Crossing> out;
   const double base = kTwoPi * p / std::max(1, K);
-  Trial best;
-  best.fits = false;
-  double best_u = kNaN;
   for (std::size_t i = 1; i < f.u.size(); ++i) {
     const Trial &a = f.trial[i - 1], &b = f.trial[i];
     if (!a.ok() || !b.ok()) continue;
     const double lo = std::min(a.advance, b.advance), hi = std::max(a.advance, b.advance);
     for (double m = std::ceil((lo - base) / kTwoPi - 1e-12); base + kTwoPi * m <= hi; m += 1.0) {
       const double T = base + kTwoPi * m;
-      double u0 = f.u[i - 1], u1 = f.u[i];
-      const bool rising = b.advance >= a.advance;
-      bool hole = false;
-      for (int it = 0; it < 60; ++it) {
-        const double um = 0.5 * (u0 + u1);
-        const Trial t = eval(um);
-        if (!t.ok()) {
-          hole = true;
-          break;
-        }
-        ((t.advance < T) == rising ? u0 : u1) = um;
-      }
-      if (hole) continue;
-      const double root = 0.5 * (u0 + u1);
-      const Trial t = eval(root);
-      if (!t.ok() || std::abs(t.advance - T) > 1e-6) continue;
-      if (std::isnan(best_u) || std::abs(root - prefer) < std::abs(best_u - prefer)) {
-        best_u = root;
-        best = t;
-      }
+      const double w = b.advance != a.advance ? (T - a.advance) / (b.advance - a.advance) : 0.5;
+      out.push_back({i, T, f.u[i - 1] + w * (f.u[i] - f.u[i - 1])});
     }
   }
-  if (u_out) *u_out = best_u;
-  return best;
+  return out;
 }
 
 // One way to close a pattern: a family of trials, how to evaluate between its grid points, and
 // the parameter preferred.
 struct Closer {
-  Family family;
+  Closer(std::function<Family()> m, std::function<Trial(double)> e, double p)
+      : make(std::move(m)), eval(std::move(e)), prefer(p) {}
+  std::function<Family()> make;  // built when first needed
   std::function<Trial(double)> eval;
   double prefer = 0.0;
+  mutable std::optional<Family> family;
+  const Family& get() const {
+    if (!family) family = make();
+    return *family;
+  }
 };
 
 // The first K (in candidate order) that closes, by the first closer that closes it, with the
-// skip whose parameter is nearest that closer's `prefer`; false when none.
+// skip whose crossing is nearest that closer's `prefer` (crossings are refined nearest first,
+// so a K costs one root solve, not one per skip); false when none.
 bool pick(const std::vector<PatternCandidate>& cands, const std::vector<Closer>& closers,
           PatternCandidate* cand, Trial* trial) {
   for (std::size_t i = 0; i < cands.size();) {
     std::size_t j = i;
     while (j < cands.size() && cands[j].circuits == cands[i].circuits) ++j;
     for (const Closer& cl : closers) {
-      double best_u = kNaN;
+      std::vector<std::pair<std::size_t, Crossing>> all;  // candidate, crossing
       for (std::size_t k = i; k < j; ++k) {
-        double u = kNaN;
-        const Trial t = close_on(cl.family, cl.eval, cands[k].circuits, cands[k].skip, cl.prefer, &u);
-        if (t.ok() && (std::isnan(best_u) || std::abs(u - cl.prefer) < std::abs(best_u - cl.prefer))) {
-          best_u = u;
-          *cand = cands[k];
-          *trial = t;
-        }
+        for (const Crossing& x : crossings(cl.get(), cands[k].circuits, cands[k].skip))
+          all.push_back({k, x});
       }
-      if (!std::isnan(best_u)) return true;
+      std::stable_sort(all.begin(), all.end(), [&](const auto& a, const auto& b) {
+        return std::abs(a.second.u_est - cl.prefer) < std::abs(b.second.u_est - cl.prefer);
+      });
+      const Family& f = cl.get();
+      for (const auto& [k, x] : all) {
+        double u = kNaN;
+        const Trial t = root_between(cl.eval, f.u[x.interval - 1], f.trial[x.interval - 1].advance,
+                                     f.u[x.interval], f.trial[x.interval].advance, x.target, &u);
+        if (!t.ok()) continue;
+        *cand = cands[k];
+        *trial = t;
+        return true;
+      }
     }
     i = j;
   }
@@ -405,7 +438,8 @@ FrictionWinding plan_transition(Setup& su, const WindingOptions& o) {
   // Per K: lambda first, then both turnarounds outward by delta in the window at the bound.
   auto moved = [&](double d) { return evaluate_transition(su, bound, d); };
   const std::vector<Closer> closers = {
-      {lam, at, 1.0 / bound}, {family(grid(0.0, window_of(pr, o), 64), moved), moved, 0.0}};
+      {[&] { return lam; }, at, 1.0 / bound},
+      {[&] { return family(grid(0.0, window_of(pr, o), 48), moved); }, moved, 0.0}};
   PatternCandidate cand;
   Trial t;
   PatternProblem low = pr;  // the bands are widest along the circumference at the lower angle
@@ -434,19 +468,14 @@ double c_for_turns(const Setup& su, const WindingOptions& o) {
       *hi = std::max(*hi, t.advance / (2.0 * kTwoPi));
     }
   };
-  const Family f = at(o.slippage, 96);
+  const Family f = at(o.slippage, 64);
   double best = kNaN;
   for (std::size_t i = 1; i < f.u.size(); ++i) {
     const Trial &a = f.trial[i - 1], &b = f.trial[i];
     if (!a.ok() || !b.ok() || (a.advance - target) * (b.advance - target) > 0.0) continue;
-    double x0 = f.u[i - 1], x1 = f.u[i];
-    for (int it = 0; it < 60; ++it) {
-      const double xm = 0.5 * (x0 + x1);
-      const Trial t = evaluate_turnarounds(su, o.slippage, xm);
-      if (!t.ok()) break;
-      ((t.advance < target) == (b.advance >= a.advance) ? x0 : x1) = xm;
-    }
-    const double root = 0.5 * (x0 + x1);
+    double root = kNaN;
+    auto at_c = [&](double c) { return evaluate_turnarounds(su, o.slippage, c); };
+    if (!root_between(at_c, f.u[i - 1], a.advance, f.u[i], b.advance, target, &root).ok()) continue;
     if (std::isnan(best) || std::abs(root - pr.requested_c) < std::abs(best - pr.requested_c))
       best = root;
   }
@@ -536,7 +565,7 @@ FrictionWinding plan_friction_winding(const PatternProblem& problem, const Windi
       break;
     }
   }
-  std::vector<Closer> closers = {{lam, at, 1.0 / bound}};
+  std::vector<Closer> closers = {{[&] { return lam; }, at, 1.0 / bound}};
   // No lambda closes it (on domes lowering lambda soon makes the turnarounds outgrow the
   // region): at lambda = bound, move c within winding.turnaround_window, below the pipe ends'
   // radii and on the same side of each dome's turnaround.
@@ -552,7 +581,9 @@ FrictionWinding plan_friction_winding(const PatternProblem& problem, const Windi
     }
   }
   auto cat = [&](double c) { return evaluate_turnarounds(su, bound, c); };
-  if (c_hi > c_lo) closers.push_back({family(grid(c_lo, c_hi, 96), cat), cat, su.c});
+  if (c_hi > c_lo) {
+    closers.emplace_back([&, c_lo, c_hi] { return family(grid(c_lo, c_hi, 48), cat); }, cat, su.c);
+  }
   PatternCandidate cand;
   Trial t;
   if (pick(candidates(pr, o), closers, &cand, &t)) return result(su, cand, t, bound);
@@ -595,6 +626,8 @@ FrictionFigures friction_figures(const FrictionWinding& w, const std::vector<Cir
     for (int k = 0; k < per && w.friction_end[1]; ++k) roles.push_back(1);
     roles.push_back(-1);
     for (int k = 0; k < per && w.friction_end[0]; ++k) roles.push_back(0);
+    // A split start turnaround leads the circuit (it starts at its apex): rotate right by one.
+    if (per == 2 && w.friction_end[0]) std::rotate(roles.rbegin(), roles.rbegin() + 1, roles.rend());
     for (std::size_t i = 0; i < c.segments.size(); ++i) {
       const CircuitSegment& seg = c.segments[i];
       const int role = roles[i % roles.size()];

@@ -180,6 +180,20 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
               : "; friction turnarounds at |k_g/k_n| = " + fixed(fw.slippage, 4) +
                     " (winding.slippage " + fixed(wo.slippage, 3) + "), no pins";
     }
+    // Asked more turns (or a higher angle) than a geodesic turning around at the boss makes,
+    // without friction: the geodesic turns around further out and leaves the polar region bare.
+    const PatternProblem& pp = rw.problem;
+    if (pp.narrows && !rw.friction && pp.requested_by != "winding.turnaround") {
+      const double boss = std::max(pp.end_radius[0], pp.end_radius[1]) + 0.5 * wo.band_width;
+      if (pc.c > boss + 0.25 * wo.band_width) {
+        plan.metrics.warnings.push_back(
+            "pattern: the passes turn around on r = " + fixed(pc.c, 2) + " mm, " +
+            fixed(pc.c - boss, 2) + " mm outside the bosses' turnaround (" + fixed(boss, 2) +
+            " mm, the opening + half the band), for " + pp.requested_by + ": the domes between " +
+            "are not wound; winding.slippage (<= mu) keeps the turnaround on the boss with " +
+            "friction on the domes");
+      }
+    }
     r.passes = circuit_pass_reports(plan.circuits, md.axis, "clairaut");
   } else {
     plan.circuits = build_circuits(ws.mesh, r.helices, ws.face_map, md.axis, wo);

@@ -115,6 +115,24 @@ std::vector<Circuit> revolution_circuits(const Mesh& annulus, const std::vector<
     add(smp, Phi + d1, true);
     if (!(*turnarounds)[0].empty()) add_turnaround((*turnarounds)[0], 2.0 * Phi + d1, false);
     const double A = pattern.advance;
+    // Start each circuit at the start end's apex, where the carriage turns (as a geodesic
+    // circuit starts at its start dome's turnaround): the second half of the previous circuit's
+    // start turnaround (turned back by A) leads, this circuit's first half ends it. The program
+    // then starts and ends where the fibre turns around, not in the middle of a pass.
+    if (!(*turnarounds)[0].empty() && ends.size() >= 2) {
+      const int a = ends[ends.size() - 2];  // the start turnaround's apex (its split)
+      const int n = static_cast<int>(cs.size());
+      if (a > 0 && a < n - 1 && std::abs(cs[a][0] - cs.front()[0]) > 0.0) {
+        std::vector<std::array<double, 3>> rot;
+        for (int i = a; i < n; ++i) rot.push_back({cs[i][0], cs[i][1], cs[i][2] - A});
+        for (int i = 1; i <= a; ++i) rot.push_back(cs[i]);
+        const int shift = n - 1 - a;
+        std::vector<int> moved = {shift};
+        for (std::size_t i = 0; i + 1 < ends.size(); ++i) moved.push_back(ends[i] + shift);
+        cs = std::move(rot);
+        ends = std::move(moved);
+      }
+    }
     auto planned = [&](const std::array<double, 3>& q, double shift) {
       return point_on_axis_frame(axis, frame, q[0], q[1], q[2] + shift);
     };

@@ -214,6 +214,25 @@ TEST(Pipeline, ShippedVesselWithHalfTurnsIsRefusedNamingTheKey) {
   }
 }
 
+// More turns than the geodesic at the bosses without slippage: the geodesic turns around further
+// out, and the run says the domes between are not wound; with slippage it does not (issue 19).
+TEST(Pipeline, ShippedVesselAtMoreTurnsWarnsOffTheBossWithoutSlippage) {
+  Job job = load_job(test::source_dir() / "configs" / "vessel_friction.yaml");
+  job.cutlines.clear();
+  auto off_boss = [](const PlanMetrics& m) {
+    for (const std::string& w : m.warnings) {
+      if (w.find("outside the bosses' turnaround") != std::string::npos) return true;
+    }
+    return false;
+  };
+  EXPECT_FALSE(off_boss(plan_job(job).plan.metrics));
+  job.winding.slippage = 0.0;
+  const PipelineResult geo = plan_job(job);
+  EXPECT_FALSE(geo.revolution.friction);
+  EXPECT_TRUE(off_boss(geo.plan.metrics));
+  EXPECT_GT(geo.revolution.pattern.c, 38.11 + 4.0);
+}
+
 // What a shop checks on the shipped vessels and on a vessel with elliptical domes (issue 12):
 // every pass a geodesic that turns around by itself on the domes (no dwell arc), tangent to the
 // parallel r = c (every circuit's smallest radius within 0.5 mm of c), the circuits copies of
