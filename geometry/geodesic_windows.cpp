@@ -153,6 +153,17 @@ class Search {
     return d;
   }
 
+  // A thread keeps its buffers for the next query up to this many windows (about 80 bytes
+  // each with the queue); a larger search gives its memory back when it ends.
+  static constexpr std::size_t kKeptWindows = std::size_t{1} << 22;
+
+  ~Search() {
+    if (windows_.capacity() > kKeptWindows) {
+      std::vector<Window>().swap(windows_);
+      std::vector<Event>().swap(queue_);
+    }
+  }
+
   WindowSearchResult run() {
     WindowSearchResult result;
     relax(source_, 0.0, -1, -1);

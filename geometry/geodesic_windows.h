@@ -31,7 +31,9 @@ namespace windplan {
 struct WindowSearchOptions {
   /// Only paths strictly shorter than this are looked for (mesh units; +infinity: any).
   double upper_bound = std::numeric_limits<double>::infinity();
-  /// Give up (complete = false) after this many windows were created (0: no limit).
+  /// Give up (complete = false) after this many windows were created (0: no limit). Memory is
+  /// about 80 bytes per window (bench/README.md: median 22K windows at 20K faces, 1.07M and a
+  /// p90 of 6.9M at 300K faces).
   long max_windows = 0;
 
   bool is_valid(std::string* why) const;
