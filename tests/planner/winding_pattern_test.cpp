@@ -57,7 +57,9 @@ TEST(WindingPattern, AutoPatternClosesAndCoversWithTheFewestCircuits) {
   const double ca = std::sqrt(1 - std::pow(k.c / kR, 2));
   EXPECT_GE(k.circuits * 16.0, 2 * M_PI * kR * ca);
   for (const PatternCandidate& other : pattern_candidates(pr)) {
-    if (other.circuits < k.circuits) EXPECT_FALSE(other.full_cover()) << other.name();
+    if (other.circuits < k.circuits) {
+      EXPECT_FALSE(other.full_cover()) << other.name();
+    }
   }
   EXPECT_NEAR(k.overlap, 16.0 - 2 * M_PI * kR * ca / k.circuits, 1e-12);
   EXPECT_TRUE(k.full_cover());
