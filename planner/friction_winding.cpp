@@ -421,6 +421,8 @@ FrictionWinding plan_transition(Setup& su, const WindingOptions& o) {
   const double bound = o.slippage;
   const double c0 = pr.apex_c[0], c1 = pr.apex_c[1];
   const double span = su.span_hi - su.span_lo;
+  // The lambda whose transition fills the cylinder: the extent formula is symmetric in lambda
+  // and the extent (R |R / c0 - R / c1| = lambda * extent).
   const double lambda_min = span > 0.0 ? transition_extent(R, c0, c1, span) : kNaN;
   auto at = [&](double u) { return evaluate_transition(su, 1.0 / u, 0.0); };
   if (!at(1.0 / bound).ok()) {
