@@ -83,28 +83,10 @@ std::string axes_svg(const Motion& motion, const std::string& job_name,
         << "\" stroke=\"#ddd\" stroke-width=\"0.5\"/>\n";
     }
     // Envelope per pixel column: entry, min, max, exit of the samples in the column, in order.
-    o << "<polyline fill=\"none\" stroke=\"" << ax.colour << "\" stroke-width=\"1\" points=\"";
-    bool first = true;
-    auto put = [&](double t, double v) {
-      o << (first ? "" : " ") << f2(px(t)) << "," << f2(py(v));
-      first = false;
-    };
-    std::size_t i = 0;
-    while (i < st.size()) {
-      const int col = std::min(cols - 1, static_cast<int>((px(st[i].t_s) - ml)));
-      std::size_t j = i, jmin = i, jmax = i;
-      while (j < st.size() && std::min(cols - 1, static_cast<int>(px(st[j].t_s) - ml)) == col) {
-        if (st[j].*ax.field < st[jmin].*ax.field) jmin = j;
-        if (st[j].*ax.field > st[jmax].*ax.field) jmax = j;
-        ++j;
-      }
-      std::size_t pick[4] = {i, std::min(jmin, jmax), std::max(jmin, jmax), j - 1};
-      for (int k = 0; k < 4; ++k) {
-        if (k > 0 && pick[k] == pick[k - 1]) continue;
-        put(st[pick[k]].t_s, st[pick[k]].*ax.field);
-      }
-      i = j;
-    }
+    o << "<polyline fill=\"none\" stroke=\"" << ax.colour << "\" stroke-width=\"1\" points=\""
+      << envelope_points(
+             st.size(), [&](std::size_t k) { return st[k].t_s; },
+             [&](std::size_t k) { return st[k].*ax.field; }, px, py, ml, cols);
     o << "\"/>\n</g>\n";
   }
   // Time axis under the last panel.

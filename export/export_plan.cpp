@@ -1,6 +1,7 @@
 #include "export/export_plan.h"
 
 #include "export/axes_svg.h"
+#include "export/stability_svg.h"
 #include "export/cutlines_csv.h"
 
 #include <cstdio>
@@ -129,7 +130,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   const std::string gcode_name = "toolpath" + gcode_extension(machine.gcode.dialect);
   if (output.gcode && !robot) r.files.push_back(gcode_name);
   if (output.ply) r.files.insert(r.files.end(), {"mesh.ply", "paths.ply"});
-  if (output.svg) r.files.insert(r.files.end(), {"development.svg", "axes.svg"});
+  if (output.svg) r.files.insert(r.files.end(), {"development.svg", "axes.svg", "stability.svg"});
   if (output.viewer) r.files.push_back("viewer.html");
   r.files.insert(r.files.end(), context.also_written.begin(), context.also_written.end());
   if (output.report) r.files.insert(r.files.end(), {"report.json", "report.md"});
@@ -176,6 +177,8 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     wrote("development.svg");
     write_text_atomically(dir / "axes.svg", axes_svg(r.motion, plan.job_name));
     wrote("axes.svg");
+    write_text_atomically(dir / "stability.svg", stability_svg(plan));
+    wrote("stability.svg");
   }
   if (output.viewer) {
     write_text_atomically(dir / "viewer.html", viewer_page(plan, mandrel_mesh, r.motion).html);

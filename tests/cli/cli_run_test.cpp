@@ -88,7 +88,7 @@ TEST_F(CliRun, VesselRunsAndRunsWithTwoThreadsAndOneAreByteIdentical) {
   }
   for (const char* f : {"fibre_path.csv", "payout.csv", "axes.csv", "toolpath.ngc", "report.json",
                         "report.md", "mesh.ply", "paths.ply", "development.svg", "axes.svg",
-                        "viewer.html"}) {
+                        "stability.svg", "viewer.html"}) {
     EXPECT_TRUE(fs::exists(a / f)) << f;
   }
   EXPECT_GE(files, 11);
