@@ -66,15 +66,7 @@ std::string axes_svg(const Motion& motion, const std::string& job_name,
       << f2(ph) << "\" fill=\"none\" stroke=\"#333\" stroke-width=\"0.8\"/>\n"
       << "<text x=\"12\" y=\"" << f2(top + ph / 2 + 4) << "\" font-size=\"13\">" << ax.name << " ["
       << xml_escape(ax.unit) << "]</text>\n";
-    const double step = nice_step(hi - lo, 4);
-    for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) {
-      char buf[48];
-      std::snprintf(buf, sizeof buf, "%g", std::fabs(v) < 1e-9 * step ? 0.0 : v);
-      o << "<line x1=\"" << f2(ml) << "\" y1=\"" << f2(py(v)) << "\" x2=\"" << f2(ml + pw)
-        << "\" y2=\"" << f2(py(v)) << "\" stroke=\"#eee\" stroke-width=\"0.5\"/>\n"
-        << "<text x=\"" << f2(ml - 4) << "\" y=\"" << f2(py(v) + 3) << "\" text-anchor=\"end\">"
-        << buf << "</text>\n";
-    }
+    o << value_grid(lo, hi, ml, pw, py);
     // Circuit boundaries.
     for (std::size_t i = 1; i < st.size(); ++i) {
       if (st[i].ordinal == st[i - 1].ordinal) continue;
@@ -91,17 +83,8 @@ std::string axes_svg(const Motion& motion, const std::string& job_name,
   }
   // Time axis under the last panel.
   const double bottom = mt + n_panels * ph + (n_panels - 1) * gap;
-  const double step = nice_step(t_end, 10);
-  o << "<g font-family=\"sans-serif\" font-size=\"11\" fill=\"#333\">\n";
-  for (double t = 0.0; t <= t_end + 1e-9 * step; t += step) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "%g", t);
-    o << "<text x=\"" << f2(px(t)) << "\" y=\"" << f2(bottom + 16) << "\" text-anchor=\"middle\">"
-      << buf << "</text>\n";
-  }
-  o << "<text x=\"" << f2(ml + pw / 2) << "\" y=\"" << f2(bottom + 38)
-    << "\" text-anchor=\"middle\" font-size=\"13\">time t [s] (faint lines: circuit starts)"
-    << "</text>\n</g>\n</svg>\n";
+  o << bottom_axis(t_end, bottom, ml, pw, px, "time t [s] (faint lines: circuit starts)")
+    << "</svg>\n";
   return o.str();
 }
 

@@ -78,15 +78,7 @@ std::string stability_svg(const WindingPlan& plan, const StabilitySvgOptions& op
       << "\" height=\"" << f2(ph) << "\" fill=\"none\" stroke=\"#333\" stroke-width=\"0.8\"/>\n"
       << "<text x=\"" << f2(ml) << "\" y=\"" << f2(top - 6) << "\" font-size=\"12\">"
       << xml_escape(pn.label) << "</text>\n";
-    const double step = nice_step(pn.hi - pn.lo, 4);
-    for (double v = std::ceil(pn.lo / step) * step; v <= pn.hi + 1e-9 * step; v += step) {
-      char buf[48];
-      std::snprintf(buf, sizeof buf, "%g", std::fabs(v) < 1e-9 * step ? 0.0 : v);
-      o << "<line x1=\"" << f2(ml) << "\" y1=\"" << f2(py(v)) << "\" x2=\"" << f2(ml + pw)
-        << "\" y2=\"" << f2(py(v)) << "\" stroke=\"#eee\" stroke-width=\"0.5\"/>\n"
-        << "<text x=\"" << f2(ml - 4) << "\" y=\"" << f2(py(v) + 3) << "\" text-anchor=\"end\">"
-        << buf << "</text>\n";
-    }
+    o << value_grid(pn.lo, pn.hi, ml, pw, py);
     if (c) {
       // Dwell arcs (held by pins or a ring) shaded; bridging points marked.
       for (const CircuitSegment& seg : c->segments) {
@@ -130,18 +122,10 @@ std::string stability_svg(const WindingPlan& plan, const StabilitySvgOptions& op
     o << "</g>\n";
   }
   const double bottom = mt + 2 * ph + gap;
-  const double step = nice_step(s_end, 10);
-  o << "<g font-family=\"sans-serif\" font-size=\"11\" fill=\"#333\">\n";
-  for (double s = 0.0; s <= s_end + 1e-9 * step; s += step) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "%g", s);
-    o << "<text x=\"" << f2(px(s)) << "\" y=\"" << f2(bottom + 16) << "\" text-anchor=\"middle\">"
-      << buf << "</text>\n";
-  }
-  o << "<text x=\"" << f2(ml + pw / 2) << "\" y=\"" << f2(bottom + 38)
-    << "\" text-anchor=\"middle\" font-size=\"13\">fibre length along the circuit [mm] (grey: "
-    << "dwell arcs held by pins or a ring; orange: k_n &lt;= 0, the fibre would bridge)"
-    << "</text>\n</g>\n</svg>\n";
+  o << bottom_axis(s_end, bottom, ml, pw, px,
+                   "fibre length along the circuit [mm] (grey: dwell arcs held by pins or a "
+                   "ring; orange: k_n &lt;= 0, the fibre would bridge)")
+    << "</svg>\n";
   return o.str();
 }
 

@@ -2,7 +2,9 @@
 // Small helpers shared by the SVG plots (export/svg.h, export/axes_svg.h): fixed-decimal numbers,
 // XML escapes, tick steps and the circuit colours.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <string>
 
 namespace windplan {
@@ -47,6 +49,41 @@ std::string envelope_points(std::size_t n, X x, Y y, PX px, PY py, double left, 
     }
     i = j;
   }
+  return out;
+}
+
+/// A panel's value grid: about four faint horizontal lines from `left` over `width` px at tick
+/// values of [lo, hi] (py maps a value to y), each labelled at its left.
+template <typename PY>
+std::string value_grid(double lo, double hi, double left, double width, PY py) {
+  std::string out;
+  const double step = nice_step(hi - lo, 4);
+  for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%g", std::fabs(v) < 1e-9 * step ? 0.0 : v);
+    out += "<line x1=\"" + f2(left) + "\" y1=\"" + f2(py(v)) + "\" x2=\"" + f2(left + width) +
+           "\" y2=\"" + f2(py(v)) + "\" stroke=\"#eee\" stroke-width=\"0.5\"/>\n<text x=\"" +
+           f2(left - 4) + "\" y=\"" + f2(py(v) + 3) + "\" text-anchor=\"end\">" + buf +
+           "</text>\n";
+  }
+  return out;
+}
+
+/// The shared horizontal axis under the panels: about ten tick labels over [0, end] (px maps a
+/// value to x) at y = bottom + 16 and the caption (XML text) centred under them.
+template <typename PX>
+std::string bottom_axis(double end, double bottom, double left, double width, PX px,
+                        const std::string& caption) {
+  std::string out = "<g font-family=\"sans-serif\" font-size=\"11\" fill=\"#333\">\n";
+  const double step = nice_step(end, 10);
+  for (double t = 0.0; t <= end + 1e-9 * step; t += step) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%g", t);
+    out += "<text x=\"" + f2(px(t)) + "\" y=\"" + f2(bottom + 16) +
+           "\" text-anchor=\"middle\">" + buf + "</text>\n";
+  }
+  out += "<text x=\"" + f2(left + width / 2) + "\" y=\"" + f2(bottom + 38) +
+         "\" text-anchor=\"middle\" font-size=\"13\">" + caption + "</text>\n</g>\n";
   return out;
 }
 
