@@ -38,11 +38,12 @@ std::vector<unsigned char> unbase64(const std::string& s) {
     return c == '+' ? 62 : c == '/' ? 63 : -1;
   };
   std::vector<unsigned char> out;
-  int bits = 0, acc = 0;
+  int bits = 0;
+  unsigned acc = 0;  // only the last 14 bits matter (UBSan: an int shifted on overflowed)
   for (char c : s) {
     const int v = val(c);
     if (v < 0) break;  // '=' padding
-    acc = (acc << 6) | v;
+    acc = ((acc << 6) | static_cast<unsigned>(v)) & 0x3fffu;
     bits += 6;
     if (bits >= 8) {
       bits -= 8;
