@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "geometry/errors.h"
+#include "geometry/format_number.h"
 
 namespace windplan {
 
@@ -25,16 +26,10 @@ void check(const LaminateProfiles& p) {
   }
 }
 
-std::string fixed(double v, int digits = 2) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v + 0.0);
-  return buf;
-}
-
 // Golden-angle hues, as development.svg colours its circuits.
 std::string colour(std::size_t k) {
   const double hue = std::fmod(137.50776405 * static_cast<double>(k), 360.0);
-  return "hsl(" + fixed(hue, 1) + ",70%,40%)";
+  return "hsl(" + format_fixed(hue, 1) + ",70%,40%)";
 }
 
 }  // namespace
@@ -106,12 +101,12 @@ std::string laminate_profiles_svg(const LaminateProfiles& p, int width, int heig
     << "<text x=\"" << margin << "\" y=\"" << margin - 20
     << "\">Meridian profiles (axial position x against radius r, true scale, mm)</text>\n"
     << "<text x=\"" << margin << "\" y=\"" << bot_y0 - 10 << "\">Cumulative thickness (mm, 0 to "
-    << fixed(tmax, 3) << ") against the mandrel's axial position</text>\n";
+    << format_fixed(tmax, 3) << ") against the mandrel's axial position</text>\n";
   auto polyline = [&](const std::vector<Vec2>& pts, const std::string& stroke, double w) {
-    o << "<polyline fill=\"none\" stroke=\"" << stroke << "\" stroke-width=\"" << fixed(w, 1)
+    o << "<polyline fill=\"none\" stroke=\"" << stroke << "\" stroke-width=\"" << format_fixed(w, 1)
       << "\" points=\"";
     for (std::size_t i = 0; i < pts.size(); ++i) {
-      o << (i ? " " : "") << fixed(pts[i].x()) << "," << fixed(pts[i].y());
+      o << (i ? " " : "") << format_fixed(pts[i].x(), 2) << "," << format_fixed(pts[i].y(), 2);
     }
     o << "\"/>\n";
   };
@@ -127,17 +122,17 @@ std::string laminate_profiles_svg(const LaminateProfiles& p, int width, int heig
       pts.push_back(bottom(p.mandrel.points[i].x(), cumulative[k][i]));
     }
     polyline(pts, colour(k + 1), 1.5);
-    o << "<text x=\"" << fixed(width - margin - 150.0) << "\" y=\""
-      << fixed(bot_y0 + 16.0 * static_cast<double>(k + 1)) << "\" fill=\"" << colour(k + 1) << "\">"
+    o << "<text x=\"" << format_fixed(width - margin - 150.0, 2) << "\" y=\""
+      << format_fixed(bot_y0 + 16.0 * static_cast<double>(k + 1), 2) << "\" fill=\"" << colour(k + 1) << "\">"
       << k + 1 << ": " << p.names[k] << "</text>\n";
   }
   // Axes of the bottom panel.
-  o << "<line x1=\"" << margin << "\" y1=\"" << fixed(bot_y0 + bot_h) << "\" x2=\""
-    << fixed(margin + plot_w) << "\" y2=\"" << fixed(bot_y0 + bot_h) << "\" stroke=\"black\"/>\n"
-    << "<text x=\"" << margin << "\" y=\"" << fixed(bot_y0 + bot_h + 16.0)
-    << "\">x = " << fixed(x0, 1) << " mm</text>\n"
-    << "<text x=\"" << fixed(margin + plot_w - 90.0) << "\" y=\"" << fixed(bot_y0 + bot_h + 16.0)
-    << "\">x = " << fixed(x1, 1) << " mm</text>\n"
+  o << "<line x1=\"" << margin << "\" y1=\"" << format_fixed(bot_y0 + bot_h, 2) << "\" x2=\""
+    << format_fixed(margin + plot_w, 2) << "\" y2=\"" << format_fixed(bot_y0 + bot_h, 2) << "\" stroke=\"black\"/>\n"
+    << "<text x=\"" << margin << "\" y=\"" << format_fixed(bot_y0 + bot_h + 16.0, 2)
+    << "\">x = " << format_fixed(x0, 1) << " mm</text>\n"
+    << "<text x=\"" << format_fixed(margin + plot_w - 90.0, 2) << "\" y=\"" << format_fixed(bot_y0 + bot_h + 16.0, 2)
+    << "\">x = " << format_fixed(x1, 1) << " mm</text>\n"
     << "</svg>\n";
   return o.str();
 }

@@ -1,6 +1,7 @@
 #pragma once
 // One number formatted with a printf conversion, for reports and messages:
-// format_number("%.3f", 1.5) == "1.500". Negative zero prints as 0 (v + 0.0).
+// format_number("%.3f", 1.5) == "1.500", format_fixed(1.5, 3) == "1.500". Negative zero
+// prints as 0 (v + 0.0).
 #include <cstdio>
 #include <string>
 
@@ -10,6 +11,13 @@ namespace windplan {
 inline std::string format_number(const char* format, double v) {
   char buf[96];
   std::snprintf(buf, sizeof buf, format, v + 0.0);
+  return buf;
+}
+
+/// v with `digits` decimals ("%.*f"): format_fixed(38.114, 2) == "38.11".
+inline std::string format_fixed(double v, int digits) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v + 0.0);
   return buf;
 }
 

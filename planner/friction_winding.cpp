@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "geometry/errors.h"
+#include "geometry/format_number.h"
 #include "planner/revolution_winding.h"
 
 namespace windplan {
@@ -18,14 +19,6 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string num(double v, int digits) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << v + 0.0;
-  return s.str();
-}
 
 const char* end_name(int e) { return e == 0 ? "start" : "far"; }
 
@@ -145,14 +138,14 @@ double needed_slippage(double bound, const std::function<bool(double)>& ok) {
 
 std::string would_need(double lambda, const WindingOptions& o) {
   if (std::isnan(lambda)) return "no slippage up to 1 would do it";
-  return "it would need winding.slippage >= " + num(std::ceil(lambda * 1000.0) / 1000.0, 3) +
-         (lambda > o.mu ? " (above winding.mu = " + num(o.mu, 3) + ": the fibre would slip)"
-                        : " (<= winding.mu = " + num(o.mu, 3) + ")");
+  return "it would need winding.slippage >= " + format_fixed(std::ceil(lambda * 1000.0) / 1000.0, 3) +
+         (lambda > o.mu ? " (above winding.mu = " + format_fixed(o.mu, 3) + ": the fibre would slip)"
+                        : " (<= winding.mu = " + format_fixed(o.mu, 3) + ")");
 }
 
 [[noreturn]] void refuse(const Setup& su, const Trial& tr, const WindingOptions& o) {
   const PatternProblem& pr = *su.pr;
-  const std::string head = "winding.slippage = " + num(o.slippage, 3) + ": ";
+  const std::string head = "winding.slippage = " + format_fixed(o.slippage, 3) + ": ";
   const double need = needed_slippage(
       o.slippage, [&](double l) { return evaluate_turnarounds(su, l, su.c).ok(); });
   const std::string alt = ", raise the winding angle, or wind that end on pins (slippage 0)";
@@ -160,11 +153,11 @@ std::string would_need(double lambda, const WindingOptions& o) {
     const FrictionTurnaround& t = tr.t[tr.unreached];
     const bool up = su.c > t.apex_r;
     throw ConfigError(head + "at the " + end_name(tr.unreached) + " end friction turns the " +
-                      "fibre around on the parallel r = " + num(t.apex_r, 2) + " mm (" +
+                      "fibre around on the parallel r = " + format_fixed(t.apex_r, 2) + " mm (" +
                       (pr.narrows ? "the dome's turnaround" : "apex half a band in from the end") +
                       ") but brings r sin a only " + (up ? "up" : "down") + " to " +
-                      num(t.lowest, 2) + " mm within the wound region, not to the passes' " +
-                      "Clairaut constant " + num(su.c, 2) + " mm (" + pr.requested_by + "); " +
+                      format_fixed(t.lowest, 2) + " mm within the wound region, not to the passes' " +
+                      "Clairaut constant " + format_fixed(su.c, 2) + " mm (" + pr.requested_by + "); " +
                       would_need(need, o) +
                       (pr.narrows ? "; or ask a winding angle nearer the geodesic's" : alt));
   }
@@ -174,14 +167,14 @@ std::string would_need(double lambda, const WindingOptions& o) {
     if (!tr.fe[e]) continue;
     const double ext = std::abs(tr.t[e].apex_x - tr.t[e].join_x) + 0.5 * pr.band_width;
     total += ext;
-    per << (per.tellp() > 0 ? ", " : "") << num(ext, 1) << " mm at the " << end_name(e) << " end";
+    per << (per.tellp() > 0 ? ", " : "") << format_fixed(ext, 1) << " mm at the " << end_name(e) << " end";
   }
   const double region = pr.meridian.back().x() - pr.meridian.front().x();
-  throw ConfigError(head + "the friction turnarounds need " + num(total, 1) +
+  throw ConfigError(head + "the friction turnarounds need " + format_fixed(total, 1) +
                     " mm along the axis (" + per.str() + ": from the pass angle " +
-                    num(std::asin(std::min(1.0, su.c / pr.largest_radius)) * 180.0 / M_PI, 2) +
-                    " deg to 90 deg at |k_g/k_n| <= " + num(o.slippage, 3) + ") and a geodesic " +
-                    "pass between them, but the wound region is " + num(region, 1) +
+                    format_fixed(std::asin(std::min(1.0, su.c / pr.largest_radius)) * 180.0 / M_PI, 2) +
+                    " deg to 90 deg at |k_g/k_n| <= " + format_fixed(o.slippage, 3) + ") and a geodesic " +
+                    "pass between them, but the wound region is " + format_fixed(region, 1) +
                     " mm long; " + would_need(need, o) + alt);
 }
 
@@ -395,7 +388,7 @@ FrictionWinding result(const Setup& su, const PatternCandidate& cand, const Tria
 }
 
 [[noreturn]] void no_pattern(const WindingOptions& o, const std::string& how) {
-  throw ConfigError("winding.slippage = " + num(o.slippage, 3) + ": no pattern" +
+  throw ConfigError("winding.slippage = " + format_fixed(o.slippage, 3) + ": no pattern" +
                     (o.circuits > 0 ? " with circuits " + std::to_string(o.circuits) : "") +
                     (o.skip > 0 ? " and skip " + std::to_string(o.skip) : "") + " closes " + how +
                     "; raise winding.slippage (<= winding.mu), widen winding.turnaround_window " +
@@ -427,11 +420,11 @@ FrictionWinding plan_transition(Setup& su, const WindingOptions& o) {
   auto at = [&](double u) { return evaluate_transition(su, 1.0 / u, 0.0); };
   if (!at(1.0 / bound).ok()) {
     const double need = needed_slippage(bound, [&](double l) { return at(1.0 / l).ok(); });
-    throw ConfigError("winding.slippage = " + num(bound, 3) + ": the domes turn around on " +
-                      num(c0, 2) + " and " + num(c1, 2) + " mm (each polar opening + half the " +
+    throw ConfigError("winding.slippage = " + format_fixed(bound, 3) + ": the domes turn around on " +
+                      format_fixed(c0, 2) + " and " + format_fixed(c1, 2) + " mm (each polar opening + half the " +
                       "band) and the passes join them by friction on the cylinder, which needs " +
-                      num(transition_extent(R, c0, c1, bound), 1) + " mm of its " + num(span, 1) +
-                      " mm at |k_g/k_n| <= " + num(bound, 3) + "; " + would_need(need, o) +
+                      format_fixed(transition_extent(R, c0, c1, bound), 1) + " mm of its " + format_fixed(span, 1) +
+                      " mm at |k_g/k_n| <= " + format_fixed(bound, 3) + "; " + would_need(need, o) +
                       ", or give winding.angle (friction on the domes instead)");
   }
   // lambda from the bound down to what fills the cylinder, evenly in 1 / lambda.
@@ -447,8 +440,8 @@ FrictionWinding plan_transition(Setup& su, const WindingOptions& o) {
   PatternProblem low = pr;  // the bands are widest along the circumference at the lower angle
   low.requested_c = std::min(c0, c1);
   if (pick(candidates(low, o), closers, &cand, &t)) return result(su, cand, t, bound);
-  no_pattern(o, "with a friction transition at |k_g/k_n| in " + num(1.0 / u_max, 3) + " .. " +
-                    num(bound, 3) + " (nor at " + num(bound, 3) + " with the turnarounds moved " +
+  no_pattern(o, "with a friction transition at |k_g/k_n| in " + format_fixed(1.0 / u_max, 3) + " .. " +
+                    format_fixed(bound, 3) + " (nor at " + format_fixed(bound, 3) + " with the turnarounds moved " +
                     "out within winding.turnaround_window)");
 }
 
@@ -490,9 +483,9 @@ double c_for_turns(const Setup& su, const WindingOptions& o) {
     return a <= pr.turns && pr.turns <= b;
   });
   throw ConfigError("winding.turns = " + format_turns(pr.turns) + ": with the passes turning " +
-                    "around at " + num(pr.apex_c[0], 2) + " and " + num(pr.apex_c[1], 2) +
-                    " mm and friction up to |k_g/k_n| = " + num(o.slippage, 3) + " on the domes " +
-                    (std::isfinite(lo) ? "a pass makes " + num(lo, 3) + " .. " + num(hi, 3) +
+                    "around at " + format_fixed(pr.apex_c[0], 2) + " and " + format_fixed(pr.apex_c[1], 2) +
+                    " mm and friction up to |k_g/k_n| = " + format_fixed(o.slippage, 3) + " on the domes " +
+                    (std::isfinite(lo) ? "a pass makes " + format_fixed(lo, 3) + " .. " + format_fixed(hi, 3) +
                                              " turns"
                                        : std::string("no pass reaches the cylinder")) +
                     "; " + would_need(need, o));
@@ -535,7 +528,7 @@ FrictionWinding plan_friction_winding(const PatternProblem& problem, const Windi
       su.apex_s[e] = crossing_from_end(pr.meridian, su.cum, pr.apex_c[e], e);
       if (std::isnan(su.apex_s[e])) {
         throw ConfigError("winding.turnaround: the " + std::string(end_name(e)) + " dome never " +
-                          "reaches the radius " + num(pr.apex_c[e], 2) + " mm");
+                          "reaches the radius " + format_fixed(pr.apex_c[e], 2) + " mm");
       }
     } else {
       su.apex_s[e] = e == 0 ? half_band : su.line.length() - half_band;
@@ -545,8 +538,8 @@ FrictionWinding plan_friction_winding(const PatternProblem& problem, const Windi
     for (int e : {0, 1}) {
       if (pr.end_radius[e] >= su.c && !(su.line.point(su.apex_s[e]).y() > su.c)) {
         throw ConfigError("winding.slippage: the " + std::string(end_name(e)) + " end's radius " +
-                          num(su.line.point(su.apex_s[e]).y(), 2) + " mm is not above the " +
-                          "turnaround radius " + num(su.c, 2) + " mm (" + pr.requested_by +
+                          format_fixed(su.line.point(su.apex_s[e]).y(), 2) + " mm is not above the " +
+                          "turnaround radius " + format_fixed(su.c, 2) + " mm (" + pr.requested_by +
                           "): no friction turnaround can start there");
       }
     }
@@ -589,8 +582,8 @@ FrictionWinding plan_friction_winding(const PatternProblem& problem, const Windi
   PatternCandidate cand;
   Trial t;
   if (pick(candidates(pr, o), closers, &cand, &t)) return result(su, cand, t, bound);
-  no_pattern(o, "with a friction turnaround at |k_g/k_n| in " + num(bound / 4.0, 3) + " .. " +
-                    num(bound, 3) + " (nor at " + num(bound, 3) + " with the passes' Clairaut " +
+  no_pattern(o, "with a friction turnaround at |k_g/k_n| in " + format_fixed(bound / 4.0, 3) + " .. " +
+                    format_fixed(bound, 3) + " (nor at " + format_fixed(bound, 3) + " with the passes' Clairaut " +
                     "constant within winding.turnaround_window) that fits the wound region");
 }
 

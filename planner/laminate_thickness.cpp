@@ -6,16 +6,11 @@
 #include <limits>
 
 #include "geometry/errors.h"
+#include "geometry/format_number.h"
 
 namespace windplan {
 
 namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v + 0.0);
-  return buf;
-}
 
 // integral ds / sqrt(r^2 - c^2) over a piece of meridian of length `length` along which r runs
 // linearly from ra to rb, the part with r < c counting 0. With d = rb - ra, S = sqrt(r^2 - c^2):
@@ -25,7 +20,7 @@ double piece_integral(double ra, double rb, double length, double c) {
   if (length <= 0.0) return 0.0;
   if (ra <= c && rb <= c) {
     if (ra == c && rb == c) {
-      throw InputError("the meridian runs along the turnaround radius " + num(c) +
+      throw InputError("the meridian runs along the turnaround radius " + format_number("%.4g", c) +
                        " mm (a hoop: the helical thickness is not integrable there)");
     }
     return 0.0;
@@ -38,7 +33,7 @@ double piece_integral(double ra, double rb, double length, double c) {
   const double sa = std::sqrt(std::max(0.0, ra * ra - c * c));
   const double sb = std::sqrt(std::max(0.0, rb * rb - c * c));
   if (sa + sb == 0.0) {
-    throw InputError("the meridian runs along the turnaround radius " + num(c) + " mm");
+    throw InputError("the meridian runs along the turnaround radius " + format_number("%.4g", c) + " mm");
   }
   if (ra + sa <= 0.0) {
     throw InputError("the meridian reaches the axis where the layer has fibre (c = 0)");
@@ -60,7 +55,7 @@ MeridianPolyline MeridianPolyline::from_points(std::vector<Vec2> points) {
   m.s.assign(points.size(), 0.0);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!(points[i].y() >= 0.0) || !points[i].allFinite()) {
-      throw InputError("meridian point " + std::to_string(i) + " has radius " + num(points[i].y()) +
+      throw InputError("meridian point " + std::to_string(i) + " has radius " + format_number("%.4g", points[i].y()) +
                        " mm (must be finite and >= 0)");
     }
     if (i > 0) {
@@ -137,7 +132,7 @@ RadiusProfile MeridianPolyline::to_profile() const {
       throw InputError(
           "the meridian is not a radius profile: its axial position decreases at "
           "point " +
-          std::to_string(i) + " (" + num(points[i].x()) + " mm)");
+          std::to_string(i) + " (" + format_number("%.4g", points[i].x()) + " mm)");
     }
     p.axial.push_back(points[i].x());
     p.radius.push_back(points[i].y());
@@ -235,16 +230,16 @@ MeridianPolyline offset_meridian(const MeridianPolyline& m, const LayerThickness
     const double t = thickness.at(m.s[i]);
     out[i] = m.points[i] + t * m.normal(i);
     if (!(out[i].y() > 0.0)) {
-      throw InputError(what + ": a thickness of " + num(t) + " mm at radius " +
-                       num(m.points[i].y()) + " mm (" + num(m.points[i].x()) +
+      throw InputError(what + ": a thickness of " + format_number("%.4g", t) + " mm at radius " +
+                       format_number("%.4g", m.points[i].y()) + " mm (" + format_number("%.4g", m.points[i].x()) +
                        " mm along the axis) would close " + end_name(i) +
                        " (the next surface would reach the axis)");
     }
   }
   for (int i = 0; i + 1 < n; ++i) {
     if ((out[i + 1] - out[i]).dot(m.points[i + 1] - m.points[i]) <= 0.0) {
-      throw InputError(what + ": a thickness of " + num(thickness.at(m.s[i])) + " mm at radius " +
-                       num(m.points[i].y()) + " mm (" + num(m.points[i].x()) +
+      throw InputError(what + ": a thickness of " + format_number("%.4g", thickness.at(m.s[i])) + " mm at radius " +
+                       format_number("%.4g", m.points[i].y()) + " mm (" + format_number("%.4g", m.points[i].x()) +
                        " mm along the axis) folds the next surface onto itself: it would close " +
                        end_name(i));
     }

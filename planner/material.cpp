@@ -3,18 +3,13 @@
 #include <cstdio>
 
 #include "geometry/errors.h"
+#include "geometry/format_number.h"
 
 namespace windplan {
 
 namespace {
 
 bool positive(double v) { return v > 0.0 && std::isfinite(v); }
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v + 0.0);
-  return buf;
-}
 
 }  // namespace
 
@@ -33,19 +28,19 @@ bool MaterialOptions::is_valid(std::string* why) const {
     if (why) *why = m;
     return false;
   };
-  if (!positive(tex)) return fail("tex must be > 0 g/km (got " + num(tex) + ")");
+  if (!positive(tex)) return fail("tex must be > 0 g/km (got " + format_number("%g", tex) + ")");
   if (!positive(fibre_density)) {
-    return fail("fibre_density must be > 0 g/cm^3 (got " + num(fibre_density) + ")");
+    return fail("fibre_density must be > 0 g/cm^3 (got " + format_number("%g", fibre_density) + ")");
   }
   if (!positive(resin_density)) {
-    return fail("resin_density must be > 0 g/cm^3 (got " + num(resin_density) + ")");
+    return fail("resin_density must be > 0 g/cm^3 (got " + format_number("%g", resin_density) + ")");
   }
   if (!(fibre_volume_fraction > 0.0 && fibre_volume_fraction < 1.0)) {
-    return fail("fibre_volume_fraction must be in (0, 1) (got " + num(fibre_volume_fraction) + ")");
+    return fail("fibre_volume_fraction must be in (0, 1) (got " + format_number("%g", fibre_volume_fraction) + ")");
   }
-  if (!positive(tows)) return fail("tows must be > 0 (got " + num(tows) + ")");
+  if (!positive(tows)) return fail("tows must be > 0 (got " + format_number("%g", tows) + ")");
   if (!std::isnan(band_thickness) && !positive(band_thickness)) {
-    return fail("band_thickness must be > 0 mm (got " + num(band_thickness) + ")");
+    return fail("band_thickness must be > 0 mm (got " + format_number("%g", band_thickness) + ")");
   }
   return true;
 }
@@ -64,9 +59,9 @@ MaterialEstimate estimate_material(const MaterialOptions& material, double band_
   std::string why;
   if (!material.is_valid(&why)) throw ConfigError("material: " + why);
   if (!positive(band_width))
-    throw InputError("band width must be > 0 mm (got " + num(band_width) + ")");
+    throw InputError("band width must be > 0 mm (got " + format_number("%g", band_width) + ")");
   if (!(band_length >= 0.0) || !std::isfinite(band_length)) {
-    throw InputError("band length must be >= 0 mm (got " + num(band_length) + ")");
+    throw InputError("band length must be >= 0 mm (got " + format_number("%g", band_length) + ")");
   }
   MaterialEstimate e;
   e.band_length = band_length;

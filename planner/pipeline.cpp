@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "geometry/format_number.h"
 #include "planner/coverage.h"
 #include "planner/cutlines.h"
 #include "planner/job_limits.h"
@@ -32,12 +33,6 @@ class Stage {
   std::chrono::steady_clock::time_point t0_;
 };
 
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v + 0.0);
-  return buf;
-}
-
 std::string general(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.3g", v + 0.0);
@@ -57,8 +52,8 @@ std::string turn_limit_warning(const ClairautLimit& lim, const WindingOptions& w
   const double suggest = std::floor(100.0 * lim.turns) / 100.0;
   std::string w = "winding.turns = " + format_turns(wo.turns) + " exceeds the " +
                   general(lim.turns) + " turns a geodesic can make between " + ends +
-                  " (Clairaut: r sin a = c <= " + fixed(lim.min_radius, 2) +
-                  " mm, the smallest radius, at " + fixed(lim.min_at, 1) +
+                  " (Clairaut: r sin a = c <= " + format_fixed(lim.min_radius, 2) +
+                  " mm, the smallest radius, at " + format_fixed(lim.min_at, 1) +
                   " mm along the axis): with beta = 0 the passes wrap along the smaller end " +
                   "instead of running as geodesics, and the fibre would slip there; use ";
   if (suggest >= 0.01) w += "turns <= " + format_turns(suggest) + ", ";
@@ -153,32 +148,32 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
         std::ceil(pc.circuits * (1.0 - 1e-12) / std::max(1e-12, pc.cover_factor)));
     plan.metrics.pattern =
         "K=" + std::to_string(pc.circuits) + ", skip p=" + std::to_string(pc.skip) +
-        ", advance " + fixed(pi.advance_deg, 3) + " deg per circuit, closes after " +
+        ", advance " + format_fixed(pi.advance_deg, 3) + " deg per circuit, closes after " +
         std::to_string(pc.circuits) + " circuits; " +
-        (rw.friction ? "the passes' r sin a " : "turnaround radius ") + fixed(pc.c, 2) + " mm" +
+        (rw.friction ? "the passes' r sin a " : "turnaround radius ") + format_fixed(pc.c, 2) + " mm" +
         (std::abs(pc.moved) > 5e-3 ? " (" + pi.requested_by + " asks " +
-                                         fixed(pi.requested_radius, 2) + " mm: moved " +
-                                         fixed(pc.moved, 2) + " mm to close the pattern)"
+                                         format_fixed(pi.requested_radius, 2) + " mm: moved " +
+                                         format_fixed(pc.moved, 2) + " mm to close the pattern)"
                                    : std::string()) +
-        ", " + fixed(pc.angle_deg, 2) + " deg on the largest parallel";
+        ", " + format_fixed(pc.angle_deg, 2) + " deg on the largest parallel";
     if (rw.friction) {  // friction turnarounds (planner/friction_winding.h)
       FrictionFigures& ff = plan.metrics.friction_turnarounds;
       ff = friction_figures(rw.friction_plan, plan.circuits, wo.mu);
       const FrictionWinding& fw = rw.friction_plan;
       plan.metrics.pattern +=
           fw.transition
-              ? "; geodesic domes turning around on " + fixed(fw.transition_path.c_from, 2) +
-                    " and " + fixed(fw.transition_path.c_to, 2) + " mm, joined by a friction " +
-                    "transition on the cylinder at |k_g/k_n| = " + fixed(fw.slippage, 4) +
-                    " over " + fixed(ff.transition_axial, 1) + " mm (winding.slippage " +
-                    fixed(wo.slippage, 3) + ")"
+              ? "; geodesic domes turning around on " + format_fixed(fw.transition_path.c_from, 2) +
+                    " and " + format_fixed(fw.transition_path.c_to, 2) + " mm, joined by a friction " +
+                    "transition on the cylinder at |k_g/k_n| = " + format_fixed(fw.slippage, 4) +
+                    " over " + format_fixed(ff.transition_axial, 1) + " mm (winding.slippage " +
+                    format_fixed(wo.slippage, 3) + ")"
           : rw.problem.narrows
               ? "; the passes turn around on the parallels r = " +
-                    fixed(rw.problem.apex_c[0], 2) + " and " + fixed(rw.problem.apex_c[1], 2) +
-                    " mm by friction on the domes at |k_g/k_n| = " + fixed(fw.slippage, 4) +
-                    " (winding.slippage " + fixed(wo.slippage, 3) + ")"
-              : "; friction turnarounds at |k_g/k_n| = " + fixed(fw.slippage, 4) +
-                    " (winding.slippage " + fixed(wo.slippage, 3) + "), no pins";
+                    format_fixed(rw.problem.apex_c[0], 2) + " and " + format_fixed(rw.problem.apex_c[1], 2) +
+                    " mm by friction on the domes at |k_g/k_n| = " + format_fixed(fw.slippage, 4) +
+                    " (winding.slippage " + format_fixed(wo.slippage, 3) + ")"
+              : "; friction turnarounds at |k_g/k_n| = " + format_fixed(fw.slippage, 4) +
+                    " (winding.slippage " + format_fixed(wo.slippage, 3) + "), no pins";
     }
     // Asked more turns (or a higher angle) than a geodesic turning around at the boss makes,
     // without friction: the geodesic turns around further out and leaves the polar region bare.
@@ -187,8 +182,8 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
       const double boss = std::max(pp.end_radius[0], pp.end_radius[1]) + 0.5 * wo.band_width;
       if (pc.c > boss + 0.25 * wo.band_width) {
         plan.metrics.warnings.push_back(
-            "pattern: the passes turn around on r = " + fixed(pc.c, 2) + " mm, " +
-            fixed(pc.c - boss, 2) + " mm outside the bosses' turnaround (" + fixed(boss, 2) +
+            "pattern: the passes turn around on r = " + format_fixed(pc.c, 2) + " mm, " +
+            format_fixed(pc.c - boss, 2) + " mm outside the bosses' turnaround (" + format_fixed(boss, 2) +
             " mm, the opening + half the band), for " + pp.requested_by + ": the domes between " +
             "are not wound; winding.slippage (<= mu) keeps the turnaround on the boss with " +
             "friction on the domes");
@@ -227,11 +222,11 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
       if (st.bare_fraction > worst->bare_fraction) worst = &st;
     }
     pm.warnings.push_back(
-        "coverage: the laid bands leave " + fixed(100.0 * worst->bare_fraction, 2) +
+        "coverage: the laid bands leave " + format_fixed(100.0 * worst->bare_fraction, 2) +
         "% of the circumference bare at " +
-        (co.height ? "height " + fixed(worst->station, 3) + " of the wound region"
-                   : fixed(worst->station, 1) + " mm along the axis") +
-        " (widest gap " + fixed(pm.coverage.widest_gap, 1) + " mm over " +
+        (co.height ? "height " + format_fixed(worst->station, 3) + " of the wound region"
+                   : format_fixed(worst->station, 1) + " mm along the axis") +
+        " (widest gap " + format_fixed(pm.coverage.widest_gap, 1) + " mm over " +
         std::to_string(pm.coverage.stations.size()) + " stations): " +
         (r.clairaut ? "choose a pattern with more circuits (windplan patterns JOB)"
                     : "more circuits, a wider band or beta = 0 on a shape of revolution"));

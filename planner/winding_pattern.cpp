@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "geometry/errors.h"
+#include "geometry/format_number.h"
 #include "planner/clairaut_pass.h"
 #include "planner/helix.h"
 
@@ -16,14 +17,6 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string mm(double v, int digits = 2) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << v + 0.0;
-  return s.str();
-}
 
 // Phi(c) sampled on the window, for the closing searches.
 struct PhiGrid {
@@ -156,28 +149,28 @@ PatternProblem pattern_problem(const std::vector<Vec2>& meridian, const WindingO
       pr.apex_c[e] = std::isfinite(o.turnaround) ? o.turnaround
                                                  : pr.end_radius[e] + 0.5 * o.band_width;
       if (!(pr.apex_c[e] > pr.end_radius[e] && pr.apex_c[e] <= c_top)) {
-        throw ConfigError("winding.turnaround = " + mm(pr.apex_c[e]) + " mm: with " +
+        throw ConfigError("winding.turnaround = " + format_fixed(pr.apex_c[e], 2) + " mm: with " +
                           "winding.slippage the passes turn around on this parallel at both " +
                           "domes, so it must lie between the polar openings (" +
-                          mm(pr.end_radius[0]) + ", " + mm(pr.end_radius[1]) + " mm) and " +
-                          mm(c_top) + " mm");
+                          format_fixed(pr.end_radius[0], 2) + ", " + format_fixed(pr.end_radius[1], 2) + " mm) and " +
+                          format_fixed(c_top, 2) + " mm");
       }
     }
   }
   auto check = [&](double c, const std::string& key, const std::string& value) {
     if (!(c <= c_top)) {
       throw ConfigError(key + " = " + value + " puts the turnaround at or beyond the largest " +
-                        "radius R = " + mm(R) + " mm: a geodesic there is a hoop and never " +
+                        "radius R = " + format_fixed(R, 2) + " mm: a geodesic there is a hoop and never " +
                         "leaves that parallel (the geodesic turn limit); use a turnaround " +
-                        "radius below " + mm(c_top) + " mm");
+                        "radius below " + format_fixed(c_top, 2) + " mm");
     }
     // With winding.slippage the passes reach the dome's end by friction
     // (planner/friction_winding.h): a Clairaut constant below the opening is then allowed.
     if (narrows && c < r_open && !(o.slippage > 0.0)) {
       throw ConfigError(key + " = " + value + " puts the turnaround below the polar opening " +
-                        "radius " + mm(r_open) + " mm: the pass would run off the dome into the " +
-                        "opening; use a turnaround radius >= " + mm(r_open) + " mm (" +
-                        mm(r_open + 0.5 * o.band_width) + " keeps the band's edge off the boss)" +
+                        "radius " + format_fixed(r_open, 2) + " mm: the pass would run off the dome into the " +
+                        "opening; use a turnaround radius >= " + format_fixed(r_open, 2) + " mm (" +
+                        format_fixed(r_open + 0.5 * o.band_width, 2) + " keeps the band's edge off the boss)" +
                         ", or winding.slippage (<= mu) to turn around by friction");
     }
     if (!(c > 0.0)) throw ConfigError(key + " = " + value + ": must be > 0");
@@ -185,17 +178,17 @@ PatternProblem pattern_problem(const std::vector<Vec2>& meridian, const WindingO
   if (std::isfinite(o.turnaround)) {
     pr.requested_c = o.turnaround;
     pr.requested_by = "winding.turnaround";
-    check(o.turnaround, pr.requested_by, mm(o.turnaround) + " mm");
+    check(o.turnaround, pr.requested_by, format_fixed(o.turnaround, 2) + " mm");
   } else if (std::isfinite(o.angle)) {
     pr.requested_c = R * std::sin(o.angle * M_PI / 180.0);
     pr.requested_by = "winding.angle";
     check(pr.requested_c, pr.requested_by,
-          mm(o.angle) + " deg (turnaround radius " + mm(pr.requested_c) + " mm)");
+          format_fixed(o.angle, 2) + " deg (turnaround radius " + format_fixed(pr.requested_c, 2) + " mm)");
   } else if (narrows && !o.turns_given) {
     pr.requested_c = r_open + 0.5 * o.band_width;
     pr.requested_by = "winding.turnaround";
     check(pr.requested_c, "winding.turnaround (default: the polar opening radius + half the "
-                          "band width)", mm(pr.requested_c) + " mm");
+                          "band width)", format_fixed(pr.requested_c, 2) + " mm");
   } else {
     // From the turns: on domes Phi(c) grows from the opening towards R; between dwell ends
     // from 0 to the smaller end radius.
@@ -214,7 +207,7 @@ PatternProblem pattern_problem(const std::vector<Vec2>& meridian, const WindingO
       s << "winding.turns = " << format_turns(o.turns) << ": a geodesic ";
       if (narrows) {
         s << "turning around on the domes makes " << format_turns(at_lo)
-          << " turns per pass with its turnaround at the polar opening (" << mm(lo)
+          << " turns per pass with its turnaround at the polar opening (" << format_fixed(lo, 2)
           << " mm) and more as the turnaround moves out; use turns >= "
           << format_turns(std::ceil(100.0 * at_lo) / 100.0)
           << ", winding.turnaround / winding.angle, or winding.slippage (<= mu) to turn "
@@ -306,10 +299,10 @@ PatternCandidate choose_pattern(const PatternProblem& pr, const WindingOptions& 
         const PatternCandidate any = pattern_for(pr, K, p, lo, hi, pr.requested_c);
         throw ConfigError(
             "winding.pattern: K=" + std::to_string(K) + ", p=" + std::to_string(p) +
-            " closes with no turnaround radius in " + mm(pr.c_lo) + " .. " + mm(pr.c_hi) +
-            " mm (" + pr.requested_by + " asks " + mm(pr.requested_c) + " mm)" +
+            " closes with no turnaround radius in " + format_fixed(pr.c_lo, 2) + " .. " + format_fixed(pr.c_hi, 2) +
+            " mm (" + pr.requested_by + " asks " + format_fixed(pr.requested_c, 2) + " mm)" +
             (std::isnan(any.c) ? std::string(" nor anywhere on this mandrel")
-                               : "; the nearest that closes it is " + mm(any.c, 3) +
+                               : "; the nearest that closes it is " + format_fixed(any.c, 3) +
                                      " mm (set winding.turnaround or widen "
                                      "winding.turnaround_window)"));
       }
@@ -328,8 +321,8 @@ PatternCandidate choose_pattern(const PatternProblem& pr, const WindingOptions& 
       if (!std::isnan(c)) return fill(pr, K, p, c);
     }
     throw ConfigError("winding.circuits: no skip closes K=" + std::to_string(K) +
-                      " circuits with a turnaround radius in " + mm(pr.c_lo) + " .. " +
-                      mm(pr.c_hi) + " mm; widen winding.turnaround_window or change K");
+                      " circuits with a turnaround radius in " + format_fixed(pr.c_lo, 2) + " .. " +
+                      format_fixed(pr.c_hi, 2) + " mm; widen winding.turnaround_window or change K");
   }
   std::vector<PatternCandidate> all = pattern_candidates(pr);
   if (o.skip > 0) {
@@ -339,7 +332,7 @@ PatternCandidate choose_pattern(const PatternProblem& pr, const WindingOptions& 
   }
   if (all.empty()) {
     throw ConfigError("winding.pattern: auto found no closing pattern with a turnaround radius "
-                      "in " + mm(pr.c_lo) + " .. " + mm(pr.c_hi) + " mm" +
+                      "in " + format_fixed(pr.c_lo, 2) + " .. " + format_fixed(pr.c_hi, 2) + " mm" +
                       (o.skip > 0 ? " and skip " + std::to_string(o.skip) : std::string()) +
                       "; widen winding.turnaround_window");
   }
