@@ -37,24 +37,11 @@ struct Trial {
 struct Setup {
   const PatternProblem* pr;
   MeridianLine line;
-  std::vector<double> cum;  // meridian length at each meridian point
   bool transition = false;
   std::array<double, 2> apex_s = {0.0, 0.0};  // turnarounds: the apex per end
   double c = 0.0, step = 2.0, c_top = 0.0;
   double span_lo = 0.0, span_hi = 0.0;  // transition: the largest-radius part (meridian s)
 };
-
-// Meridian length where r crosses `r` first, walking in from end `e` (NaN: nowhere).
-double crossing_from_end(const std::vector<Vec2>& m, const std::vector<double>& cum, double r,
-                         int e) {
-  const int n = static_cast<int>(m.size());
-  for (int k = 1; k < n; ++k) {
-    const int i = e == 0 ? k - 1 : n - 1 - k, j = i + 1;
-    const double a = m[i].y() - r, b = m[j].y() - r;
-    if (a * b <= 0.0 && a != b) return cum[i] + (cum[j] - cum[i]) * a / (a - b);
-  }
-  return kNaN;
-}
 
 Trial evaluate_turnarounds(const Setup& su, double lambda, double c) {
   const PatternProblem& pr = *su.pr;
@@ -408,8 +395,8 @@ FrictionWinding plan_transition(Setup& su, const WindingOptions& o) {
   su.span_lo = kNaN;
   for (std::size_t i = 0; i < m.size(); ++i) {
     if (m[i].y() < 0.999 * R) continue;  // the cylinder (a mesh section wavers by ~5e-4 R)
-    if (std::isnan(su.span_lo)) su.span_lo = su.cum[i];
-    su.span_hi = su.cum[i];
+    if (std::isnan(su.span_lo)) su.span_lo = su.line.vertex_s(i);
+    su.span_hi = su.line.vertex_s(i);
   }
   const double bound = o.slippage;
   const double c0 = pr.apex_c[0], c1 = pr.apex_c[1];
@@ -510,11 +497,7 @@ bool wants_friction_turnarounds(const PatternProblem& pr, const WindingOptions& 
 FrictionWinding plan_friction_winding(const PatternProblem& problem, const WindingOptions& o) {
   PatternProblem pr = problem;  // winding.turns on domes: requested_c is solved below
   const double step = std::clamp(0.125 * o.band_width, 0.25, 2.0);
-  Setup su{&pr, MeridianLine(pr.meridian, 0.5 * o.band_width), {}};
-  su.cum = {0.0};
-  for (std::size_t i = 1; i < pr.meridian.size(); ++i) {
-    su.cum.push_back(su.cum.back() + (pr.meridian[i] - pr.meridian[i - 1]).norm());
-  }
+  Setup su{&pr, MeridianLine(pr.meridian, 0.5 * o.band_width)};
   su.c = pr.requested_c;
   su.step = step;
   su.c_top = 0.999 * pr.largest_radius;  // a pass at R never leaves the largest parallel
@@ -525,7 +508,7 @@ FrictionWinding plan_friction_winding(const PatternProblem& problem, const Windi
   const double half_band = 0.5 * pr.band_width;
   for (int e : {0, 1}) {
     if (pr.narrows) {
-      su.apex_s[e] = crossing_from_end(pr.meridian, su.cum, pr.apex_c[e], e);
+      su.apex_s[e] = su.line.at_radius(pr.apex_c[e], e);
       if (std::isnan(su.apex_s[e])) {
         throw ConfigError("winding.turnaround: the " + std::string(end_name(e)) + " dome never " +
                           "reaches the radius " + format_fixed(pr.apex_c[e], 2) + " mm");

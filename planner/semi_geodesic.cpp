@@ -99,6 +99,16 @@ double MeridianLine::at_axial(double x) const {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+double MeridianLine::at_radius(double r, int end) const {
+  const int n = static_cast<int>(pts_.size());
+  for (int k = 1; k < n; ++k) {
+    const int i = end == 0 ? k - 1 : n - 1 - k, j = i + 1;
+    const double a = pts_[i].y() - r, b = pts_[j].y() - r;
+    if (a * b <= 0.0 && a != b) return cum_[i] + (cum_[j] - cum_[i]) * a / (a - b);
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 std::array<double, 3> semi_geodesic_rate(const MeridianLine& m, const MeridianState& y,
                                          double lambda, int side) {
   const Vec2 t = m.tangent(y.s);
@@ -166,14 +176,10 @@ FrictionTurnaround friction_turnaround(const MeridianLine& m, int end, double ap
   o.side = (end == 1 ? 1 : -1) * (lower ? 1 : -1);
   o.step = step;
   o.max_length = 200.0 * std::max(m.length(), apex.y());
-  if (!lower && !on_meridian) {  // raising r sin a is bounded by r: stop off the meridian
-    o.s_min = -0.5 * m.length();
-    o.s_max = 1.5 * m.length();
-    o.max_length = 20.0 * (m.length() + 2.0 * M_PI * apex.y());
-  }
-  if (on_meridian) {
-    o.s_min = 0.0;
-    o.s_max = m.length();
+  if (on_meridian || !lower) {  // raising r sin a is bounded by r: stop off the meridian
+    const double margin = on_meridian ? 0.0 : 0.5 * m.length();
+    o.s_min = -margin;
+    o.s_max = m.length() + margin;
     o.max_length = 20.0 * (m.length() + 2.0 * M_PI * apex.y());
   }
   // Leaving half: from the apex until r sin a reaches c.

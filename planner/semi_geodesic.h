@@ -101,6 +101,11 @@ class MeridianLine {
   Vec2 tangent(double s) const;
   /// The meridian length at the first point whose axial position is x (NaN: none).
   double at_axial(double x) const;
+  /// The meridian length where the radius first crosses r walking in from `end` (0: the first
+  /// point, 1: the last; NaN: nowhere).
+  double at_radius(double r, int end) const;
+  /// The meridian length of point i of the polyline.
+  double vertex_s(std::size_t i) const { return cum_[i]; }
 
  private:
   int segment(double s) const;
