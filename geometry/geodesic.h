@@ -88,13 +88,13 @@ struct GeodesicOptions {
   /// the context has one), whatever steiner_start says: legs are short, so their Steiner
   /// search is cheap.
   bool steiner_legs = true;
-  /// geodesic_between, Euclidean metric, both endpoints at vertices: after the starts above, a
-  /// bounded exact window propagation (geometry/geodesic_windows.h) looks for a path shorter
-  /// than the one found; when there is one, its corridor is refined and kept. This makes the
+  /// geodesic_between, Euclidean metric, both endpoints at vertices: instead of the starts
+  /// above, the exact window propagation (geometry/geodesic_windows.h, searched as A* towards
+  /// the target) finds the corridor of the shortest path, which is refined. This makes the
   /// result the globally shortest geodesic (up to round-off) instead of a locally shortest one.
   bool exact_windows = true;
-  /// Upper bound on the windows of that search per query (0: none); past it the local result
-  /// is kept.
+  /// Upper bound on the windows of that search per query (0: none); past it the local starts
+  /// above are made instead.
   long max_windows = 0;
   /// Upper bound on strip changes (reroutes) before giving up (0: 20 + 4 * crossings).
   int max_reroutes = 0;
@@ -234,7 +234,7 @@ struct OpenGeodesicResult : GeodesicResult {
   /// Which start gave the result: 0 Steiner, 1 diagonal graph, 2 plain graph, 3 the legs
   /// between the vertices passed (split_at_vertices), 4 the exact window search.
   int start = 0;
-  double exact_ms = 0.0;   ///< the exact window search (part of refine_ms)
+  double exact_ms = 0.0;   ///< the exact window search (init_ms when it gave the result)
   long exact_windows = 0;  ///< windows it created (0: not run)
   /// The window search ran to its end: the result is the globally shortest geodesic.
   bool exact_complete = false;

@@ -32,44 +32,44 @@ void split_at_passed_vertices(const GeodesicContext& context, const SurfacePoint
                               const SurfacePoint& b, const GeodesicOptions& options,
                               const EdgePathOptions& edge_options, OpenGeodesicResult* result);
 
-// The bounded exact window search below the length found; its corridor refined when shorter.
-void exact_window_pass(const GeodesicContext& context, int a, int b,
-                       const GeodesicOptions& options, OpenGeodesicResult* result) {
-  const auto t0 = Clock::now();
+// The exact window search (unbounded, searched as A*) and the refinement of the shortest
+// path's corridor it returns: the globally shortest geodesic. False when the search stopped
+// at options.max_windows.
+// \throw InputError when the vertices lie on different components.
+bool exact_window_search(const GeodesicContext& context, int a, int b,
+                         const GeodesicOptions& options, OpenGeodesicResult* result) {
   WindowSearchOptions search;
-  const bool have = result->summary.converged() && result->summary.final_length > 0.0;
-  // Only paths shorter by more than round-off are of interest.
-  if (have) search.upper_bound = result->summary.final_length * (1.0 - 1e-13);
   search.max_windows = options.max_windows;
   const WindowSearchResult w =
       shortest_path_by_windows(context.mesh(), context.window_mesh(), a, b, search,
                                &context.landmarks());
   result->exact_windows = w.windows;
   result->exact_complete = w.complete;
-  if (w.found) {
-    GeodesicOptions refine_options = options;
-    GeodesicResult r = refine_path(context.mesh(), w.path, context.metric(), refine_options);
-    result->summary.time_ms += r.summary.time_ms;
-    // A refinement stopped by its reroute or iteration limits on the exact corridor, at the
-    // window search's distance, is the global minimum: converged in the sense that matters.
-    if (!r.summary.converged() && std::abs(r.summary.final_length - w.distance) <=
-                                      1e-12 * w.distance) {
-      r.summary.message = std::string("stopped (") + to_string(r.summary.termination) +
-                          ") at the exact window distance";
-      r.summary.termination = GeodesicTermination::Converged;
-    }
-    if (r.summary.converged() &&
-        (!have || r.summary.final_length < result->summary.final_length)) {
-      const double time = result->summary.time_ms;
-      result->path = std::move(r.path);
-      result->summary = r.summary;
-      result->summary.time_ms = time;
-      result->constraint_variables = std::move(r.constraint_variables);
-      result->start = 4;
-    }
+  result->exact_ms = w.time_ms;
+  result->init_ms = w.time_ms;
+  result->start = 4;
+  if (!w.found && w.complete) {
+    throw InputError("no path from " + to_string(context.mesh(), SurfacePoint::at_vertex(a)) +
+                     " to " + to_string(context.mesh(), SurfacePoint::at_vertex(b)) +
+                     ": the points lie on different components of the mesh");
   }
-  result->exact_ms = ms_since(t0);
-  result->refine_ms += result->exact_ms;
+  if (!w.found) return false;
+  const auto t0 = Clock::now();
+  GeodesicResult r = refine_path(context.mesh(), w.path, context.metric(), options);
+  result->refine_ms = ms_since(t0);
+  // A refinement stopped by its reroute or iteration limits on the exact corridor, at the
+  // window search's distance, is the global minimum: converged in the sense that matters.
+  if (!r.summary.converged() &&
+      std::abs(r.summary.final_length - w.distance) <= 1e-12 * w.distance) {
+    r.summary.message = std::string("stopped (") + to_string(r.summary.termination) +
+                        ") at the exact window distance";
+    r.summary.termination = GeodesicTermination::Converged;
+  }
+  result->path = std::move(r.path);
+  result->summary = r.summary;
+  result->summary.time_ms += w.time_ms;
+  result->constraint_variables = std::move(r.constraint_variables);
+  return true;
 }
 
 }  // namespace
@@ -146,13 +146,20 @@ OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfaceP
 OpenGeodesicResult geodesic_between(const GeodesicContext& context, const SurfacePoint& a,
                                     const SurfacePoint& b, const GeodesicOptions& options,
                                     const EdgePathOptions& edge_options) {
+  const bool windows = options.exact_windows && !context.window_mesh().pseudo_source.empty() &&
+                       a.kind == SurfacePoint::Kind::Vertex &&
+                       b.kind == SurfacePoint::Kind::Vertex && a.element != b.element;
+  if (windows) {
+    // The window search first, unbounded: it finds the shortest path's corridor by itself
+    // (searched as A*), and the local starts would only have given it an upper bound that
+    // prunes about the same windows (bench/README.md, session 6).
+    OpenGeodesicResult result;
+    if (exact_window_search(context, a.element, b.element, options, &result)) return result;
+    // Stopped by max_windows: the local starts, as without windows.
+  }
   OpenGeodesicResult result = best_of_starts(context, a, b, options, edge_options);
   if (options.split_at_vertices && result.summary.converged())
     split_at_passed_vertices(context, a, b, options, edge_options, &result);
-  if (options.exact_windows && !context.window_mesh().pseudo_source.empty() &&
-      a.kind == SurfacePoint::Kind::Vertex && b.kind == SurfacePoint::Kind::Vertex) {
-    exact_window_pass(context, a.element, b.element, options, &result);
-  }
   return result;
 }
 

@@ -10,7 +10,8 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
-#include <queue>
+#include <cstdint>
+#include <cstring>
 
 #include "geometry/edge_path.h"
 #include "geometry/errors.h"
@@ -71,12 +72,132 @@ struct Window {
   double sigma;  // distance of the pseudo-source from the source
   int pseudo;    // pseudo-source vertex
   int parent;    // window propagated into this one (-1: lit by `pseudo` directly)
+  double bound = 0.0;  // lower bound of the paths to the target through the window (A* key)
+  int next = -1;       // the next window on the same edge (Scratch::head), -1: last
+  char state = kQueued;
+
+  static constexpr char kQueued = 0, kPropagated = 1, kDead = 2;
 };
+
+// The distance function of a window on an edge, in the frame of one of the edge's halfedges:
+// sigma + |(x, 0) - (sx, sy)|.
+struct EdgeDistance {
+  double sigma, sx, sy;
+  double at(double x) const { return sigma + std::sqrt((x - sx) * (x - sx) + sy * sy); }
+};
+
+// The points of (lo, hi) where a and b are equal (at most two: squaring
+// r_a - r_b = sigma_b - sigma_a twice leaves a quadratic), ascending; returns their count.
+int equal_points(const EdgeDistance& a, const EdgeDistance& b, double lo, double hi,
+                 double out[2]) {
+  const double k = b.sigma - a.sigma;
+  // r_a^2 - r_b^2 - k^2 = alpha x + beta = 2 k r_b.
+  const double alpha = 2.0 * (b.sx - a.sx);
+  const double beta = a.sx * a.sx - b.sx * b.sx + a.sy * a.sy - b.sy * b.sy - k * k;
+  const double qa = alpha * alpha - 4.0 * k * k;
+  const double qb = 2.0 * alpha * beta + 8.0 * k * k * b.sx;
+  const double qc = beta * beta - 4.0 * k * k * (b.sx * b.sx + b.sy * b.sy);
+  double roots[2];
+  int n = 0;
+  if (k == 0.0) {
+    // r_a = r_b: one root of the linear alpha x + beta (the quadratic's double root).
+    if (alpha != 0.0) roots[n++] = -beta / alpha;
+  } else if (std::abs(qa) <= 1e-14 * (alpha * alpha + 4.0 * k * k)) {
+    if (qb != 0.0) roots[n++] = -qc / qb;
+  } else {
+    const double disc = qb * qb - 4.0 * qa * qc;
+    if (disc > 0.0) {
+      const double r = std::sqrt(disc);
+      // The stable pair of roots.
+      const double q = -0.5 * (qb + (qb >= 0.0 ? r : -r));
+      if (q != 0.0) roots[n++] = qc / q;
+      roots[n++] = q / qa;
+    } else {
+      // A double root, or none: round-off can take a tangency either way, so the parabola's
+      // vertex is a candidate (a point where f does not change sign only splits a piece).
+      roots[n++] = -qb / (2.0 * qa);
+    }
+  }
+  int m = 0;
+  for (int i = 0; i < n; ++i)
+    if (roots[i] > lo && roots[i] < hi) out[m++] = roots[i];
+  if (m == 2 && out[0] > out[1]) std::swap(out[0], out[1]);
+  return m;
+}
 
 struct Event {
   double key;
   int index;    // >= 0: window; < 0: vertex -(index + 1)
-  bool operator>(const Event& o) const { return key > o.key; }
+};
+
+// A monotone priority queue on keys >= 0 (a radix heap, Ahuja, Mehlhorn, Orlin and Tarjan):
+// a key pushed below the last one popped is taken as that one. Keys only order the work
+// (never decide it), so that rounding-level clamp changes no result. A window's children and
+// a vertex's windows have keys no smaller than its own, up to round-off, in both orders used
+// (distance from the source, and the A* bound with the straight distance to the target, which
+// is consistent).
+class RadixQueue {
+ public:
+  bool empty() const { return size_ == 0; }
+  void clear() {
+    for (auto& b : buckets_) b.clear();
+    size_ = 0;
+    last_ = 0;
+  }
+  void push(Event e) {
+    std::uint64_t k = bits(e.key);
+    if (k < last_) {
+      k = last_;
+      e.key = value(k);
+    }
+    buckets_[bucket(k)].push_back(e);
+    ++size_;
+  }
+  // The event with the smallest key (the queue is not empty).
+  Event pop() {
+    if (buckets_[0].empty()) {
+      int i = 1;
+      while (buckets_[i].empty()) ++i;
+      std::vector<Event>& from = buckets_[i];
+      std::uint64_t least = bits(from[0].key);
+      for (const Event& e : from) least = std::min(least, bits(e.key));
+      last_ = least;
+      for (const Event& e : from) buckets_[bucket(bits(e.key))].push_back(e);
+      from.clear();
+    }
+    const Event e = buckets_[0].back();
+    buckets_[0].pop_back();
+    --size_;
+    return e;
+  }
+  std::size_t capacity() const {
+    std::size_t c = 0;
+    for (const auto& b : buckets_) c += b.capacity();
+    return c;
+  }
+  void release() {
+    for (auto& b : buckets_) std::vector<Event>().swap(b);
+  }
+
+ private:
+  // The bits of a key >= 0 order as the key does (+0 for -0 and NaN never occur: keys are
+  // distances).
+  static std::uint64_t bits(double key) {
+    std::uint64_t k;
+    std::memcpy(&k, &key, sizeof k);
+    return k;
+  }
+  static double value(std::uint64_t k) {
+    double key;
+    std::memcpy(&key, &k, sizeof key);
+    return key;
+  }
+  int bucket(std::uint64_t k) const {
+    return k == last_ ? 0 : 64 - __builtin_clzll(k ^ last_);
+  }
+  std::vector<Event> buckets_[65];
+  std::size_t size_ = 0;
+  std::uint64_t last_ = 0;
 };
 
 // Where the ray from I through X meets the line P + s (Q - P): s (NaN when parallel).
@@ -87,32 +208,41 @@ double ray_hit(const Vec2& I, const Vec2& X, const Vec2& P, const Vec2& Q) {
   return cross(I - P, d) / den;
 }
 
-// Per-thread buffers reused across queries (about 20 bytes per vertex and per halfedge, plus
-// 64 per window of the largest search so far): vertex and halfedge records are valid when their
-// stamp is the query's (no O(V) clearing per query).
+// A query's record of a vertex: its distance and what gave it.
+struct VertexRecord {
+  unsigned stamp;
+  int provider_window;  // the window whose ray reached it (-1: an edge from provider_vertex)
+  int provider_vertex;
+  double dist;
+};
+
+// A query's record of a halfedge (one cache line's worth, read together).
+struct HalfedgeRecord {
+  unsigned stamp;
+  int head;  // the first of its windows (linked through Window::next), -1: none
+  // One angle, one split (Xin and Wang): the shortest distance to the corner opposite h that
+  // a window on h gave (+infinity: none yet), and where that ray crossed h.
+  double split_dist, split_x;
+  double target_x, target_y;  // the target in h's frame (target_in_frame); NaN: not yet
+};
+
+// Per-thread buffers reused across queries (24 bytes per vertex, 40 per halfedge, plus about
+// 90 per window of the largest search so far): the records are valid when their stamp is the
+// query's (no O(V) clearing per query).
 struct Scratch {
   unsigned stamp = 0;
-  std::vector<unsigned> vertex_stamp, halfedge_stamp;
-  std::vector<double> dist;
-  std::vector<int> provider_window, provider_vertex;
-  // One angle, one split (Xin and Wang): per halfedge h, the shortest distance to the corner
-  // opposite h that a window on h gave, and where that ray crossed h.
-  std::vector<double> split_dist, split_x;
+  std::vector<VertexRecord> vertices;
+  std::vector<HalfedgeRecord> halfedges;
   std::vector<Window> windows;
-  std::vector<Event> queue;  // a min-heap on key
+  RadixQueue queue;
   std::vector<int> outgoing;
 
   void begin(const Mesh& mesh) {
     const std::size_t nv = mesh.num_vertices(), nh = mesh.num_halfedges();
-    if (vertex_stamp.size() != nv || halfedge_stamp.size() != nh || ++stamp == 0) {
+    if (vertices.size() != nv || halfedges.size() != nh || ++stamp == 0) {
       stamp = 1;
-      vertex_stamp.assign(nv, 0);
-      dist.resize(nv);
-      provider_window.resize(nv);
-      provider_vertex.resize(nv);
-      halfedge_stamp.assign(nh, 0);
-      split_dist.resize(nh);
-      split_x.resize(nh);
+      vertices.assign(nv, VertexRecord{0, -1, -1, 0.0});
+      halfedges.assign(nh, HalfedgeRecord{0, -1, 0.0, 0.0, 0.0, 0.0});
     }
     windows.clear();
     queue.clear();
@@ -137,7 +267,8 @@ class Search {
         windows_(scratch_.windows),
         queue_(scratch_.queue),
         outgoing_(scratch_.outgoing),
-        best_(options.upper_bound) {
+        best_(options.upper_bound),
+        distance_order_(target < 0 || std::isfinite(options.upper_bound)) {
     scratch_.begin(mesh);
     if (landmarks_ != nullptr) {
       const int k = landmarks_->count;
@@ -160,7 +291,7 @@ class Search {
   ~Search() {
     if (windows_.capacity() > kKeptWindows) {
       std::vector<Window>().swap(windows_);
-      std::vector<Event>().swap(queue_);
+      queue_.release();
     }
   }
 
@@ -169,17 +300,18 @@ class Search {
     relax(source_, 0.0, -1, -1);
     expand_vertex(source_, 0.0);
     while (!queue_.empty() && !aborted_) {
-      std::pop_heap(queue_.begin(), queue_.end(), std::greater<Event>());
-      const Event e = queue_.back();
-      queue_.pop_back();
+      const Event e = queue_.pop();
+      // Keys never exceed bounds: once a key reaches the best length, every bound left does.
       if (e.key >= best_) break;
       if (e.index >= 0) {
+        if (windows_[e.index].bound >= best_) continue;
         propagate(e.index);
         ++result.windows_propagated;
       } else {
         const int v = -e.index - 1;
         // Stale when the vertex got a shorter distance (and a new event) since.
-        if (vertex_key(v, dist(v)) == e.key) expand_vertex(v, dist(v));
+        if (order_key(v, dist(v)) == e.key && vertex_key(v, dist(v)) < best_)
+          expand_vertex(v, dist(v));
       }
     }
     result.windows = static_cast<long>(windows_.size());
@@ -197,32 +329,39 @@ class Search {
     return scratch;
   }
   double dist(int v) const {
-    return scratch_.vertex_stamp[v] == scratch_.stamp ? scratch_.dist[v]
-                                                      : std::numeric_limits<double>::infinity();
+    const VertexRecord& r = scratch_.vertices[v];
+    return r.stamp == scratch_.stamp ? r.dist : std::numeric_limits<double>::infinity();
   }
 
   void relax(int v, double d, int window, int from_vertex) {
     if (!(d < dist(v))) return;
-    scratch_.vertex_stamp[v] = scratch_.stamp;
-    scratch_.dist[v] = d;
-    scratch_.provider_window[v] = window;
-    scratch_.provider_vertex[v] = from_vertex;
+    scratch_.vertices[v] = VertexRecord{scratch_.stamp, window, from_vertex, d};
     if (v == target_) {
       best_ = std::min(best_, d);
       return;
     }
     if (!pseudo_[v]) return;
-    const double key = vertex_key(v, d);
-    if (key < best_) push({key, -(v + 1)});
+    if (vertex_key(v, d) < best_) push({order_key(v, d), -(v + 1)});
   }
 
   // The target in h's frame, unfolded to the side y > 0.
-  Vec2 target_in_frame(int h) const {
-    const Vec3& a = mesh_.position(mesh_.from(h));
-    const Vec3 at = target_position_ - a;
-    const double tx = at.dot(mesh_.position(mesh_.to(h)) - a) / frame_[3 * h];
-    return {tx, std::sqrt(std::max(0.0, at.squaredNorm() - tx * tx))};
+  // (Kept in h's record: an edge gets a few windows.)
+  Vec2 target_in_frame(int h) {
+    HalfedgeRecord& r = record(h);
+    if (std::isnan(r.target_x)) {
+      const Vec3& a = mesh_.position(mesh_.from(h));
+      const Vec3 at = target_position_ - a;
+      r.target_x = at.dot(mesh_.position(mesh_.to(h)) - a) / frame_[3 * h];
+      r.target_y = std::sqrt(std::max(0.0, at.squaredNorm() - r.target_x * r.target_x));
+    }
+    return {r.target_x, r.target_y};
   }
+
+  // The queue's order: the A* bound while no length is known (the target is then reached
+  // first), the distance from the source once one is (Dijkstra's order: a window is
+  // propagated after the shorter windows that can cut it, so fewer are propagated in vain;
+  // the bound against the best length still prunes the same windows).
+  double order_key(int v, double d) const { return distance_order_ ? d : vertex_key(v, d); }
 
   double vertex_key(int v, double d) const {
     if (target_ < 0) return d;
@@ -273,7 +412,7 @@ class Search {
     const double total = corner_[n];
     // The angle, counter-clockwise from outgoing_[0], of the direction back along the arrival.
     double back = -1.0;
-    const int pw = scratch_.provider_window[v];
+    const int pw = scratch_.vertices[v].provider_window;
     if (pw >= 0) {
       const Window& w = windows_[pw];
       const int o = mesh_.prev(w.h);  // v -> from(w.h) in face(w.h)
@@ -283,7 +422,7 @@ class Search {
       for (std::size_t i = 0; i < n; ++i)
         if (outgoing_[i] == o) back = corner_[i] + beta;
     } else {
-      const int u = scratch_.provider_vertex[v];
+      const int u = scratch_.vertices[v].provider_vertex;
       for (std::size_t i = 0; i < n; ++i)
         if (mesh_.to(outgoing_[i]) == u) back = corner_[i];
     }
@@ -307,11 +446,14 @@ class Search {
     const double len = w.len;
     if (!(w.b1 - w.b0 > 1e-12 * len)) return;
     if (!trim(&w)) return;
+    if (!compete(&w)) return;
     // min over x in [b0, b1] of |I - (x, 0)| + |(x, 0) - t|: the target at its distance r
     // from the edge's line, unfolded to the other side (T = (tx, r)); the sum is convex in x
     // with its minimum where I -> T crosses the line.
+    const double nearest =
+        w.sigma + norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0});
     if (target_ < 0) {
-      push_window(w, w.sigma + norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0}));
+      push_window(w, nearest, nearest);
       return;
     }
     const Vec2 T = target_in_frame(w.h);
@@ -322,11 +464,10 @@ class Search {
     double key = w.sigma + norm(X - I) + norm(T - X);
     if (landmarks_ != nullptr) {
       // Any x of the interval is within b1 of from(h) and len - b0 of to(h).
-      const double near = norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0});
-      key = std::max(key, w.sigma + near +
-                              landmark_bound(mesh_.from(w.h), mesh_.to(w.h), w.b1, len - w.b0));
+      key = std::max(key, nearest + landmark_bound(mesh_.from(w.h), mesh_.to(w.h), w.b1,
+                                                   len - w.b0));
     }
-    push_window(w, key);
+    push_window(w, distance_order_ ? nearest : key, key);
   }
 
   // ALT lower bound on d(x, t) for the points x within ra of vertex a and rb of vertex b:
@@ -346,14 +487,19 @@ class Search {
   }
 
   void push(const Event& e) {
-    queue_.push_back(e);
-    std::push_heap(queue_.begin(), queue_.end(), std::greater<Event>());
+    queue_.push(e);
   }
 
-  void push_window(const Window& w, double key) {
-    if (!(key < best_)) return;
+  // `order`: the queue key; `bound`: the A* bound against the best length.
+  void push_window(const Window& w, double order, double bound) {
+    if (!(bound < best_)) return;
+    const int index = static_cast<int>(windows_.size());
+    int& first = head(w.h);
     windows_.push_back(w);
-    push({key, static_cast<int>(windows_.size()) - 1});
+    windows_.back().bound = bound;
+    windows_.back().next = first;
+    first = index;
+    push({order, index});
     if (options_.max_windows > 0 && static_cast<long>(windows_.size()) > options_.max_windows)
       aborted_ = true;
   }
@@ -381,7 +527,111 @@ class Search {
     return w->b1 - w->b0 > tol;
   }
 
+  // h's record, initialised on its first use in the query.
+  HalfedgeRecord& record(int h) {
+    HalfedgeRecord& r = scratch_.halfedges[h];
+    if (r.stamp != scratch_.stamp) {
+      constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+      r = HalfedgeRecord{scratch_.stamp, -1, std::numeric_limits<double>::infinity(), 0.0, kNaN,
+                         kNaN};
+    }
+    return r;
+  }
+
+  int& head(int h) {
+    return record(h).head;
+  }
+
+  // The windows on an edge against each other (Mitchell, Mount and Papadimitriou's window
+  // intersection, from the ends only): where another window on the same edge, lit from either
+  // side, is shorter than w, every ray of w through that part is beaten there, hence beyond.
+  // Cuts w down to where it is strictly shorter than every other window at its ends (a tie
+  // keeps the older window), and cuts the queued windows the same way where w is strictly
+  // shorter; a window left empty is dead. False when w is.
+  bool compete(Window* w) {
+    const double len = w->len, tol = 1e-12 * len;
+    const int sides[2] = {w->h, mesh_.twin(w->h)};
+    for (int side = 0; side < 2; ++side) {
+      HalfedgeRecord& r = scratch_.halfedges[sides[side]];
+      if (r.stamp != scratch_.stamp) continue;
+      int* link = &r.head;
+      while (*link >= 0) {
+        Window& o = windows_[*link];
+        if (o.state != Window::kQueued) {
+          *link = o.next;
+          continue;
+        }
+        // o in w's frame.
+        const bool same = side == 0;
+        const double ob0 = same ? o.b0 : len - o.b1, ob1 = same ? o.b1 : len - o.b0;
+        const double lo = std::max(w->b0, ob0), hi = std::min(w->b1, ob1);
+        bool o_beaten = false;
+        if (hi - lo > tol) {
+          const EdgeDistance wd{w->sigma, w->source.x, w->source.y};
+          const EdgeDistance od{o.sigma, same ? o.source.x : len - o.source.x, o.source.y};
+          const double eps = 1e-12 * (w->sigma + len);
+          double x[4];
+          int n = 0;
+          x[n++] = lo;
+          n += equal_points(wd, od, lo, hi, x + 1);
+          x[n] = hi;
+          // Per piece: -1 w strictly shorter, +1 o strictly shorter, 0 a tie.
+          int sign[3];
+          for (int i = 0; i < n; ++i) {
+            const double m = 0.5 * (x[i] + x[i + 1]);
+            const double f = wd.at(m) - od.at(m);
+            sign[i] = f < -eps ? -1 : (f > eps ? 1 : 0);
+          }
+          // w loses its ends covered by o where it is not strictly shorter.
+          if (lo <= w->b0 + tol) {
+            int i = 0;
+            while (i < n && sign[i] >= 0) ++i;
+            if (i > 0) w->b0 = x[i];
+          }
+          if (hi >= w->b1 - tol) {
+            int i = n;
+            while (i > 0 && sign[i - 1] >= 0) --i;
+            if (i < n) w->b1 = x[i];
+          }
+          if (!(w->b1 - w->b0 > tol)) return false;
+          // o loses its ends covered by w where w is strictly shorter (queued windows only:
+          // a propagated one has its children already).
+          double c0 = ob0, c1 = ob1;
+          if (lo <= ob0 + tol) {
+            int i = 0;
+            while (i < n && sign[i] < 0) ++i;
+            if (i > 0) c0 = x[i];
+          }
+          if (hi >= ob1 - tol) {
+            int i = n;
+            while (i > 0 && sign[i - 1] < 0) --i;
+            if (i < n) c1 = x[i];
+          }
+          o_beaten = !(c1 - c0 > tol);
+          if (o.state == Window::kQueued) {
+            if (o_beaten) {
+              o.state = Window::kDead;
+            } else if (same) {
+              o.b0 = c0;
+              o.b1 = c1;
+            } else {
+              o.b0 = len - c1;
+              o.b1 = len - c0;
+            }
+          }
+        }
+        if (o_beaten)
+          *link = o.next;
+        else
+          link = &o.next;
+      }
+    }
+    return true;
+  }
+
   void propagate(int index) {
+    if (windows_[index].state != Window::kQueued) return;
+    windows_[index].state = Window::kPropagated;
     Window w = windows_[index];
     const int h = w.h;
     const double len = w.len;
@@ -399,9 +649,9 @@ class Search {
     // child on the far side of that segment keeps only the part whose rays do not cross it.
     double keep_left = w.b1, keep_right = w.b0;  // left child within x <= keep_left, ...
     const double dc = w.sigma + norm(C - I);
-    const bool recorded = scratch_.halfedge_stamp[h] == scratch_.stamp;
-    if (recorded && dc > scratch_.split_dist[h]) {
-      const double xs = scratch_.split_x[h];
+    HalfedgeRecord& r = record(h);
+    if (dc > r.split_dist) {
+      const double xs = r.split_x;
       if (xc < xs) keep_right = xs;  // rays in (xc, xs) cross x* -> C to reach C -> B
       if (xc > xs) keep_left = xs;   // rays in (xs, xc) cross it to reach A -> C
     }
@@ -409,10 +659,9 @@ class Search {
       // This window's ray reaches C: a real path (dc of a window whose cone misses C is no
       // path, but it still bounds that window's distances on the segment x* -> C above).
       relax(c, dc, index, -1);
-      if (!recorded || dc < scratch_.split_dist[h]) {
-        scratch_.halfedge_stamp[h] = scratch_.stamp;
-        scratch_.split_dist[h] = dc;
-        scratch_.split_x[h] = xc;
+      if (dc < r.split_dist) {
+        r.split_dist = dc;
+        r.split_x = xc;
       }
     }
     const int hp = mesh_.prev(h), hn = mesh_.next(h);
@@ -464,9 +713,9 @@ class Search {
       SurfacePath leg;
       leg.end = SurfacePoint::at_vertex(u);
       int v = -1;
-      if (scratch_.provider_window[u] >= 0) {
+      if (scratch_.vertices[u].provider_window >= 0) {
         std::vector<int> chain;
-        for (int w = scratch_.provider_window[u]; w >= 0; w = windows_[w].parent) chain.push_back(w);
+        for (int w = scratch_.vertices[u].provider_window; w >= 0; w = windows_[w].parent) chain.push_back(w);
         std::reverse(chain.begin(), chain.end());
         v = windows_[chain.front()].pseudo;
         for (const int w : chain) {
@@ -476,7 +725,7 @@ class Search {
         }
         leg.start_face = mesh_.face(leg.halfedges.front());
       } else {
-        v = scratch_.provider_vertex[u];
+        v = scratch_.vertices[u].provider_vertex;
         if (v < 0) return false;
         for (const int o : mesh_.outgoing_halfedges(v)) {
           if (mesh_.to(o) == u || mesh_.from(mesh_.prev(o)) == u) {
@@ -514,11 +763,12 @@ class Search {
   std::vector<double> target_landmark_;
   Scratch& scratch_;
   std::vector<Window>& windows_;
-  std::vector<Event>& queue_;
+  RadixQueue& queue_;
   std::vector<int>& outgoing_;
   std::vector<double> corner_;
   std::vector<char> continues_;
   double best_;
+  const bool distance_order_;
   long vertex_events_ = 0;
   bool aborted_ = false;
 };

@@ -224,7 +224,10 @@ TEST(Geodesic, NewtonAndLbfgsAgree) {
   for (int trial = 0; trial < 10; ++trial) {
     const SurfacePoint a = SurfacePoint::at_vertex(pick(rng));
     const SurfacePoint b = SurfacePoint::at_vertex(pick(rng));
+    // Both solvers from the same local starts (the edge paths), not the window search's
+    // corridor.
     GeodesicOptions on, ol;
+    on.exact_windows = ol.exact_windows = false;
     ol.solver = GeodesicSolver::Lbfgs;
     const auto rn = geodesic_between(ctx, a, b, on);
     const auto rl = geodesic_between(ctx, a, b, ol);
@@ -236,6 +239,11 @@ TEST(Geodesic, NewtonAndLbfgsAgree) {
     EXPECT_NEAR(rn.summary.final_length, rl.summary.final_length,
                 1e-4 * rn.summary.final_length);
     EXPECT_LE(rn.summary.final_length, rn.edge_path.length + 1e-9);
+    // The window search's refined corridor: never longer than a local geodesic.
+    const auto rw = geodesic_between(ctx, a, b);
+    ASSERT_TRUE(rw.summary.converged()) << rw.summary.brief_report();
+    EXPECT_EQ(rw.start, 4);
+    EXPECT_LE(rw.summary.final_length, rn.summary.final_length * (1.0 + 1e-12));
   }
 }
 
