@@ -10,10 +10,10 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
-#include <cstdint>
-#include <cstring>
 
 #include "geometry/edge_path.h"
+#include "geometry/radix_queue.h"
+#include "geometry/window_distance.h"
 #include "geometry/errors.h"
 
 namespace windplan {
@@ -79,126 +79,12 @@ struct Window {
   static constexpr char kQueued = 0, kPropagated = 1, kDead = 2;
 };
 
-// The distance function of a window on an edge, in the frame of one of the edge's halfedges:
-// sigma + |(x, 0) - (sx, sy)|.
-struct EdgeDistance {
-  double sigma, sx, sy;
-  double at(double x) const { return sigma + std::sqrt((x - sx) * (x - sx) + sy * sy); }
-};
-
-// The points of (lo, hi) where a and b are equal (at most two: squaring
-// r_a - r_b = sigma_b - sigma_a twice leaves a quadratic), ascending; returns their count.
-int equal_points(const EdgeDistance& a, const EdgeDistance& b, double lo, double hi,
-                 double out[2]) {
-  const double k = b.sigma - a.sigma;
-  // r_a^2 - r_b^2 - k^2 = alpha x + beta = 2 k r_b.
-  const double alpha = 2.0 * (b.sx - a.sx);
-  const double beta = a.sx * a.sx - b.sx * b.sx + a.sy * a.sy - b.sy * b.sy - k * k;
-  const double qa = alpha * alpha - 4.0 * k * k;
-  const double qb = 2.0 * alpha * beta + 8.0 * k * k * b.sx;
-  const double qc = beta * beta - 4.0 * k * k * (b.sx * b.sx + b.sy * b.sy);
-  double roots[2];
-  int n = 0;
-  if (k == 0.0) {
-    // r_a = r_b: one root of the linear alpha x + beta (the quadratic's double root).
-    if (alpha != 0.0) roots[n++] = -beta / alpha;
-  } else if (std::abs(qa) <= 1e-14 * (alpha * alpha + 4.0 * k * k)) {
-    if (qb != 0.0) roots[n++] = -qc / qb;
-  } else {
-    const double disc = qb * qb - 4.0 * qa * qc;
-    if (disc > 0.0) {
-      const double r = std::sqrt(disc);
-      // The stable pair of roots.
-      const double q = -0.5 * (qb + (qb >= 0.0 ? r : -r));
-      if (q != 0.0) roots[n++] = qc / q;
-      roots[n++] = q / qa;
-    } else {
-      // A double root, or none: round-off can take a tangency either way, so the parabola's
-      // vertex is a candidate (a point where f does not change sign only splits a piece).
-      roots[n++] = -qb / (2.0 * qa);
-    }
-  }
-  int m = 0;
-  for (int i = 0; i < n; ++i)
-    if (roots[i] > lo && roots[i] < hi) out[m++] = roots[i];
-  if (m == 2 && out[0] > out[1]) std::swap(out[0], out[1]);
-  return m;
-}
-
 struct Event {
   double key;
   int index;    // >= 0: window; < 0: vertex -(index + 1)
 };
 
-// A monotone priority queue on keys >= 0 (a radix heap, Ahuja, Mehlhorn, Orlin and Tarjan):
-// a key pushed below the last one popped is taken as that one. Keys only order the work
-// (never decide it), so that rounding-level clamp changes no result. A window's children and
-// a vertex's windows have keys no smaller than its own, up to round-off, in both orders used
-// (distance from the source, and the A* bound with the straight distance to the target, which
-// is consistent).
-class RadixQueue {
- public:
-  bool empty() const { return size_ == 0; }
-  void clear() {
-    for (auto& b : buckets_) b.clear();
-    size_ = 0;
-    last_ = 0;
-  }
-  void push(Event e) {
-    std::uint64_t k = bits(e.key);
-    if (k < last_) {
-      k = last_;
-      e.key = value(k);
-    }
-    buckets_[bucket(k)].push_back(e);
-    ++size_;
-  }
-  // The event with the smallest key (the queue is not empty).
-  Event pop() {
-    if (buckets_[0].empty()) {
-      int i = 1;
-      while (buckets_[i].empty()) ++i;
-      std::vector<Event>& from = buckets_[i];
-      std::uint64_t least = bits(from[0].key);
-      for (const Event& e : from) least = std::min(least, bits(e.key));
-      last_ = least;
-      for (const Event& e : from) buckets_[bucket(bits(e.key))].push_back(e);
-      from.clear();
-    }
-    const Event e = buckets_[0].back();
-    buckets_[0].pop_back();
-    --size_;
-    return e;
-  }
-  std::size_t capacity() const {
-    std::size_t c = 0;
-    for (const auto& b : buckets_) c += b.capacity();
-    return c;
-  }
-  void release() {
-    for (auto& b : buckets_) std::vector<Event>().swap(b);
-  }
 
- private:
-  // The bits of a key >= 0 order as the key does (+0 for -0 and NaN never occur: keys are
-  // distances).
-  static std::uint64_t bits(double key) {
-    std::uint64_t k;
-    std::memcpy(&k, &key, sizeof k);
-    return k;
-  }
-  static double value(std::uint64_t k) {
-    double key;
-    std::memcpy(&key, &k, sizeof key);
-    return key;
-  }
-  int bucket(std::uint64_t k) const {
-    return k == last_ ? 0 : 64 - __builtin_clzll(k ^ last_);
-  }
-  std::vector<Event> buckets_[65];
-  std::size_t size_ = 0;
-  std::uint64_t last_ = 0;
-};
 
 // Where the ray from I through X meets the line P + s (Q - P): s (NaN when parallel).
 double ray_hit(const Vec2& I, const Vec2& X, const Vec2& P, const Vec2& Q) {
@@ -234,7 +120,7 @@ struct Scratch {
   std::vector<VertexRecord> vertices;
   std::vector<HalfedgeRecord> halfedges;
   std::vector<Window> windows;
-  RadixQueue queue;
+  RadixQueue<Event> queue;
   std::vector<int> outgoing;
 
   void begin(const Mesh& mesh) {
@@ -573,7 +459,7 @@ class Search {
           double x[4];
           int n = 0;
           x[n++] = lo;
-          n += equal_points(wd, od, lo, hi, x + 1);
+          n += equal_distance_points(wd, od, lo, hi, x + 1);
           x[n] = hi;
           // Per piece: -1 w strictly shorter, +1 o strictly shorter, 0 a tie.
           int sign[3];
@@ -763,7 +649,7 @@ class Search {
   std::vector<double> target_landmark_;
   Scratch& scratch_;
   std::vector<Window>& windows_;
-  RadixQueue& queue_;
+  RadixQueue<Event>& queue_;
   std::vector<int>& outgoing_;
   std::vector<double> corner_;
   std::vector<char> continues_;

@@ -15,7 +15,16 @@
 //
 // A window is dropped when an endpoint vertex of its edge reaches its far end more cheaply along
 // the edge (d(A) + x is increasing faster than the window's distance, so the whole window is
-// beaten): the exact part of ICH's filter. Saddle and boundary vertices are pseudo-sources.
+// beaten): the exact part of ICH's filter. The windows on one edge, lit from either side, also
+// cut each other down from their ends to where each is the shorter (Mitchell, Mount and
+// Papadimitriou's window intersection, geometry/window_distance.h): this cut the windows of a
+// search by 3x on the bunnies (bench/README.md, session 6). Saddle and boundary vertices are
+// pseudo-sources.
+//
+// Order: without an upper bound, A* (the target is reached first, then the bound prunes); with
+// one, Dijkstra's order by the distance from the source, pruned by the same bound (a window is
+// then propagated after the shorter windows that may cut it). The queue is a radix heap
+// (geometry/radix_queue.h): both orders are monotone.
 // Euclidean metric only (the geodesic core uses it for Euclidean queries between vertices; see
 // geodesic_between in geometry/geodesic.h). No CGAL: geometry/exact_geodesic.h is the reference
 // the tests compare with.
@@ -32,8 +41,8 @@ struct WindowSearchOptions {
   /// Only paths strictly shorter than this are looked for (mesh units; +infinity: any).
   double upper_bound = std::numeric_limits<double>::infinity();
   /// Give up (complete = false) after this many windows were created (0: no limit). Memory is
-  /// about 80 bytes per window (bench/README.md: median 22K windows at 20K faces, 1.07M and a
-  /// p90 of 6.9M at 300K faces).
+  /// about 100 bytes per window with its queue entry (bench/README.md, session 6: median 10K
+  /// windows at 20K faces, 274K and a p90 of 1.35M at 300K faces).
   long max_windows = 0;
 
   bool is_valid(std::string* why) const;
