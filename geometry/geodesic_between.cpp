@@ -40,9 +40,8 @@ bool exact_window_search(const GeodesicContext& context, int a, int b,
                          const GeodesicOptions& options, OpenGeodesicResult* result) {
   WindowSearchOptions search;
   search.max_windows = options.max_windows;
-  const WindowSearchResult w =
-      shortest_path_by_windows(context.mesh(), context.window_mesh(), a, b, search,
-                               &context.landmarks());
+  const WindowSearchResult w = shortest_path_by_windows(context.mesh(), context.window_mesh(), a, b,
+                                                        search, &context.landmarks());
   result->exact_windows = w.windows;
   result->exact_complete = w.complete;
   result->exact_ms = w.time_ms;
@@ -124,8 +123,9 @@ OpenGeodesicResult best_of_starts(const GeodesicContext& context, const SurfaceP
     const auto t1 = Clock::now();
     GeodesicResult r = refine_path(mesh, init, context.metric(), options);
     result.refine_ms += ms_since(t1);
-    if (!have || (r.summary.converged() && (!result.summary.converged() ||
-                                            r.summary.final_length < result.summary.final_length))) {
+    if (!have ||
+        (r.summary.converged() &&
+         (!result.summary.converged() || r.summary.final_length < result.summary.final_length))) {
       const double time = result.summary.time_ms;
       result.path = std::move(r.path);
       result.summary = r.summary;

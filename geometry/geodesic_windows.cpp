@@ -12,9 +12,9 @@
 #include <functional>
 
 #include "geometry/edge_path.h"
+#include "geometry/errors.h"
 #include "geometry/radix_queue.h"
 #include "geometry/window_distance.h"
-#include "geometry/errors.h"
 
 namespace windplan {
 
@@ -68,10 +68,10 @@ struct Window {
   int h;
   double len;  // length of h's edge
   double b0, b1;
-  Vec2 source;   // I in h's frame
-  double sigma;  // distance of the pseudo-source from the source
-  int pseudo;    // pseudo-source vertex
-  int parent;    // window propagated into this one (-1: lit by `pseudo` directly)
+  Vec2 source;         // I in h's frame
+  double sigma;        // distance of the pseudo-source from the source
+  int pseudo;          // pseudo-source vertex
+  int parent;          // window propagated into this one (-1: lit by `pseudo` directly)
   double bound = 0.0;  // lower bound of the paths to the target through the window (A* key)
   int next = -1;       // the next window on the same edge (Scratch::head), -1: last
   char state = kQueued;
@@ -81,10 +81,8 @@ struct Window {
 
 struct Event {
   double key;
-  int index;    // >= 0: window; < 0: vertex -(index + 1)
+  int index;  // >= 0: window; < 0: vertex -(index + 1)
 };
-
-
 
 // Where the ray from I through X meets the line P + s (Q - P): s (NaN when parallel).
 double ray_hit(const Vec2& I, const Vec2& X, const Vec2& P, const Vec2& Q) {
@@ -148,7 +146,7 @@ class Search {
         options_(options),
         target_position_(target >= 0 ? mesh.position(target) : Vec3::Zero()),
         landmarks_(target >= 0 && landmarks != nullptr && landmarks->count > 0 ? landmarks
-                                                                                 : nullptr),
+                                                                               : nullptr),
         scratch_(thread_scratch()),
         windows_(scratch_.windows),
         queue_(scratch_.queue),
@@ -251,8 +249,8 @@ class Search {
 
   double vertex_key(int v, double d) const {
     if (target_ < 0) return d;
-    return d + std::max((mesh_.position(v) - target_position_).norm(),
-                        landmark_bound(v, v, 0.0, 0.0));
+    return d +
+           std::max((mesh_.position(v) - target_position_).norm(), landmark_bound(v, v, 0.0, 0.0));
   }
 
   // Lights the edges opposite to v in its faces with v as the pseudo-source.
@@ -294,7 +292,8 @@ class Search {
     const std::size_t n = outgoing_.size();
     corner_.resize(n + 1);
     corner_[0] = 0.0;
-    for (std::size_t i = 0; i < n; ++i) corner_[i + 1] = corner_[i] + mesh_.corner_angle(outgoing_[i]);
+    for (std::size_t i = 0; i < n; ++i)
+      corner_[i + 1] = corner_[i] + mesh_.corner_angle(outgoing_[i]);
     const double total = corner_[n];
     // The angle, counter-clockwise from outgoing_[0], of the direction back along the arrival.
     double back = -1.0;
@@ -336,8 +335,7 @@ class Search {
     // min over x in [b0, b1] of |I - (x, 0)| + |(x, 0) - t|: the target at its distance r
     // from the edge's line, unfolded to the other side (T = (tx, r)); the sum is convex in x
     // with its minimum where I -> T crosses the line.
-    const double nearest =
-        w.sigma + norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0});
+    const double nearest = w.sigma + norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0});
     if (target_ < 0) {
       push_window(w, nearest, nearest);
       return;
@@ -350,8 +348,8 @@ class Search {
     double key = w.sigma + norm(X - I) + norm(T - X);
     if (landmarks_ != nullptr) {
       // Any x of the interval is within b1 of from(h) and len - b0 of to(h).
-      key = std::max(key, nearest + landmark_bound(mesh_.from(w.h), mesh_.to(w.h), w.b1,
-                                                   len - w.b0));
+      key =
+          std::max(key, nearest + landmark_bound(mesh_.from(w.h), mesh_.to(w.h), w.b1, len - w.b0));
     }
     push_window(w, distance_order_ ? nearest : key, key);
   }
@@ -372,9 +370,7 @@ class Search {
     return std::isfinite(bound) ? bound : 0.0;
   }
 
-  void push(const Event& e) {
-    queue_.push(e);
-  }
+  void push(const Event& e) { queue_.push(e); }
 
   // `order`: the queue key; `bound`: the A* bound against the best length.
   void push_window(const Window& w, double order, double bound) {
@@ -418,15 +414,13 @@ class Search {
     HalfedgeRecord& r = scratch_.halfedges[h];
     if (r.stamp != scratch_.stamp) {
       constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-      r = HalfedgeRecord{scratch_.stamp, -1, std::numeric_limits<double>::infinity(), 0.0, kNaN,
-                         kNaN};
+      r = HalfedgeRecord{scratch_.stamp, -1,  std::numeric_limits<double>::infinity(), 0.0,
+                         kNaN,           kNaN};
     }
     return r;
   }
 
-  int& head(int h) {
-    return record(h).head;
-  }
+  int& head(int h) { return record(h).head; }
 
   // The windows on an edge against each other (Mitchell, Mount and Papadimitriou's window
   // intersection, from the ends only): where another window on the same edge, lit from either
@@ -601,7 +595,8 @@ class Search {
       int v = -1;
       if (scratch_.vertices[u].provider_window >= 0) {
         std::vector<int> chain;
-        for (int w = scratch_.vertices[u].provider_window; w >= 0; w = windows_[w].parent) chain.push_back(w);
+        for (int w = scratch_.vertices[u].provider_window; w >= 0; w = windows_[w].parent)
+          chain.push_back(w);
         std::reverse(chain.begin(), chain.end());
         v = windows_[chain.front()].pseudo;
         for (const int w : chain) {
@@ -679,8 +674,7 @@ void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
 
 }  // namespace
 
-std::vector<double> geodesic_distances_by_windows(const Mesh& mesh,
-                                                  const WindowMesh& window_mesh,
+std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
                                                   int source) {
   check_inputs(mesh, window_mesh, {source});
   Search search(mesh, window_mesh, source, -1, WindowSearchOptions{});
@@ -688,8 +682,7 @@ std::vector<double> geodesic_distances_by_windows(const Mesh& mesh,
   return search.distances();
 }
 
-Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh,
-                            int count) {
+Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh, int count) {
   Landmarks l;
   if (count <= 0 || mesh.num_vertices() == 0) return l;
   // Farthest-point choice: the first is the vertex farthest along the bounding box diagonal,
@@ -719,13 +712,14 @@ Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh,
   l.count = static_cast<int>(fields.size());
   l.dist.resize(static_cast<std::size_t>(mesh.num_vertices()) * l.count);
   for (int v = 0; v < mesh.num_vertices(); ++v)
-    for (int k = 0; k < l.count; ++k) l.dist[static_cast<std::size_t>(v) * l.count + k] = fields[k][v];
+    for (int k = 0; k < l.count; ++k)
+      l.dist[static_cast<std::size_t>(v) * l.count + k] = fields[k][v];
   return l;
 }
 
-WindowSearchResult shortest_path_by_windows(const Mesh& mesh,
-                                            const WindowMesh& window_mesh, int source,
-                                            int target, const WindowSearchOptions& options,
+WindowSearchResult shortest_path_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
+                                            int source, int target,
+                                            const WindowSearchOptions& options,
                                             const Landmarks* landmarks) {
   const auto t0 = Clock::now();
   check_inputs(mesh, window_mesh, {source, target});

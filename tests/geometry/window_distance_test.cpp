@@ -12,8 +12,8 @@ namespace windplan {
 namespace {
 
 // The sign changes of a - b over a scan of n steps of [lo, hi] that are clear of round-off.
-std::vector<double> sign_changes(const EdgeDistance& a, const EdgeDistance& b, double lo,
-                                 double hi, int n) {
+std::vector<double> sign_changes(const EdgeDistance& a, const EdgeDistance& b, double lo, double hi,
+                                 int n) {
   std::vector<double> changes;
   const double eps = 1e-12 * (a.sigma + b.sigma + hi - lo + 1.0);
   int last = 0;
