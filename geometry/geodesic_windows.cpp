@@ -98,6 +98,9 @@ struct VertexRecord {
   int provider_window;  // the window whose ray reached it (-1: an edge from provider_vertex)
   int provider_vertex;
   double dist;
+  // An event in the queue will expand it at this distance. (Its key cannot tell: the queue
+  // may raise a key, geometry/radix_queue.h.)
+  bool pending;
 };
 
 // A query's record of a halfedge (one cache line's worth, read together).
@@ -110,7 +113,7 @@ struct HalfedgeRecord {
   double target_x, target_y;  // the target in h's frame (target_in_frame); NaN: not yet
 };
 
-// Per-thread buffers reused across queries (24 bytes per vertex, 40 per halfedge, plus about
+// Per-thread buffers reused across queries (32 bytes per vertex, 40 per halfedge, plus about
 // 90 per window of the largest search so far): the records are valid when their stamp is the
 // query's (no O(V) clearing per query).
 struct Scratch {
@@ -125,7 +128,7 @@ struct Scratch {
     const std::size_t nv = mesh.num_vertices(), nh = mesh.num_halfedges();
     if (vertices.size() != nv || halfedges.size() != nh || ++stamp == 0) {
       stamp = 1;
-      vertices.assign(nv, VertexRecord{0, -1, -1, 0.0});
+      vertices.assign(nv, VertexRecord{0, -1, -1, 0.0, false});
       halfedges.assign(nh, HalfedgeRecord{0, -1, 0.0, 0.0, 0.0, 0.0});
     }
     windows.clear();
@@ -192,10 +195,14 @@ class Search {
         propagate(e.index);
         ++result.windows_propagated;
       } else {
+        // Expanded once per distance it gets: the first of its events to come out expands it
+        // at its current distance, the others are stale.
         const int v = -e.index - 1;
-        // Stale when the vertex got a shorter distance (and a new event) since.
-        if (order_key(v, dist(v)) == e.key && vertex_key(v, dist(v)) < best_)
-          expand_vertex(v, dist(v));
+        VertexRecord& r = scratch_.vertices[v];
+        if (r.pending && vertex_key(v, r.dist) < best_) {
+          r.pending = false;
+          expand_vertex(v, r.dist);
+        }
       }
     }
     result.windows = static_cast<long>(windows_.size());
@@ -219,13 +226,17 @@ class Search {
 
   void relax(int v, double d, int window, int from_vertex) {
     if (!(d < dist(v))) return;
-    scratch_.vertices[v] = VertexRecord{scratch_.stamp, window, from_vertex, d};
+    VertexRecord& r = scratch_.vertices[v];
+    r = VertexRecord{scratch_.stamp, window, from_vertex, d, false};
     if (v == target_) {
       best_ = std::min(best_, d);
       return;
     }
     if (!pseudo_[v]) return;
-    if (vertex_key(v, d) < best_) push({order_key(v, d), -(v + 1)});
+    if (vertex_key(v, d) < best_) {
+      push({order_key(v, d), -(v + 1)});
+      r.pending = true;
+    }
   }
 
   // The target in h's frame, unfolded to the side y > 0.
