@@ -94,8 +94,10 @@ struct GeodesicOptions {
   /// result the globally shortest geodesic (up to round-off) instead of a locally shortest one.
   bool exact_windows = true;
   /// Upper bound on the windows of that search per query (0: none); past it the local starts
-  /// above are made instead.
-  long max_windows = 0;
+  /// above are made instead (a locally shortest geodesic, exact_complete false). The default
+  /// caps a search at about 2 GB (100 bytes per window): the most windows any of 50 random
+  /// paths on the 300K-face bunny needs is 4.0M (bench/README.md, session 6).
+  long max_windows = 20'000'000;
   /// Upper bound on strip changes (reroutes) before giving up (0: 20 + 4 * crossings).
   int max_reroutes = 0;
   /// L-BFGS memory (pairs).

@@ -149,17 +149,20 @@ OpenGeodesicResult geodesic_between(const GeodesicContext& context, const Surfac
   const bool windows = options.exact_windows && !context.window_mesh().pseudo_source.empty() &&
                        a.kind == SurfacePoint::Kind::Vertex &&
                        b.kind == SurfacePoint::Kind::Vertex && a.element != b.element;
+  OpenGeodesicResult search;
   if (windows) {
     // The window search first, unbounded: it finds the shortest path's corridor by itself
     // (searched as A*), and the local starts would only have given it an upper bound that
     // prunes about the same windows (bench/README.md, session 6).
-    OpenGeodesicResult result;
-    if (exact_window_search(context, a.element, b.element, options, &result)) return result;
+    if (exact_window_search(context, a.element, b.element, options, &search)) return search;
     // Stopped by max_windows: the local starts, as without windows.
   }
   OpenGeodesicResult result = best_of_starts(context, a, b, options, edge_options);
   if (options.split_at_vertices && result.summary.converged())
     split_at_passed_vertices(context, a, b, options, edge_options, &result);
+  result.exact_windows = search.exact_windows;
+  result.exact_ms = search.exact_ms;
+  result.init_ms += search.exact_ms;
   return result;
 }
 

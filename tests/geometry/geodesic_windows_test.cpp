@@ -198,6 +198,23 @@ int expect_global(const Mesh& mesh, const std::vector<std::pair<int, int>>& pair
   return local_misses;
 }
 
+TEST(GeodesicBetween, WindowLimitFallsBackToTheLocalStarts) {
+  const Mesh mesh(hills(20, 6.0));
+  const GeodesicContext ctx(mesh);
+  const SurfacePoint a = SurfacePoint::at_vertex(0), b = SurfacePoint::at_vertex(440);
+  const OpenGeodesicResult exact = geodesic_between(ctx, a, b);
+  EXPECT_EQ(exact.start, 4);
+  EXPECT_TRUE(exact.exact_complete);
+  GeodesicOptions capped;
+  capped.max_windows = 10;
+  const OpenGeodesicResult local = geodesic_between(ctx, a, b, capped);
+  ASSERT_TRUE(local.summary.converged()) << local.summary.brief_report();
+  EXPECT_NE(local.start, 4);
+  EXPECT_FALSE(local.exact_complete);
+  EXPECT_GT(local.exact_windows, 10);
+  EXPECT_GE(local.summary.final_length, exact.summary.final_length * (1.0 - 1e-12));
+}
+
 TEST(GeodesicBetween, WrongCorridorIsCorrectedOnHills) {
   const Mesh mesh(hills(30, 6.0));
   const int misses = expect_global(mesh, random_pairs(mesh, 40, 8), "hills");
