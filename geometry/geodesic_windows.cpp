@@ -13,6 +13,7 @@
 
 #include "geometry/edge_path.h"
 #include "geometry/errors.h"
+#include "geometry/parallel.h"
 #include "geometry/radix_queue.h"
 #include "geometry/window_distance.h"
 
@@ -696,31 +697,36 @@ std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const Window
 Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh, int count) {
   Landmarks l;
   if (count <= 0 || mesh.num_vertices() == 0) return l;
-  // Farthest-point choice: the first is the vertex farthest along the bounding box diagonal,
-  // each next one the vertex farthest (geodesically) from those chosen.
+  // Farthest-point choice in space: the first is the vertex farthest along the bounding box
+  // diagonal, each next one the vertex farthest from those chosen. (Geodesically farthest
+  // points need each field before the next choice, one after another; these let the fields
+  // be computed in parallel, and bound as well: bench/README.md, session 6.)
   const Vec3 diagonal = mesh.bounding_box().diagonal();
   int next = -1;
   for (int v = 0; v < mesh.num_vertices(); ++v) {
     if (mesh.vertex_halfedge(v) < 0) continue;
     if (next < 0 || mesh.position(v).dot(diagonal) > mesh.position(next).dot(diagonal)) next = v;
   }
-  if (next < 0) return l;
-  std::vector<std::vector<double>> fields;
   std::vector<double> nearest(mesh.num_vertices(), std::numeric_limits<double>::infinity());
-  while (static_cast<int>(fields.size()) < count && next >= 0) {
+  while (next >= 0 && static_cast<int>(l.vertices.size()) < count) {
     l.vertices.push_back(next);
-    fields.push_back(geodesic_distances_by_windows(mesh, window_mesh, next));
+    const Vec3 p = mesh.position(next);
     next = -1;
     double far = 0.0;
     for (int v = 0; v < mesh.num_vertices(); ++v) {
-      nearest[v] = std::min(nearest[v], fields.back()[v]);
-      if (std::isfinite(nearest[v]) && nearest[v] > far) {
+      if (mesh.vertex_halfedge(v) < 0) continue;
+      nearest[v] = std::min(nearest[v], (mesh.position(v) - p).squaredNorm());
+      if (nearest[v] > far) {
         far = nearest[v];
         next = v;
       }
     }
   }
-  l.count = static_cast<int>(fields.size());
+  l.count = static_cast<int>(l.vertices.size());
+  std::vector<std::vector<double>> fields(l.count);
+  parallel_for_index(l.count, [&](int k) {
+    fields[k] = geodesic_distances_by_windows(mesh, window_mesh, l.vertices[k]);
+  });
   l.dist.resize(static_cast<std::size_t>(mesh.num_vertices()) * l.count);
   for (int v = 0; v < mesh.num_vertices(); ++v)
     for (int k = 0; k < l.count; ++k)

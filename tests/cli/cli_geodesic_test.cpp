@@ -13,8 +13,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "geometry/mesh_io.h"
-#include "tests/mesh_fixtures.h"
 #include "tests/cli/cli_runner.h"
+#include "tests/mesh_fixtures.h"
 #include "tests/test_data.h"
 
 namespace windplan {
@@ -371,6 +371,55 @@ std::vector<std::string> csv_fields(const std::string& line) {
 
 }  // namespace batch
 
+// Landmarks only bound the window search: the same lengths (to round-off of the refined
+// corridor), whatever the thread count that built them. Bad counts are usage errors.
+TEST_F(CliGeodesic, LandmarksGiveTheSameLengths) {
+  const std::string torus = (dir_ / "torus.obj").string();
+  write_mesh(torus, test::torus(3.0, 1.0, 40, 16));
+  std::string text;
+  for (const auto& p : std::vector<std::pair<int, int>>{{0, 300}, {7, 455}, {120, 610}, {33, 34}})
+    text += std::to_string(p.first) + " " + std::to_string(p.second) + "\n";
+  const std::string file = write("torus_pairs.txt", text);
+  const RunResult plain = run({"geodesic", torus, "--pairs", file});
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  const RunResult one =
+      run({"geodesic", torus, "--pairs", file, "--landmarks", "6", "--threads", "1"});
+  ASSERT_EQ(one.code, 0) << one.err;
+  const RunResult two =
+      run({"geodesic", torus, "--pairs", file, "--landmarks", "6", "--threads", "2"});
+  ASSERT_EQ(two.code, 0) << two.err;
+  const std::vector<std::string> r0 = batch::lines_of(plain.out), r1 = batch::lines_of(one.out),
+                                 r2 = batch::lines_of(two.out);
+  ASSERT_EQ(r0.size(), 5u);
+  ASSERT_EQ(r1.size(), r0.size());
+  ASSERT_EQ(r2.size(), r0.size());
+  for (std::size_t i = 1; i < r0.size(); ++i) {
+    const double l0 = std::stod(batch::csv_fields(r0[i])[3]);
+    const double l1 = std::stod(batch::csv_fields(r1[i])[3]);
+    EXPECT_NEAR(l1, l0, 1e-12 * l0) << r1[i];
+    std::vector<std::string> f1 = batch::csv_fields(r1[i]), f2 = batch::csv_fields(r2[i]);
+    f1.pop_back();  // time_ms
+    f2.pop_back();
+    EXPECT_EQ(f1, f2) << "landmarks built on 1 and 2 threads differ";
+  }
+  const RunResult single =
+      run({"geodesic", torus, "--from", "7", "--to", "455", "--landmarks", "3", "--json"});
+  ASSERT_EQ(single.code, 0) << single.err;
+  EXPECT_NEAR(json_length(single), std::stod(batch::csv_fields(r0[2])[3]), 1e-12);
+  for (const char* bad : {"-1", "65", "2.5", "many"}) {
+    const RunResult r = run({"geodesic", torus, "--pairs", file, "--landmarks", bad});
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_NE(r.err.find("--landmarks"), std::string::npos) << r.err;
+  }
+  std::string rho;
+  for (int f = 0; f < 40 * 16 * 2; ++f) rho += "1.5\n";
+  write("rho.txt", rho);
+  const RunResult r = run({"geodesic", torus, "--pairs", file, "--landmarks", "2", "--density",
+                           (dir_ / "rho.txt").string()});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("Euclidean"), std::string::npos) << r.err;
+}
+
 // A batch gives, pair for pair, the length of single runs (to the last digit), in file order,
 // whatever the thread count; comments and blank lines are skipped and rows name their line.
 TEST_F(CliGeodesic, PairsBatchEqualsSingleRuns) {
@@ -383,8 +432,8 @@ TEST_F(CliGeodesic, PairsBatchEqualsSingleRuns) {
   const std::string file = write("pairs.txt", text);
   const RunResult one = run({"geodesic", cyl, "--pairs", file, "--threads", "1"});
   ASSERT_EQ(one.code, 0) << one.err;
-  const RunResult two = run({"geodesic", cyl, "--pairs", file, "--threads", "2", "-o",
-                             (dir_ / "batch.csv").string()});
+  const RunResult two = run(
+      {"geodesic", cyl, "--pairs", file, "--threads", "2", "-o", (dir_ / "batch.csv").string()});
   ASSERT_EQ(two.code, 0) << two.err;
   const std::vector<std::string> rows1 = batch::lines_of(one.out);
   const std::vector<std::string> rows2 = batch::lines_of(slurp(dir_ / "batch.csv"));
@@ -433,10 +482,11 @@ TEST_F(CliGeodesic, PairsBadLineIsExitOneWithTheLineAndNoOutput) {
   }
   const RunResult empty = run({"geodesic", plane_, "--pairs", write("empty.txt", "# none\n")});
   EXPECT_EQ(empty.code, 1);
-  const RunResult both = run({"geodesic", plane_, "--pairs", write("p.txt", "0 1\n"), "--from", "0"});
+  const RunResult both =
+      run({"geodesic", plane_, "--pairs", write("p.txt", "0 1\n"), "--from", "0"});
   EXPECT_EQ(both.code, 2);
-  const RunResult threads = run({"geodesic", plane_, "--pairs", write("p.txt", "0 1\n"),
-                                 "--threads", "0"});
+  const RunResult threads =
+      run({"geodesic", plane_, "--pairs", write("p.txt", "0 1\n"), "--threads", "0"});
   EXPECT_EQ(threads.code, 2);
 }
 
@@ -466,11 +516,11 @@ TEST_F(CliGeodesic, CurvesBatchEqualsSingleLoops) {
     batch_text += joined + "\n";
   }
   const std::string file = write("curves.txt", batch_text);
-  const RunResult one = run({"loop", tube, "--curves", file, "--snap-tolerance", "0.1",
-                             "--threads", "1"});
+  const RunResult one =
+      run({"loop", tube, "--curves", file, "--snap-tolerance", "0.1", "--threads", "1"});
   ASSERT_EQ(one.code, 0) << one.err;
-  const RunResult two = run({"loop", tube, "--curves", file, "--snap-tolerance", "0.1",
-                             "--threads", "2", "--json"});
+  const RunResult two =
+      run({"loop", tube, "--curves", file, "--snap-tolerance", "0.1", "--threads", "2", "--json"});
   ASSERT_EQ(two.code, 0) << two.err;
   const std::vector<std::string> rows = batch::lines_of(one.out);
   const std::vector<std::string> objs = batch::lines_of(two.out);
