@@ -34,6 +34,7 @@
 // windows at 20K faces, 290K on the 106K-face kitten, 1.07M at 300K): 0.66-1.1x FlipOut's time
 // per path, 3-15x the local starts' (bench/README.md).
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -207,12 +208,23 @@ class GeodesicContext {
   ~GeodesicContext();
   const Mesh& mesh() const { return mesh_; }
   const PathMetric& metric() const { return metric_; }
+  /// The start graphs below are built on first use (thread-safe): queries between vertices
+  /// that the window search answers never need them (at 300K faces they cost 230 ms).
   /// The graph with unfolded diagonals (see build_edge_graph).
-  const EdgeGraph& graph() const { return graph_; }
+  const EdgeGraph& graph() const {
+    build_graphs();
+    return graph_;
+  }
   /// The plain edge graph.
-  const EdgeGraph& plain_graph() const { return plain_graph_; }
+  const EdgeGraph& plain_graph() const {
+    build_graphs();
+    return plain_graph_;
+  }
   /// The Steiner-point graph, or nullptr.
-  const SteinerGraph* steiner_graph() const { return steiner_.get(); }
+  const SteinerGraph* steiner_graph() const {
+    build_graphs();
+    return steiner_.get();
+  }
   /// The window search's per-mesh data (geometry/geodesic_windows.h; empty unless the
   /// metric is Euclidean).
   const WindowMesh& window_mesh() const { return window_mesh_; }
@@ -220,10 +232,14 @@ class GeodesicContext {
   const Landmarks& landmarks() const { return landmarks_; }
 
  private:
+  void build_graphs() const;
+
   const Mesh& mesh_;
   PathMetric metric_;
-  EdgeGraph graph_, plain_graph_;
-  std::unique_ptr<SteinerGraph> steiner_;
+  int steiner_points_per_edge_;
+  mutable std::once_flag graphs_built_;
+  mutable EdgeGraph graph_, plain_graph_;
+  mutable std::unique_ptr<SteinerGraph> steiner_;
   WindowMesh window_mesh_;
   Landmarks landmarks_;
 };

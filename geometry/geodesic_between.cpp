@@ -75,13 +75,7 @@ bool exact_window_search(const GeodesicContext& context, int a, int b,
 
 GeodesicContext::GeodesicContext(const Mesh& mesh, PathMetric metric, int steiner_points_per_edge,
                                  int landmarks)
-    : mesh_(mesh),
-      metric_(std::move(metric)),
-      graph_(build_edge_graph(mesh, metric_, true)),
-      plain_graph_(build_edge_graph(mesh, metric_, false)) {
-  if (steiner_points_per_edge > 0 && metric_.kind() != PathMetric::Kind::Anisotropic) {
-    steiner_ = std::make_unique<SteinerGraph>(mesh, metric_, steiner_points_per_edge);
-  }
+    : mesh_(mesh), metric_(std::move(metric)), steiner_points_per_edge_(steiner_points_per_edge) {
   if (metric_.kind() == PathMetric::Kind::Euclidean) {
     window_mesh_ = prepare_window_mesh(mesh);
     landmarks_ = compute_landmarks(mesh, window_mesh_, landmarks);
@@ -89,6 +83,16 @@ GeodesicContext::GeodesicContext(const Mesh& mesh, PathMetric metric, int steine
 }
 
 GeodesicContext::~GeodesicContext() = default;
+
+void GeodesicContext::build_graphs() const {
+  std::call_once(graphs_built_, [this] {
+    graph_ = build_edge_graph(mesh_, metric_, true);
+    plain_graph_ = build_edge_graph(mesh_, metric_, false);
+    if (steiner_points_per_edge_ > 0 && metric_.kind() != PathMetric::Kind::Anisotropic) {
+      steiner_ = std::make_unique<SteinerGraph>(mesh_, metric_, steiner_points_per_edge_);
+    }
+  });
+}
 
 namespace {
 
