@@ -172,9 +172,11 @@ class Search {
     return d;
   }
 
-  // A thread keeps its buffers for the next query up to this many windows (about 80 bytes
-  // each with the queue); a larger search gives its memory back when it ends.
-  static constexpr std::size_t kKeptWindows = std::size_t{1} << 22;
+  // A thread keeps its buffers for the next query up to this many windows (about 100 bytes
+  // each with the queue: 100 MB per thread, which a batch on 32 threads multiplies); a larger
+  // search gives its memory back when it ends (reallocating costs little beside such a
+  // search: bench/README.md, session 6, p90 1.35M windows in 554 ms at 300K faces).
+  static constexpr std::size_t kKeptWindows = std::size_t{1} << 20;
 
   ~Search() {
     if (windows_.capacity() > kKeptWindows) {
