@@ -85,8 +85,8 @@ struct Landmarks {
   std::vector<double> dist;  ///< dist[v * count + k]: from landmark k to vertex v
 };
 
-/// `count` landmarks chosen farthest-point (each one a full window propagation: about the cost
-/// of count exact single-source distance fields).
+/// `count` landmarks chosen farthest-point in space, their exact distance fields built in
+/// parallel (parallel_for_index): each is a full window propagation.
 Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh,
                             int count);
 
