@@ -254,7 +254,8 @@ struct OpenGeodesicResult : GeodesicResult {
   int start = 0;
   double exact_ms = 0.0;   ///< the exact window search (init_ms when it gave the result)
   long exact_windows = 0;  ///< windows it created (0: not run)
-  /// The window search ran to its end: the result is the globally shortest geodesic.
+  /// The window search ran to its end and the result's length is its distance (to 1e-12): the
+  /// globally shortest geodesic.
   bool exact_complete = false;
 };
 

@@ -33,21 +33,25 @@ void split_at_passed_vertices(const GeodesicContext& context, const SurfacePoint
                               const EdgePathOptions& edge_options, OpenGeodesicResult* result);
 
 // The exact window search (unbounded, searched as A*) and the refinement of the shortest
-// path's corridor it returns: the globally shortest geodesic. False when the search stopped
-// at options.max_windows.
+// path's corridor it returns: the globally shortest geodesic. False, with *exact the
+// search's distance when it has one (else NaN), when the search stopped at
+// options.max_windows, could not build its corridor, or the corridor's refinement did not
+// converge (the result then holds that refinement, if any).
 // \throw InputError when the vertices lie on different components.
 bool exact_window_search(const GeodesicContext& context, int a, int b,
-                         const GeodesicOptions& options, OpenGeodesicResult* result) {
+                         const GeodesicOptions& options, OpenGeodesicResult* result,
+                         double* exact) {
   WindowSearchOptions search;
   search.max_windows = options.max_windows;
   const WindowSearchResult w = shortest_path_by_windows(context.mesh(), context.window_mesh(), a, b,
                                                         search, &context.landmarks());
   result->exact_windows = w.windows;
-  result->exact_complete = w.complete;
   result->exact_ms = w.time_ms;
   result->init_ms = w.time_ms;
   result->start = 4;
-  if (!w.found && w.complete) {
+  *exact = w.complete && std::isfinite(w.distance) ? w.distance
+                                                   : std::numeric_limits<double>::quiet_NaN();
+  if (!w.found && w.complete && !std::isfinite(w.distance)) {
     throw InputError("no path from " + to_string(context.mesh(), SurfacePoint::at_vertex(a)) +
                      " to " + to_string(context.mesh(), SurfacePoint::at_vertex(b)) +
                      ": the points lie on different components of the mesh");
@@ -64,11 +68,13 @@ bool exact_window_search(const GeodesicContext& context, int a, int b,
                         ") at the exact window distance";
     r.summary.termination = GeodesicTermination::Converged;
   }
+  result->exact_complete =
+      r.summary.converged() && std::abs(r.summary.final_length - w.distance) <= 1e-12 * w.distance;
   result->path = std::move(r.path);
   result->summary = r.summary;
   result->summary.time_ms += w.time_ms;
   result->constraint_variables = std::move(r.constraint_variables);
-  return true;
+  return result->summary.converged();
 }
 
 }  // namespace
@@ -154,19 +160,31 @@ OpenGeodesicResult geodesic_between(const GeodesicContext& context, const Surfac
                        a.kind == SurfacePoint::Kind::Vertex &&
                        b.kind == SurfacePoint::Kind::Vertex && a.element != b.element;
   OpenGeodesicResult search;
+  double exact = std::numeric_limits<double>::quiet_NaN();
   if (windows) {
     // The window search first, unbounded: it finds the shortest path's corridor by itself
     // (searched as A*), and the local starts would only have given it an upper bound that
     // prunes about the same windows (bench/README.md, session 6).
-    if (exact_window_search(context, a.element, b.element, options, &search)) return search;
-    // Stopped by max_windows: the local starts, as without windows.
+    if (exact_window_search(context, a.element, b.element, options, &search, &exact)) return search;
+    // Stopped by max_windows, or its corridor not refined: the local starts, as without
+    // windows.
   }
   OpenGeodesicResult result = best_of_starts(context, a, b, options, edge_options);
   if (options.split_at_vertices && result.summary.converged())
     split_at_passed_vertices(context, a, b, options, edge_options, &result);
+  // Neither converged: the shorter path.
+  if (!result.summary.converged() && search.summary.final_length > 0.0 &&
+      search.summary.final_length < result.summary.final_length) {
+    search.init_ms += result.init_ms;
+    search.refine_ms += result.refine_ms;
+    return search;
+  }
   result.exact_windows = search.exact_windows;
   result.exact_ms = search.exact_ms;
   result.init_ms += search.exact_ms;
+  // Globally shortest when the complete search's distance confirms it.
+  result.exact_complete = result.summary.converged() && std::isfinite(exact) &&
+                          std::abs(result.summary.final_length - exact) <= 1e-12 * exact;
   return result;
 }
 

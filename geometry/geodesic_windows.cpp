@@ -464,27 +464,43 @@ class Search {
           const EdgeDistance wd{w->sigma, w->source.x, w->source.y};
           const EdgeDistance od{o.sigma, same ? o.source.x : len - o.source.x, o.source.y};
           const double eps = 1e-12 * (w->sigma + len);
-          double x[4];
+          // Pieces of [lo, hi] split where w - o crosses +eps or -eps (the points where w
+          // shifted by -+eps equals o): on each, w - o stays above eps, below -eps, or
+          // between (a tie), whichever its midpoint shows.
+          double x[6];
           int n = 0;
           x[n++] = lo;
-          n += equal_distance_points(wd, od, lo, hi, x + 1);
+          const EdgeDistance above{wd.sigma - eps, wd.sx, wd.sy},
+              below{wd.sigma + eps, wd.sx, wd.sy};
+          n += equal_distance_points(above, od, lo, hi, x + n);
+          n += equal_distance_points(below, od, lo, hi, x + n);
+          for (int i = 2; i < n; ++i)  // the (at most 4) candidates in order
+            for (int j = i; j > 1 && x[j] < x[j - 1]; --j) std::swap(x[j], x[j - 1]);
           x[n] = hi;
-          // Per piece: -1 w strictly shorter, +1 o strictly shorter, 0 a tie.
-          int sign[3];
+          // The same pseudo-source unfolded the same way (a window made twice): its rays are
+          // w's, so a tie is no reason to keep both.
+          const bool twin_rays = std::abs(wd.sigma - od.sigma) <= eps &&
+                                 std::abs(wd.sx - od.sx) <= tol && std::abs(wd.sy - od.sy) <= tol;
+          // Per piece: -1 w strictly shorter, +1 o strictly shorter, 0 a tie. Only a strictly
+          // shorter window cuts: two windows from different sources within round-off of each
+          // other over a band both keep it, for one of them may hold the ray to a vertex
+          // that the other's rays miss (found in review: a flat grid's vertex reached only
+          // along edges, 10 % long).
+          int sign[5];
           for (int i = 0; i < n; ++i) {
             const double m = 0.5 * (x[i] + x[i + 1]);
             const double f = wd.at(m) - od.at(m);
-            sign[i] = f < -eps ? -1 : (f > eps ? 1 : 0);
+            sign[i] = f < -eps ? -1 : (f > eps || twin_rays ? 1 : 0);
           }
-          // w loses its ends covered by o where it is not strictly shorter.
+          // w loses its ends covered by o where o is strictly shorter.
           if (lo <= w->b0 + tol) {
             int i = 0;
-            while (i < n && sign[i] >= 0) ++i;
+            while (i < n && sign[i] > 0) ++i;
             if (i > 0) w->b0 = x[i];
           }
           if (hi >= w->b1 - tol) {
             int i = n;
-            while (i > 0 && sign[i - 1] >= 0) --i;
+            while (i > 0 && sign[i - 1] > 0) --i;
             if (i < n) w->b1 = x[i];
           }
           if (!(w->b1 - w->b0 > tol)) return false;
