@@ -439,9 +439,9 @@ class Search {
   // The windows on an edge against each other (Mitchell, Mount and Papadimitriou's window
   // intersection, from the ends only): where another window on the same edge, lit from either
   // side, is shorter than w, every ray of w through that part is beaten there, hence beyond.
-  // Cuts w down to where it is strictly shorter than every other window at its ends (a tie
-  // keeps the older window), and cuts the queued windows the same way where w is strictly
-  // shorter; a window left empty is dead. False when w is.
+  // Cuts from w's ends what another window beats by more than round-off (a tie keeps both,
+  // unless they are one window made twice), and cuts the queued windows the same way where w
+  // beats them; a window left empty is dead. False when w is.
   bool compete(Window* w) {
     const double len = w->len, tol = 1e-12 * len;
     const int sides[2] = {w->h, mesh_.twin(w->h)};

@@ -16,7 +16,7 @@
 // A window is dropped when an endpoint vertex of its edge reaches its far end more cheaply along
 // the edge (d(A) + x is increasing faster than the window's distance, so the whole window is
 // beaten): the exact part of ICH's filter. The windows on one edge, lit from either side, also
-// cut each other down from their ends to where each is the shorter (Mitchell, Mount and
+// cut each other from their ends where one is shorter by more than round-off (Mitchell, Mount and
 // Papadimitriou's window intersection, geometry/window_distance.h): this cut the windows of a
 // search by 3x on the bunnies (bench/README.md, session 6). Saddle and boundary vertices are
 // pseudo-sources.
@@ -99,7 +99,8 @@ std::vector<double> geodesic_distances_by_windows(const Mesh& mesh,
 
 
 /// The shortest path from vertex `source` to vertex `target` if it is shorter than
-/// options.upper_bound. `window_mesh` is prepare_window_mesh(mesh); `landmarks` (optional) tighten the A* bounds. Thread-safe (per-thread buffers).
+/// options.upper_bound. `window_mesh` is prepare_window_mesh(mesh); `landmarks` (optional)
+/// tighten the A* bounds. Thread-safe (per-thread buffers).
 /// \throw InputError when a vertex index is out of range.
 WindowSearchResult shortest_path_by_windows(const Mesh& mesh,
                                             const WindowMesh& window_mesh, int source,
