@@ -188,6 +188,7 @@ class Search {
   WindowSearchResult run() {
     WindowSearchResult result;
     relax(source_, 0.0, -1, -1);
+    scratch_.vertices[source_].pending = false;  // expanded here, not again by its event
     expand_vertex(source_, 0.0);
     while (!queue_.empty() && !aborted_) {
       const Event e = queue_.pop();
@@ -268,8 +269,8 @@ class Search {
   }
 
   // Lights the edges opposite to v in its faces with v as the pseudo-source.
+  // (d is v's current distance: the pending flag in run() keeps stale events out.)
   void expand_vertex(int v, double d) {
-    if (d > dist(v)) return;  // a later event carries the better distance
     ++vertex_events_;
     const Vec3& pv = mesh_.position(v);
     outgoing_.clear();
@@ -455,7 +456,7 @@ class Search {
           *link = o.next;
           continue;
         }
-        // o in w's frame.
+        // o (queued: the others leave the list above) in w's frame.
         const bool same = side == 0;
         const double ob0 = same ? o.b0 : len - o.b1, ob1 = same ? o.b1 : len - o.b0;
         const double lo = std::max(w->b0, ob0), hi = std::min(w->b1, ob1);
@@ -492,42 +493,33 @@ class Search {
             const double f = wd.at(m) - od.at(m);
             sign[i] = f < -eps ? -1 : (f > eps || twin_rays ? 1 : 0);
           }
-          // w loses its ends covered by o where o is strictly shorter.
-          if (lo <= w->b0 + tol) {
-            int i = 0;
-            while (i < n && sign[i] > 0) ++i;
-            if (i > 0) w->b0 = x[i];
-          }
-          if (hi >= w->b1 - tol) {
-            int i = n;
-            while (i > 0 && sign[i - 1] > 0) --i;
-            if (i < n) w->b1 = x[i];
-          }
-          if (!(w->b1 - w->b0 > tol)) return false;
-          // o loses its ends covered by w where w is strictly shorter (queued windows only:
-          // a propagated one has its children already).
-          double c0 = ob0, c1 = ob1;
-          if (lo <= ob0 + tol) {
-            int i = 0;
-            while (i < n && sign[i] < 0) ++i;
-            if (i > 0) c0 = x[i];
-          }
-          if (hi >= ob1 - tol) {
-            int i = n;
-            while (i > 0 && sign[i - 1] < 0) --i;
-            if (i < n) c1 = x[i];
-          }
-          o_beaten = !(c1 - c0 > tol);
-          if (o.state == Window::kQueued) {
-            if (o_beaten) {
-              o.state = Window::kDead;
-            } else if (same) {
-              o.b0 = c0;
-              o.b1 = c1;
-            } else {
-              o.b0 = len - c1;
-              o.b1 = len - c0;
+          // The window [b0, b1] loses the pieces at its ends that the overlap covers and where
+          // the other one is strictly shorter (sign `beaten`).
+          const auto cut = [&](double* b0, double* b1, int beaten) {
+            if (lo <= *b0 + tol) {
+              int i = 0;
+              while (i < n && sign[i] == beaten) ++i;
+              if (i > 0) *b0 = x[i];
             }
+            if (hi >= *b1 - tol) {
+              int i = n;
+              while (i > 0 && sign[i - 1] == beaten) --i;
+              if (i < n) *b1 = x[i];
+            }
+          };
+          cut(&w->b0, &w->b1, 1);
+          if (!(w->b1 - w->b0 > tol)) return false;
+          double c0 = ob0, c1 = ob1;  // o, in w's frame
+          cut(&c0, &c1, -1);
+          o_beaten = !(c1 - c0 > tol);
+          if (o_beaten) {
+            o.state = Window::kDead;
+          } else if (same) {
+            o.b0 = c0;
+            o.b1 = c1;
+          } else {
+            o.b0 = len - c1;
+            o.b1 = len - c0;
           }
         }
         if (o_beaten)
@@ -683,10 +675,6 @@ class Search {
   long vertex_events_ = 0;
   bool aborted_ = false;
 };
-
-}  // namespace
-
-namespace {
 
 void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
                   std::initializer_list<int> vertices) {
