@@ -17,22 +17,16 @@
 // Solver::Lbfgs is the paper's projected L-BFGS.
 //
 // Globally shortest (geodesic_between, Euclidean metric, both endpoints at vertices): the
-// refinement only finds the locally shortest geodesic of the corridor it starts in. The local
-// starts (two edge-graph paths, the legs between the vertices passed) are then checked by a
-// bounded exact window propagation (geometry/geodesic_windows.h: Chen-Han/ICH windows searched as
-// A* towards the target, pruned at the length found): it either proves that no path is shorter
-// or returns the corridor of the shortest one, which the refinement straightens and which is
-// kept. Why this route (bench/README.md, "Globally shortest geodesics", 50 pairs per mesh against
-// MMP exact distances): every pair the local starts missed (4 to 13 of 50 per mesh) lay in
-// another corridor, 8e-6 to 9e-2 of the length away, with excesses from 8e-11 to 2.4e-4 -- none
-// was a convergence (precision) issue, even at a 7e-9 excess with no vertex passed -- so a
-// tighter tolerance or a final polish could not help; a Steiner-point start graph found fewer
-// exact paths than the edge starts at 2-6x their time (its ~1e-3 excess is larger than the gaps
-// between competing geodesics); that the starts agree does not predict exactness (10 of the 17
-// misses on 20K, 100K and kitten had both starts at the same length). The window search makes
-// 50 of 50 exact on all four benchmark meshes; it costs one A* region per query (median 22K
-// windows at 20K faces, 290K on the 106K-face kitten, 1.07M at 300K): 0.66-1.1x FlipOut's time
-// per path, 3-15x the local starts' (bench/README.md).
+// refinement only finds the locally shortest geodesic of the corridor it starts in, and the
+// local starts (two edge-graph paths, the legs between the vertices passed) missed the global
+// one on 4 to 10 of 50 random pairs per benchmark mesh, every time in another corridor (8e-6
+// to 9e-2 of the length away), so no tighter tolerance could help. An exact window
+// propagation (geometry/geodesic_windows.h: Chen-Han/ICH windows that cut each other per edge,
+// searched as A* towards the target) therefore runs first and returns the shortest path's
+// corridor, which the refinement straightens; the local starts are the fallback past
+// GeodesicOptions::max_windows or when that refinement does not converge. 50 of 50 pairs are
+// exact on all four benchmark meshes at 0.23-0.42x FlipOut's median time per path
+// (bench/README.md, session 6).
 #include <memory>
 #include <mutex>
 #include <string>
@@ -259,9 +253,11 @@ struct OpenGeodesicResult : GeodesicResult {
   bool exact_complete = false;
 };
 
-/// Geodesic between two surface points: start paths (Steiner graph, edge graphs; see
-/// GeodesicOptions::steiner_start, two_starts), their strips, refinement; the shortest
-/// converged result is kept (geometry/geodesic_between.cpp).
+/// Geodesic between two surface points (geometry/geodesic_between.cpp). Between two vertices
+/// under the Euclidean metric, the exact window search's corridor, refined
+/// (GeodesicOptions::exact_windows); otherwise, or as its fallback, start paths (Steiner
+/// graph, edge graphs; see GeodesicOptions::steiner_start, two_starts), their strips,
+/// refinement, the shortest converged result kept.
 /// \throw InputError if the points lie on different components.
 OpenGeodesicResult geodesic_between(const GeodesicContext& context, const SurfacePoint& a,
                                     const SurfacePoint& b, const GeodesicOptions& options = {},

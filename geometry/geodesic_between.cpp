@@ -60,16 +60,15 @@ bool exact_window_search(const GeodesicContext& context, int a, int b,
   const auto t0 = Clock::now();
   GeodesicResult r = refine_path(context.mesh(), w.path, context.metric(), options);
   result->refine_ms = ms_since(t0);
+  const bool at_distance = std::abs(r.summary.final_length - w.distance) <= 1e-12 * w.distance;
   // A refinement stopped by its reroute or iteration limits on the exact corridor, at the
   // window search's distance, is the global minimum: converged in the sense that matters.
-  if (!r.summary.converged() &&
-      std::abs(r.summary.final_length - w.distance) <= 1e-12 * w.distance) {
+  if (!r.summary.converged() && at_distance) {
     r.summary.message = std::string("stopped (") + to_string(r.summary.termination) +
                         ") at the exact window distance";
     r.summary.termination = GeodesicTermination::Converged;
   }
-  result->exact_complete =
-      r.summary.converged() && std::abs(r.summary.final_length - w.distance) <= 1e-12 * w.distance;
+  result->exact_complete = r.summary.converged() && at_distance;
   result->path = std::move(r.path);
   result->summary = r.summary;
   result->summary.time_ms += w.time_ms;
