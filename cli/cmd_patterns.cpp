@@ -124,8 +124,8 @@ int run_patterns(const std::vector<std::string>& argv) {
                 job.name.c_str(), pr.requested_by.c_str(), pr.requested_c,
                 std::asin(std::min(1.0, pr.requested_c / pr.largest_radius)) * 180.0 / M_PI,
                 pr.largest_radius,
-                friction ? "winding.slippage > 0: the friction plan the run winds (closed by "
-                           "its slippage or c; docs/config.md, \"Friction turnarounds\")"
+                friction   ? "winding.slippage > 0: the friction plan the run winds (closed by "
+                             "its slippage or c; docs/config.md, \"Friction turnarounds\")"
                 : pr.domes ? "geodesic turnarounds on both domes, radius searched in the window"
                            : "dwell ends: the dwells close every pattern");
   s << buf;

@@ -1,8 +1,8 @@
 #include "export/export_plan.h"
 
 #include "export/axes_svg.h"
-#include "export/stability_svg.h"
 #include "export/cutlines_csv.h"
+#include "export/stability_svg.h"
 
 #include <cstdio>
 

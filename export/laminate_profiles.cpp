@@ -123,16 +123,17 @@ std::string laminate_profiles_svg(const LaminateProfiles& p, int width, int heig
     }
     polyline(pts, colour(k + 1), 1.5);
     o << "<text x=\"" << format_fixed(width - margin - 150.0, 2) << "\" y=\""
-      << format_fixed(bot_y0 + 16.0 * static_cast<double>(k + 1), 2) << "\" fill=\"" << colour(k + 1) << "\">"
-      << k + 1 << ": " << p.names[k] << "</text>\n";
+      << format_fixed(bot_y0 + 16.0 * static_cast<double>(k + 1), 2) << "\" fill=\""
+      << colour(k + 1) << "\">" << k + 1 << ": " << p.names[k] << "</text>\n";
   }
   // Axes of the bottom panel.
   o << "<line x1=\"" << margin << "\" y1=\"" << format_fixed(bot_y0 + bot_h, 2) << "\" x2=\""
-    << format_fixed(margin + plot_w, 2) << "\" y2=\"" << format_fixed(bot_y0 + bot_h, 2) << "\" stroke=\"black\"/>\n"
+    << format_fixed(margin + plot_w, 2) << "\" y2=\"" << format_fixed(bot_y0 + bot_h, 2)
+    << "\" stroke=\"black\"/>\n"
     << "<text x=\"" << margin << "\" y=\"" << format_fixed(bot_y0 + bot_h + 16.0, 2)
     << "\">x = " << format_fixed(x0, 1) << " mm</text>\n"
-    << "<text x=\"" << format_fixed(margin + plot_w - 90.0, 2) << "\" y=\"" << format_fixed(bot_y0 + bot_h + 16.0, 2)
-    << "\">x = " << format_fixed(x1, 1) << " mm</text>\n"
+    << "<text x=\"" << format_fixed(margin + plot_w - 90.0, 2) << "\" y=\""
+    << format_fixed(bot_y0 + bot_h + 16.0, 2) << "\">x = " << format_fixed(x1, 1) << " mm</text>\n"
     << "</svg>\n";
   return o.str();
 }

@@ -34,22 +34,20 @@ std::string stability_svg(const WindingPlan& plan, const StabilitySvgOptions& op
   auto px = [&](double s) { return ml + s / s_end * pw; };
   // The planned lambda where the plan uses friction on purpose.
   const FrictionFigures& ff = m.friction_turnarounds;
-  const double planned =
-      ff.planned ? std::max({ff.pass_lambda, ff.lambda[0], ff.lambda[1]}) : 0.0;
+  const double planned = ff.planned ? std::max({ff.pass_lambda, ff.lambda[0], ff.lambda[1]}) : 0.0;
 
   std::ostringstream o;
   o << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
     << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << opts.width << "\" height=\""
-    << height << "\" viewBox=\"0 0 " << opts.width << " " << height << "\" data-circuit=\""
-    << worst << "\" data-max=\"" << top_slip << "\">\n"
+    << height << "\" viewBox=\"0 0 " << opts.width << " " << height << "\" data-circuit=\"" << worst
+    << "\" data-max=\"" << top_slip << "\">\n"
     << "<title>" << xml_escape("windplan fibre stability: " + plan.job_name) << "</title>\n"
     << "<rect x=\"0\" y=\"0\" width=\"" << opts.width << "\" height=\"" << height
     << "\" fill=\"white\"/>\n";
   char head[256];
   std::snprintf(head, sizeof head,
                 ": circuit %d of %zu (the largest |k_g/k_n|: %.3f against mu %.2f%s)", worst,
-                plan.circuits.size(), top_slip, mu,
-                top_slip > mu ? ", slips" : ", holds");
+                plan.circuits.size(), top_slip, mu, top_slip > mu ? ", slips" : ", holds");
   o << "<text x=\"" << ml << "\" y=\"24\" font-family=\"sans-serif\" font-size=\"15\">"
     << xml_escape(plan.job_name + head) << "</text>\n";
 
@@ -61,10 +59,9 @@ std::string stability_svg(const WindingPlan& plan, const StabilitySvgOptions& op
     const char* colour;
   };
   const double slip_hi = std::max({1.25 * mu, 1.05 * top_slip, 1.25 * planned, 0.05});
-  const Panel panels[2] = {{"angle", "winding angle [deg]", 0.0, 90.0, &FibrePoint::winding_angle,
-                            "#1f77b4"},
-                           {"slippage", "|k_g/k_n|", 0.0, slip_hi, &FibrePoint::slippage,
-                            "#2ca02c"}};
+  const Panel panels[2] = {
+      {"angle", "winding angle [deg]", 0.0, 90.0, &FibrePoint::winding_angle, "#1f77b4"},
+      {"slippage", "|k_g/k_n|", 0.0, slip_hi, &FibrePoint::slippage, "#2ca02c"}};
   for (int p = 0; p < 2; ++p) {
     const Panel& pn = panels[p];
     const double top = mt + p * (ph + gap);
@@ -74,8 +71,8 @@ std::string stability_svg(const WindingPlan& plan, const StabilitySvgOptions& op
     o << "<g class=\"panel\" data-quantity=\"" << pn.quantity << "\" data-lo=\"" << pn.lo
       << "\" data-hi=\"" << pn.hi << "\" font-family=\"sans-serif\" font-size=\"10\" "
       << "fill=\"#333\">\n"
-      << "<rect x=\"" << f2(ml) << "\" y=\"" << f2(top) << "\" width=\"" << f2(pw)
-      << "\" height=\"" << f2(ph) << "\" fill=\"none\" stroke=\"#333\" stroke-width=\"0.8\"/>\n"
+      << "<rect x=\"" << f2(ml) << "\" y=\"" << f2(top) << "\" width=\"" << f2(pw) << "\" height=\""
+      << f2(ph) << "\" fill=\"none\" stroke=\"#333\" stroke-width=\"0.8\"/>\n"
       << "<text x=\"" << f2(ml) << "\" y=\"" << f2(top - 6) << "\" font-size=\"12\">"
       << xml_escape(pn.label) << "</text>\n";
     o << value_grid(pn.lo, pn.hi, ml, pw, py);
@@ -99,8 +96,8 @@ std::string stability_svg(const WindingPlan& plan, const StabilitySvgOptions& op
       o << "<polyline fill=\"none\" stroke=\"" << pn.colour << "\" stroke-width=\"1\" points=\""
         << envelope_points(
                pts.size(), [&](std::size_t i) { return pts[i].s; },
-               [&](std::size_t i) { return std::clamp(pts[i].*pn.field, pn.lo, pn.hi); }, px,
-               py, ml, cols)
+               [&](std::size_t i) { return std::clamp(pts[i].*pn.field, pn.lo, pn.hi); }, px, py,
+               ml, cols)
         << "\"/>\n";
     }
     if (p == 1) {

@@ -63,8 +63,7 @@ std::string value_grid(double lo, double hi, double left, double width, PY py) {
     std::snprintf(buf, sizeof buf, "%g", std::fabs(v) < 1e-9 * step ? 0.0 : v);
     out += "<line x1=\"" + f2(left) + "\" y1=\"" + f2(py(v)) + "\" x2=\"" + f2(left + width) +
            "\" y2=\"" + f2(py(v)) + "\" stroke=\"#eee\" stroke-width=\"0.5\"/>\n<text x=\"" +
-           f2(left - 4) + "\" y=\"" + f2(py(v) + 3) + "\" text-anchor=\"end\">" + buf +
-           "</text>\n";
+           f2(left - 4) + "\" y=\"" + f2(py(v) + 3) + "\" text-anchor=\"end\">" + buf + "</text>\n";
   }
   return out;
 }
@@ -79,8 +78,8 @@ std::string bottom_axis(double end, double bottom, double left, double width, PX
   for (double t = 0.0; t <= end + 1e-9 * step; t += step) {
     char buf[48];
     std::snprintf(buf, sizeof buf, "%g", t);
-    out += "<text x=\"" + f2(px(t)) + "\" y=\"" + f2(bottom + 16) +
-           "\" text-anchor=\"middle\">" + buf + "</text>\n";
+    out += "<text x=\"" + f2(px(t)) + "\" y=\"" + f2(bottom + 16) + "\" text-anchor=\"middle\">" +
+           buf + "</text>\n";
   }
   out += "<text x=\"" + f2(left + width / 2) + "\" y=\"" + f2(bottom + 38) +
          "\" text-anchor=\"middle\" font-size=\"13\">" + caption + "</text>\n</g>\n";

@@ -87,24 +87,21 @@ struct Landmarks {
 
 /// `count` landmarks chosen farthest-point in space, their exact distance fields built in
 /// parallel (parallel_for_index): each is a full window propagation.
-Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh,
-                            int count);
+Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh, int count);
 
 /// Exact geodesic distances from vertex `source` to every vertex (+infinity on other
 /// components): the full window propagation.
 /// \throw InputError when the vertex is out of range.
-std::vector<double> geodesic_distances_by_windows(const Mesh& mesh,
-                                                  const WindowMesh& window_mesh,
+std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
                                                   int source);
-
 
 /// The shortest path from vertex `source` to vertex `target` if it is shorter than
 /// options.upper_bound. `window_mesh` is prepare_window_mesh(mesh); `landmarks` (optional)
 /// tighten the A* bounds. Thread-safe (per-thread buffers).
 /// \throw InputError when a vertex index is out of range.
-WindowSearchResult shortest_path_by_windows(const Mesh& mesh,
-                                            const WindowMesh& window_mesh, int source,
-                                            int target, const WindowSearchOptions& options = {},
+WindowSearchResult shortest_path_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
+                                            int source, int target,
+                                            const WindowSearchOptions& options = {},
                                             const Landmarks* landmarks = nullptr);
 
 }  // namespace windplan

@@ -125,9 +125,11 @@ double needed_slippage(double bound, const std::function<bool(double)>& ok) {
 
 std::string would_need(double lambda, const WindingOptions& o) {
   if (std::isnan(lambda)) return "no slippage up to 1 would do it";
-  return "it would need winding.slippage >= " + format_fixed(std::ceil(lambda * 1000.0) / 1000.0, 3) +
-         (lambda > o.mu ? " (above winding.mu = " + format_fixed(o.mu, 3) + ": the fibre would slip)"
-                        : " (<= winding.mu = " + format_fixed(o.mu, 3) + ")");
+  return "it would need winding.slippage >= " +
+         format_fixed(std::ceil(lambda * 1000.0) / 1000.0, 3) +
+         (lambda > o.mu
+              ? " (above winding.mu = " + format_fixed(o.mu, 3) + ": the fibre would slip)"
+              : " (<= winding.mu = " + format_fixed(o.mu, 3) + ")");
 }
 
 [[noreturn]] void refuse(const Setup& su, const Trial& tr, const WindingOptions& o) {
@@ -139,14 +141,14 @@ std::string would_need(double lambda, const WindingOptions& o) {
   if (tr.unreached >= 0) {
     const FrictionTurnaround& t = tr.t[tr.unreached];
     const bool up = su.c > t.apex_r;
-    throw ConfigError(head + "at the " + end_name(tr.unreached) + " end friction turns the " +
-                      "fibre around on the parallel r = " + format_fixed(t.apex_r, 2) + " mm (" +
-                      (pr.narrows ? "the dome's turnaround" : "apex half a band in from the end") +
-                      ") but brings r sin a only " + (up ? "up" : "down") + " to " +
-                      format_fixed(t.lowest, 2) + " mm within the wound region, not to the passes' " +
-                      "Clairaut constant " + format_fixed(su.c, 2) + " mm (" + pr.requested_by + "); " +
-                      would_need(need, o) +
-                      (pr.narrows ? "; or ask a winding angle nearer the geodesic's" : alt));
+    throw ConfigError(
+        head + "at the " + end_name(tr.unreached) + " end friction turns the " +
+        "fibre around on the parallel r = " + format_fixed(t.apex_r, 2) + " mm (" +
+        (pr.narrows ? "the dome's turnaround" : "apex half a band in from the end") +
+        ") but brings r sin a only " + (up ? "up" : "down") + " to " + format_fixed(t.lowest, 2) +
+        " mm within the wound region, not to the passes' " + "Clairaut constant " +
+        format_fixed(su.c, 2) + " mm (" + pr.requested_by + "); " + would_need(need, o) +
+        (pr.narrows ? "; or ask a winding angle nearer the geodesic's" : alt));
   }
   double total = 0.0;
   std::ostringstream per;
@@ -154,15 +156,17 @@ std::string would_need(double lambda, const WindingOptions& o) {
     if (!tr.fe[e]) continue;
     const double ext = std::abs(tr.t[e].apex_x - tr.t[e].join_x) + 0.5 * pr.band_width;
     total += ext;
-    per << (per.tellp() > 0 ? ", " : "") << format_fixed(ext, 1) << " mm at the " << end_name(e) << " end";
+    per << (per.tellp() > 0 ? ", " : "") << format_fixed(ext, 1) << " mm at the " << end_name(e)
+        << " end";
   }
   const double region = pr.meridian.back().x() - pr.meridian.front().x();
-  throw ConfigError(head + "the friction turnarounds need " + format_fixed(total, 1) +
-                    " mm along the axis (" + per.str() + ": from the pass angle " +
-                    format_fixed(std::asin(std::min(1.0, su.c / pr.largest_radius)) * 180.0 / M_PI, 2) +
-                    " deg to 90 deg at |k_g/k_n| <= " + format_fixed(o.slippage, 3) + ") and a geodesic " +
-                    "pass between them, but the wound region is " + format_fixed(region, 1) +
-                    " mm long; " + would_need(need, o) + alt);
+  throw ConfigError(
+      head + "the friction turnarounds need " + format_fixed(total, 1) + " mm along the axis (" +
+      per.str() + ": from the pass angle " +
+      format_fixed(std::asin(std::min(1.0, su.c / pr.largest_radius)) * 180.0 / M_PI, 2) +
+      " deg to 90 deg at |k_g/k_n| <= " + format_fixed(o.slippage, 3) + ") and a geodesic " +
+      "pass between them, but the wound region is " + format_fixed(region, 1) + " mm long; " +
+      would_need(need, o) + alt);
 }
 
 // The candidates to close, in the order the job asks. A friction plan's advance is not the
@@ -214,8 +218,7 @@ Family family(const std::vector<double>& u, Eval eval) {
 // regula falsi with the Illinois step (the advance is smooth in u), ~10 evaluations instead of
 // bisection's 60. not ok() when a trial between fails (a hole) or it does not converge.
 template <typename Eval>
-Trial root_between(Eval eval, double u0, double a0, double u1, double a1, double T,
-                   double* u_out) {
+Trial root_between(Eval eval, double u0, double a0, double u1, double a1, double T, double* u_out) {
   double f0 = a0 - T, f1 = a1 - T;
   int side = 0;
   const Trial none;  // advance NaN: not ok()
@@ -407,11 +410,13 @@ FrictionWinding plan_transition(Setup& su, const WindingOptions& o) {
   auto at = [&](double u) { return evaluate_transition(su, 1.0 / u, 0.0); };
   if (!at(1.0 / bound).ok()) {
     const double need = needed_slippage(bound, [&](double l) { return at(1.0 / l).ok(); });
-    throw ConfigError("winding.slippage = " + format_fixed(bound, 3) + ": the domes turn around on " +
-                      format_fixed(c0, 2) + " and " + format_fixed(c1, 2) + " mm (each polar opening + half the " +
+    throw ConfigError("winding.slippage = " + format_fixed(bound, 3) +
+                      ": the domes turn around on " + format_fixed(c0, 2) + " and " +
+                      format_fixed(c1, 2) + " mm (each polar opening + half the " +
                       "band) and the passes join them by friction on the cylinder, which needs " +
-                      format_fixed(transition_extent(R, c0, c1, bound), 1) + " mm of its " + format_fixed(span, 1) +
-                      " mm at |k_g/k_n| <= " + format_fixed(bound, 3) + "; " + would_need(need, o) +
+                      format_fixed(transition_extent(R, c0, c1, bound), 1) + " mm of its " +
+                      format_fixed(span, 1) + " mm at |k_g/k_n| <= " + format_fixed(bound, 3) +
+                      "; " + would_need(need, o) +
                       ", or give winding.angle (friction on the domes instead)");
   }
   // lambda from the bound down to what fills the cylinder, evenly in 1 / lambda.
@@ -427,9 +432,9 @@ FrictionWinding plan_transition(Setup& su, const WindingOptions& o) {
   PatternProblem low = pr;  // the bands are widest along the circumference at the lower angle
   low.requested_c = std::min(c0, c1);
   if (pick(candidates(low, o), closers, &cand, &t)) return result(su, cand, t, bound);
-  no_pattern(o, "with a friction transition at |k_g/k_n| in " + format_fixed(1.0 / u_max, 3) + " .. " +
-                    format_fixed(bound, 3) + " (nor at " + format_fixed(bound, 3) + " with the turnarounds moved " +
-                    "out within winding.turnaround_window)");
+  no_pattern(o, "with a friction transition at |k_g/k_n| in " + format_fixed(1.0 / u_max, 3) +
+                    " .. " + format_fixed(bound, 3) + " (nor at " + format_fixed(bound, 3) +
+                    " with the turnarounds moved " + "out within winding.turnaround_window)");
 }
 
 // winding.turns on domes with friction: the c whose whole pass makes those turns at the bound.
@@ -469,13 +474,14 @@ double c_for_turns(const Setup& su, const WindingOptions& o) {
     range(at(l, 24), &a, &b);
     return a <= pr.turns && pr.turns <= b;
   });
-  throw ConfigError("winding.turns = " + format_turns(pr.turns) + ": with the passes turning " +
-                    "around at " + format_fixed(pr.apex_c[0], 2) + " and " + format_fixed(pr.apex_c[1], 2) +
-                    " mm and friction up to |k_g/k_n| = " + format_fixed(o.slippage, 3) + " on the domes " +
-                    (std::isfinite(lo) ? "a pass makes " + format_fixed(lo, 3) + " .. " + format_fixed(hi, 3) +
-                                             " turns"
-                                       : std::string("no pass reaches the cylinder")) +
-                    "; " + would_need(need, o));
+  throw ConfigError(
+      "winding.turns = " + format_turns(pr.turns) + ": with the passes turning " + "around at " +
+      format_fixed(pr.apex_c[0], 2) + " and " + format_fixed(pr.apex_c[1], 2) +
+      " mm and friction up to |k_g/k_n| = " + format_fixed(o.slippage, 3) + " on the domes " +
+      (std::isfinite(lo)
+           ? "a pass makes " + format_fixed(lo, 3) + " .. " + format_fixed(hi, 3) + " turns"
+           : std::string("no pass reaches the cylinder")) +
+      "; " + would_need(need, o));
 }
 
 }  // namespace
@@ -521,9 +527,9 @@ FrictionWinding plan_friction_winding(const PatternProblem& problem, const Windi
     for (int e : {0, 1}) {
       if (pr.end_radius[e] >= su.c && !(su.line.point(su.apex_s[e]).y() > su.c)) {
         throw ConfigError("winding.slippage: the " + std::string(end_name(e)) + " end's radius " +
-                          format_fixed(su.line.point(su.apex_s[e]).y(), 2) + " mm is not above the " +
-                          "turnaround radius " + format_fixed(su.c, 2) + " mm (" + pr.requested_by +
-                          "): no friction turnaround can start there");
+                          format_fixed(su.line.point(su.apex_s[e]).y(), 2) +
+                          " mm is not above the " + "turnaround radius " + format_fixed(su.c, 2) +
+                          " mm (" + pr.requested_by + "): no friction turnaround can start there");
       }
     }
   }
@@ -565,8 +571,9 @@ FrictionWinding plan_friction_winding(const PatternProblem& problem, const Windi
   PatternCandidate cand;
   Trial t;
   if (pick(candidates(pr, o), closers, &cand, &t)) return result(su, cand, t, bound);
-  no_pattern(o, "with a friction turnaround at |k_g/k_n| in " + format_fixed(bound / 4.0, 3) + " .. " +
-                    format_fixed(bound, 3) + " (nor at " + format_fixed(bound, 3) + " with the passes' Clairaut " +
+  no_pattern(o, "with a friction turnaround at |k_g/k_n| in " + format_fixed(bound / 4.0, 3) +
+                    " .. " + format_fixed(bound, 3) + " (nor at " + format_fixed(bound, 3) +
+                    " with the passes' Clairaut " +
                     "constant within winding.turnaround_window) that fits the wound region");
 }
 
@@ -605,7 +612,8 @@ FrictionFigures friction_figures(const FrictionWinding& w, const std::vector<Cir
     roles.push_back(-1);
     for (int k = 0; k < per && w.friction_end[0]; ++k) roles.push_back(0);
     // A split start turnaround leads the circuit (it starts at its apex): rotate right by one.
-    if (per == 2 && w.friction_end[0]) std::rotate(roles.rbegin(), roles.rbegin() + 1, roles.rend());
+    if (per == 2 && w.friction_end[0])
+      std::rotate(roles.rbegin(), roles.rbegin() + 1, roles.rend());
     for (std::size_t i = 0; i < c.segments.size(); ++i) {
       const CircuitSegment& seg = c.segments[i];
       const int role = roles[i % roles.size()];

@@ -27,22 +27,24 @@ bool HoopOptions::is_valid(std::string* why) const {
   };
   if (std::isfinite(x0) != std::isfinite(x1)) return fail("range needs both ends");
   if (has_range() && !(x0 < x1)) {
-    return fail("range must run from a lower to a higher axial position (got [" + format_number("%.6g", x0) + ", " +
-                format_number("%.6g", x1) + "])");
+    return fail("range must run from a lower to a higher axial position (got [" +
+                format_number("%.6g", x0) + ", " + format_number("%.6g", x1) + "])");
   }
   if (!(band_width > 0.0) || !std::isfinite(band_width)) {
     return fail("band_width must be > 0 mm (got " + format_number("%.6g", band_width) + ")");
   }
   if (!(overlap >= 0.0) || !(overlap < band_width)) {
-    return fail("overlap must be >= 0 mm and below band_width (got " + format_number("%.6g", overlap) + ")");
+    return fail("overlap must be >= 0 mm and below band_width (got " +
+                format_number("%.6g", overlap) + ")");
   }
   if (passes < 1) return fail("passes must be >= 1 (got " + std::to_string(passes) + ")");
   if (!(mu > 0.0) || !std::isfinite(mu)) {
-    return fail("mu must be > 0 for a hoop layer: its reversals need friction (got " + format_number("%.6g", mu) +
-                ")");
+    return fail("mu must be > 0 for a hoop layer: its reversals need friction (got " +
+                format_number("%.6g", mu) + ")");
   }
   if (!(reversal_friction > 0.0 && reversal_friction <= 1.0)) {
-    return fail("reversal_friction must be in (0, 1] (got " + format_number("%.6g", reversal_friction) + ")");
+    return fail("reversal_friction must be in (0, 1] (got " +
+                format_number("%.6g", reversal_friction) + ")");
   }
   if (!(point_spacing > 0.0)) return fail("point_spacing must be > 0 mm");
   if (meridians < 4) return fail("meridians must be >= 4");
@@ -90,9 +92,10 @@ HoopLayer plan_hoop_layer(const RadiusProfile& profile, const SpindleAxis& axis,
   const double lo = profile.axial.front(), hi = profile.axial.back();
   const double eps = 1e-9 * std::max(1.0, hi - lo);
   if (L.x0 < lo - eps || L.x1 > hi + eps) {
-    throw InputError(what + ".range [" + format_number("%.6g", L.x0) + ", " + format_number("%.6g", L.x1) +
-                     "] mm lies outside the mandrel (its axial extent is [" + format_number("%.6g", lo) + ", " +
-                     format_number("%.6g", hi) + "] mm)");
+    throw InputError(what + ".range [" + format_number("%.6g", L.x0) + ", " +
+                     format_number("%.6g", L.x1) +
+                     "] mm lies outside the mandrel (its axial extent is [" +
+                     format_number("%.6g", lo) + ", " + format_number("%.6g", hi) + "] mm)");
   }
   const double B = o.band_width, p = o.pitch();
   L.pitch = p;
@@ -100,8 +103,9 @@ HoopLayer plan_hoop_layer(const RadiusProfile& profile, const SpindleAxis& axis,
   double xa0 = std::max(L.x0 + 0.5 * B - 0.5 * p, lo + 0.5 * B);
   double xa1 = std::min(L.x1 - 0.5 * B + 0.5 * p, hi - 0.5 * B);
   if (!(xa1 > xa0)) {
-    throw InputError(what + ".range [" + format_number("%.6g", L.x0) + ", " + format_number("%.6g", L.x1) +
-                     "] mm is too short for a band " + format_number("%.6g", B) + " mm wide at pitch " + format_number("%.6g", p) +
+    throw InputError(what + ".range [" + format_number("%.6g", L.x0) + ", " +
+                     format_number("%.6g", L.x1) + "] mm is too short for a band " +
+                     format_number("%.6g", B) + " mm wide at pitch " + format_number("%.6g", p) +
                      " mm");
   }
   L.turns_per_pass = (xa1 - xa0) / p;
@@ -114,7 +118,8 @@ HoopLayer plan_hoop_layer(const RadiusProfile& profile, const SpindleAxis& axis,
   auto rise = [&](double x) { return arc_radius(x) * (1.0 - std::sin(hoop_angle(x))); };
   if (rise(xa0) + rise(xa1) >= xa1 - xa0) {
     throw InputError(what + ": the reversals (" + format_number("%.6g", rise(xa0) + rise(xa1)) +
-                     " mm along the axis at mu = " + format_number("%.6g", o.mu) + ") do not fit in the range");
+                     " mm along the axis at mu = " + format_number("%.6g", o.mu) +
+                     ") do not fit in the range");
   }
 
   // Developed centre line: tie-on turn, passes with x linear in phi (constant pitch) joined by
@@ -241,7 +246,8 @@ HoopLayer plan_hoop_layer(const RadiusProfile& profile, const SpindleAxis& axis,
     L.angle = c.points[best].winding_angle;
   }
   if (L.reversal_slippage > o.mu) {
-    L.warnings.push_back(what + ": reversal slippage " + format_number("%.6g", L.reversal_slippage) +
+    L.warnings.push_back(what + ": reversal slippage " +
+                         format_number("%.6g", L.reversal_slippage) +
                          " exceeds mu = " + format_number("%.6g", o.mu));
   }
 

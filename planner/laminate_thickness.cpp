@@ -33,7 +33,8 @@ double piece_integral(double ra, double rb, double length, double c) {
   const double sa = std::sqrt(std::max(0.0, ra * ra - c * c));
   const double sb = std::sqrt(std::max(0.0, rb * rb - c * c));
   if (sa + sb == 0.0) {
-    throw InputError("the meridian runs along the turnaround radius " + format_number("%.4g", c) + " mm");
+    throw InputError("the meridian runs along the turnaround radius " + format_number("%.4g", c) +
+                     " mm");
   }
   if (ra + sa <= 0.0) {
     throw InputError("the meridian reaches the axis where the layer has fibre (c = 0)");
@@ -55,8 +56,8 @@ MeridianPolyline MeridianPolyline::from_points(std::vector<Vec2> points) {
   m.s.assign(points.size(), 0.0);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!(points[i].y() >= 0.0) || !points[i].allFinite()) {
-      throw InputError("meridian point " + std::to_string(i) + " has radius " + format_number("%.4g", points[i].y()) +
-                       " mm (must be finite and >= 0)");
+      throw InputError("meridian point " + std::to_string(i) + " has radius " +
+                       format_number("%.4g", points[i].y()) + " mm (must be finite and >= 0)");
     }
     if (i > 0) {
       const double l = (points[i] - points[i - 1]).norm();
@@ -231,15 +232,16 @@ MeridianPolyline offset_meridian(const MeridianPolyline& m, const LayerThickness
     out[i] = m.points[i] + t * m.normal(i);
     if (!(out[i].y() > 0.0)) {
       throw InputError(what + ": a thickness of " + format_number("%.4g", t) + " mm at radius " +
-                       format_number("%.4g", m.points[i].y()) + " mm (" + format_number("%.4g", m.points[i].x()) +
-                       " mm along the axis) would close " + end_name(i) +
-                       " (the next surface would reach the axis)");
+                       format_number("%.4g", m.points[i].y()) + " mm (" +
+                       format_number("%.4g", m.points[i].x()) + " mm along the axis) would close " +
+                       end_name(i) + " (the next surface would reach the axis)");
     }
   }
   for (int i = 0; i + 1 < n; ++i) {
     if ((out[i + 1] - out[i]).dot(m.points[i + 1] - m.points[i]) <= 0.0) {
-      throw InputError(what + ": a thickness of " + format_number("%.4g", thickness.at(m.s[i])) + " mm at radius " +
-                       format_number("%.4g", m.points[i].y()) + " mm (" + format_number("%.4g", m.points[i].x()) +
+      throw InputError(what + ": a thickness of " + format_number("%.4g", thickness.at(m.s[i])) +
+                       " mm at radius " + format_number("%.4g", m.points[i].y()) + " mm (" +
+                       format_number("%.4g", m.points[i].x()) +
                        " mm along the axis) folds the next surface onto itself: it would close " +
                        end_name(i));
     }

@@ -30,13 +30,16 @@ bool MaterialOptions::is_valid(std::string* why) const {
   };
   if (!positive(tex)) return fail("tex must be > 0 g/km (got " + format_number("%g", tex) + ")");
   if (!positive(fibre_density)) {
-    return fail("fibre_density must be > 0 g/cm^3 (got " + format_number("%g", fibre_density) + ")");
+    return fail("fibre_density must be > 0 g/cm^3 (got " + format_number("%g", fibre_density) +
+                ")");
   }
   if (!positive(resin_density)) {
-    return fail("resin_density must be > 0 g/cm^3 (got " + format_number("%g", resin_density) + ")");
+    return fail("resin_density must be > 0 g/cm^3 (got " + format_number("%g", resin_density) +
+                ")");
   }
   if (!(fibre_volume_fraction > 0.0 && fibre_volume_fraction < 1.0)) {
-    return fail("fibre_volume_fraction must be in (0, 1) (got " + format_number("%g", fibre_volume_fraction) + ")");
+    return fail("fibre_volume_fraction must be in (0, 1) (got " +
+                format_number("%g", fibre_volume_fraction) + ")");
   }
   if (!positive(tows)) return fail("tows must be > 0 (got " + format_number("%g", tows) + ")");
   if (!std::isnan(band_thickness) && !positive(band_thickness)) {

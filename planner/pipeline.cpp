@@ -147,14 +147,15 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     plan.metrics.circuits_for_coverage = static_cast<int>(
         std::ceil(pc.circuits * (1.0 - 1e-12) / std::max(1e-12, pc.cover_factor)));
     plan.metrics.pattern =
-        "K=" + std::to_string(pc.circuits) + ", skip p=" + std::to_string(pc.skip) +
-        ", advance " + format_fixed(pi.advance_deg, 3) + " deg per circuit, closes after " +
+        "K=" + std::to_string(pc.circuits) + ", skip p=" + std::to_string(pc.skip) + ", advance " +
+        format_fixed(pi.advance_deg, 3) + " deg per circuit, closes after " +
         std::to_string(pc.circuits) + " circuits; " +
-        (rw.friction ? "the passes' r sin a " : "turnaround radius ") + format_fixed(pc.c, 2) + " mm" +
-        (std::abs(pc.moved) > 5e-3 ? " (" + pi.requested_by + " asks " +
-                                         format_fixed(pi.requested_radius, 2) + " mm: moved " +
-                                         format_fixed(pc.moved, 2) + " mm to close the pattern)"
-                                   : std::string()) +
+        (rw.friction ? "the passes' r sin a " : "turnaround radius ") + format_fixed(pc.c, 2) +
+        " mm" +
+        (std::abs(pc.moved) > 5e-3
+             ? " (" + pi.requested_by + " asks " + format_fixed(pi.requested_radius, 2) +
+                   " mm: moved " + format_fixed(pc.moved, 2) + " mm to close the pattern)"
+             : std::string()) +
         ", " + format_fixed(pc.angle_deg, 2) + " deg on the largest parallel";
     if (rw.friction) {  // friction turnarounds (planner/friction_winding.h)
       FrictionFigures& ff = plan.metrics.friction_turnarounds;
@@ -163,13 +164,15 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
       plan.metrics.pattern +=
           fw.transition
               ? "; geodesic domes turning around on " + format_fixed(fw.transition_path.c_from, 2) +
-                    " and " + format_fixed(fw.transition_path.c_to, 2) + " mm, joined by a friction " +
+                    " and " + format_fixed(fw.transition_path.c_to, 2) +
+                    " mm, joined by a friction " +
                     "transition on the cylinder at |k_g/k_n| = " + format_fixed(fw.slippage, 4) +
                     " over " + format_fixed(ff.transition_axial, 1) + " mm (winding.slippage " +
                     format_fixed(wo.slippage, 3) + ")"
           : rw.problem.narrows
               ? "; the passes turn around on the parallels r = " +
-                    format_fixed(rw.problem.apex_c[0], 2) + " and " + format_fixed(rw.problem.apex_c[1], 2) +
+                    format_fixed(rw.problem.apex_c[0], 2) + " and " +
+                    format_fixed(rw.problem.apex_c[1], 2) +
                     " mm by friction on the domes at |k_g/k_n| = " + format_fixed(fw.slippage, 4) +
                     " (winding.slippage " + format_fixed(wo.slippage, 3) + ")"
               : "; friction turnarounds at |k_g/k_n| = " + format_fixed(fw.slippage, 4) +
@@ -183,8 +186,9 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
       if (pc.c > boss + 0.25 * wo.band_width) {
         plan.metrics.warnings.push_back(
             "pattern: the passes turn around on r = " + format_fixed(pc.c, 2) + " mm, " +
-            format_fixed(pc.c - boss, 2) + " mm outside the bosses' turnaround (" + format_fixed(boss, 2) +
-            " mm, the opening + half the band), for " + pp.requested_by + ": the domes between " +
+            format_fixed(pc.c - boss, 2) + " mm outside the bosses' turnaround (" +
+            format_fixed(boss, 2) + " mm, the opening + half the band), for " + pp.requested_by +
+            ": the domes between " +
             "are not wound; winding.slippage (<= mu) keeps the turnaround on the boss with " +
             "friction on the domes");
       }

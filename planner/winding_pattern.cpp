@@ -152,26 +152,29 @@ PatternProblem pattern_problem(const std::vector<Vec2>& meridian, const WindingO
         throw ConfigError("winding.turnaround = " + format_fixed(pr.apex_c[e], 2) + " mm: with " +
                           "winding.slippage the passes turn around on this parallel at both " +
                           "domes, so it must lie between the polar openings (" +
-                          format_fixed(pr.end_radius[0], 2) + ", " + format_fixed(pr.end_radius[1], 2) + " mm) and " +
-                          format_fixed(c_top, 2) + " mm");
+                          format_fixed(pr.end_radius[0], 2) + ", " +
+                          format_fixed(pr.end_radius[1], 2) + " mm) and " + format_fixed(c_top, 2) +
+                          " mm");
       }
     }
   }
   auto check = [&](double c, const std::string& key, const std::string& value) {
     if (!(c <= c_top)) {
       throw ConfigError(key + " = " + value + " puts the turnaround at or beyond the largest " +
-                        "radius R = " + format_fixed(R, 2) + " mm: a geodesic there is a hoop and never " +
+                        "radius R = " + format_fixed(R, 2) +
+                        " mm: a geodesic there is a hoop and never " +
                         "leaves that parallel (the geodesic turn limit); use a turnaround " +
                         "radius below " + format_fixed(c_top, 2) + " mm");
     }
     // With winding.slippage the passes reach the dome's end by friction
     // (planner/friction_winding.h): a Clairaut constant below the opening is then allowed.
     if (narrows && c < r_open && !(o.slippage > 0.0)) {
-      throw ConfigError(key + " = " + value + " puts the turnaround below the polar opening " +
-                        "radius " + format_fixed(r_open, 2) + " mm: the pass would run off the dome into the " +
-                        "opening; use a turnaround radius >= " + format_fixed(r_open, 2) + " mm (" +
-                        format_fixed(r_open + 0.5 * o.band_width, 2) + " keeps the band's edge off the boss)" +
-                        ", or winding.slippage (<= mu) to turn around by friction");
+      throw ConfigError(
+          key + " = " + value + " puts the turnaround below the polar opening " + "radius " +
+          format_fixed(r_open, 2) + " mm: the pass would run off the dome into the " +
+          "opening; use a turnaround radius >= " + format_fixed(r_open, 2) + " mm (" +
+          format_fixed(r_open + 0.5 * o.band_width, 2) + " keeps the band's edge off the boss)" +
+          ", or winding.slippage (<= mu) to turn around by friction");
     }
     if (!(c > 0.0)) throw ConfigError(key + " = " + value + ": must be > 0");
   };
@@ -183,12 +186,15 @@ PatternProblem pattern_problem(const std::vector<Vec2>& meridian, const WindingO
     pr.requested_c = R * std::sin(o.angle * M_PI / 180.0);
     pr.requested_by = "winding.angle";
     check(pr.requested_c, pr.requested_by,
-          format_fixed(o.angle, 2) + " deg (turnaround radius " + format_fixed(pr.requested_c, 2) + " mm)");
+          format_fixed(o.angle, 2) + " deg (turnaround radius " + format_fixed(pr.requested_c, 2) +
+              " mm)");
   } else if (narrows && !o.turns_given) {
     pr.requested_c = r_open + 0.5 * o.band_width;
     pr.requested_by = "winding.turnaround";
-    check(pr.requested_c, "winding.turnaround (default: the polar opening radius + half the "
-                          "band width)", format_fixed(pr.requested_c, 2) + " mm");
+    check(pr.requested_c,
+          "winding.turnaround (default: the polar opening radius + half the "
+          "band width)",
+          format_fixed(pr.requested_c, 2) + " mm");
   } else {
     // From the turns: on domes Phi(c) grows from the opening towards R; between dwell ends
     // from 0 to the smaller end radius.
@@ -297,11 +303,12 @@ PatternCandidate choose_pattern(const PatternProblem& pr, const WindingOptions& 
         const double hi = std::min(largest_turnaround(pr.meridian),
                                    pr.largest_radius * std::sin(85.0 * M_PI / 180.0));
         const PatternCandidate any = pattern_for(pr, K, p, lo, hi, pr.requested_c);
-        throw ConfigError(
-            "winding.pattern: K=" + std::to_string(K) + ", p=" + std::to_string(p) +
-            " closes with no turnaround radius in " + format_fixed(pr.c_lo, 2) + " .. " + format_fixed(pr.c_hi, 2) +
-            " mm (" + pr.requested_by + " asks " + format_fixed(pr.requested_c, 2) + " mm)" +
-            (std::isnan(any.c) ? std::string(" nor anywhere on this mandrel")
+        throw ConfigError("winding.pattern: K=" + std::to_string(K) + ", p=" + std::to_string(p) +
+                          " closes with no turnaround radius in " + format_fixed(pr.c_lo, 2) +
+                          " .. " + format_fixed(pr.c_hi, 2) + " mm (" + pr.requested_by + " asks " +
+                          format_fixed(pr.requested_c, 2) + " mm)" +
+                          (std::isnan(any.c)
+                               ? std::string(" nor anywhere on this mandrel")
                                : "; the nearest that closes it is " + format_fixed(any.c, 3) +
                                      " mm (set winding.turnaround or widen "
                                      "winding.turnaround_window)"));
@@ -322,7 +329,8 @@ PatternCandidate choose_pattern(const PatternProblem& pr, const WindingOptions& 
     }
     throw ConfigError("winding.circuits: no skip closes K=" + std::to_string(K) +
                       " circuits with a turnaround radius in " + format_fixed(pr.c_lo, 2) + " .. " +
-                      format_fixed(pr.c_hi, 2) + " mm; widen winding.turnaround_window or change K");
+                      format_fixed(pr.c_hi, 2) +
+                      " mm; widen winding.turnaround_window or change K");
   }
   std::vector<PatternCandidate> all = pattern_candidates(pr);
   if (o.skip > 0) {
@@ -331,10 +339,12 @@ PatternCandidate choose_pattern(const PatternProblem& pr, const WindingOptions& 
               all.end());
   }
   if (all.empty()) {
-    throw ConfigError("winding.pattern: auto found no closing pattern with a turnaround radius "
-                      "in " + format_fixed(pr.c_lo, 2) + " .. " + format_fixed(pr.c_hi, 2) + " mm" +
-                      (o.skip > 0 ? " and skip " + std::to_string(o.skip) : std::string()) +
-                      "; widen winding.turnaround_window");
+    throw ConfigError(
+        "winding.pattern: auto found no closing pattern with a turnaround radius "
+        "in " +
+        format_fixed(pr.c_lo, 2) + " .. " + format_fixed(pr.c_hi, 2) + " mm" +
+        (o.skip > 0 ? " and skip " + std::to_string(o.skip) : std::string()) +
+        "; widen winding.turnaround_window");
   }
   return all.front();
 }

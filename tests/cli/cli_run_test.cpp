@@ -86,9 +86,9 @@ TEST_F(CliRun, VesselRunsAndRunsWithTwoThreadsAndOneAreByteIdentical) {
     ASSERT_TRUE(fs::exists(other)) << other;
     EXPECT_TRUE(read_all(e.path()) == read_all(other)) << e.path().filename() << " differs";
   }
-  for (const char* f : {"fibre_path.csv", "payout.csv", "axes.csv", "toolpath.ngc", "report.json",
-                        "report.md", "mesh.ply", "paths.ply", "development.svg", "axes.svg",
-                        "stability.svg", "viewer.html"}) {
+  for (const char* f :
+       {"fibre_path.csv", "payout.csv", "axes.csv", "toolpath.ngc", "report.json", "report.md",
+        "mesh.ply", "paths.ply", "development.svg", "axes.svg", "stability.svg", "viewer.html"}) {
     EXPECT_TRUE(fs::exists(a / f)) << f;
   }
   EXPECT_GE(files, 11);

@@ -115,9 +115,9 @@ TEST(ExportPlan, WritesEveryFileConsistently) {
   m.kind = "lathe4";
   const ExportResult r = export_plan(plan, sample_mesh(), m, OutputOptions{}, d);
   const std::vector<std::string> expect = {
-      "fibre_path.csv", "payout.csv",      "axes.csv",    "cutlines.csv", "toolpath.ngc",
-      "mesh.ply",       "paths.ply",       "development.svg", "axes.svg",  "stability.svg",
-      "viewer.html",    "report.json",     "report.md"};
+      "fibre_path.csv", "payout.csv",  "axes.csv",        "cutlines.csv", "toolpath.ngc",
+      "mesh.ply",       "paths.ply",   "development.svg", "axes.svg",     "stability.svg",
+      "viewer.html",    "report.json", "report.md"};
   EXPECT_EQ(r.files, expect);
   for (const std::string& f : expect) EXPECT_TRUE(fs::exists(d / f)) << f;
   // cutlines.csv: a header and one row per cut-line point.

@@ -51,7 +51,8 @@ TEST(StabilitySvg, TheWorstCircuitAgainstMu) {
     const auto frame = panels[p]->by_name("rect");
     ASSERT_GE(frame.size(), 2u);  // the frame, then the dwell arc
     const double top = std::stod(frame[0]->attr("y")), ph = std::stod(frame[0]->attr("height"));
-    const double lo = std::stod(panels[p]->attr("data-lo")), hi = std::stod(panels[p]->attr("data-hi"));
+    const double lo = std::stod(panels[p]->attr("data-lo")),
+                 hi = std::stod(panels[p]->attr("data-hi"));
     auto py = [&](double v) { return top + ph - (v - lo) / (hi - lo) * ph; };
     EXPECT_EQ(frame[1]->attr("class"), "dwell");
     const auto lines = panels[p]->by_name("polyline");

@@ -281,8 +281,8 @@ TEST(GeodesicBetween, UnconvergedCorridorFallsBackToTheLocalStarts) {
   const auto in_hole = [&](int i, int j) { return i >= h0 && i < h1 && j >= h0 && j < h1; };
   for (int j = 1; j < n; ++j) {
     for (int i = 1; i < n; ++i) {
-      const bool movable = !in_hole(i - 1, j - 1) && !in_hole(i, j - 1) && !in_hole(i - 1, j) &&
-                           !in_hole(i, j);
+      const bool movable =
+          !in_hole(i - 1, j - 1) && !in_hole(i, j - 1) && !in_hole(i - 1, j) && !in_hole(i, j);
       const double r = u(rng), a = u(rng), b = u(rng);
       Vec3& p = soup.points[j * (n + 1) + i];
       if (movable && r < 0.35) p += Vec3(0.5 - 1e-6 * a, 0.5 - 1e-6 * b, 0.0);
