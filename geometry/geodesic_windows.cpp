@@ -66,8 +66,7 @@ double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
 double norm(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 
 struct Window {
-  int h;
-  double len;  // length of h's edge
+  int h;  // its edge's length is WindowMesh::frame[3 h] (Search::length)
   double b0, b1;
   Vec2 source;         // I in h's frame
   double sigma;        // distance of the pseudo-source from the source
@@ -291,11 +290,11 @@ class Search {
       if (mesh_.is_boundary_halfedge(h)) continue;
       const Vec3& a = mesh_.position(mesh_.from(h));
       const Vec3& b = mesh_.position(mesh_.to(h));
-      const double len = (b - a).norm();
+      const double len = frame_[3 * h];
       if (!(len > 0.0)) continue;
       const double x = (pv - a).dot(b - a) / len;
       const double y = -std::sqrt(std::max(0.0, (pv - a).squaredNorm() - x * x));
-      add_window({h, len, 0.0, len, {x, y}, d, v, -1});
+      add_window({h, 0.0, len, {x, y}, d, v, -1});
     }
   }
 
@@ -343,7 +342,7 @@ class Search {
   }
 
   void add_window(Window w) {
-    const double len = w.len;
+    const double len = length(w);
     if (!(w.b1 - w.b0 > 1e-12 * len)) return;
     if (!trim(&w)) return;
     if (!compete(&w)) return;
@@ -406,7 +405,7 @@ class Search {
   // interval, and B likewise on a suffix. Cuts those parts off (a little less, for round-off);
   // false when nothing is left.
   bool trim(Window* w) const {
-    const double tol = 1e-12 * w->len;
+    const double len = length(*w), tol = 1e-12 * len;
     const Vec2 I = w->source;
     const double da = dist(mesh_.from(w->h));
     if (da + w->b1 < w->sigma + norm(I - Vec2{w->b1, 0.0})) return false;
@@ -416,13 +415,15 @@ class Search {
       if (den > 0.0) w->b0 = std::max(w->b0, (I.x * I.x + I.y * I.y - k * k) / den - tol);
     }
     const double db = dist(mesh_.to(w->h));
-    if (db + (w->len - w->b0) < w->sigma + norm(I - Vec2{w->b0, 0.0})) return false;
-    if (db + (w->len - w->b1) < w->sigma + norm(I - Vec2{w->b1, 0.0})) {
-      const double k = db - w->sigma, sx = w->len - I.x, den = 2.0 * (k + sx);
-      if (den > 0.0) w->b1 = std::min(w->b1, w->len - (sx * sx + I.y * I.y - k * k) / den + tol);
+    if (db + (len - w->b0) < w->sigma + norm(I - Vec2{w->b0, 0.0})) return false;
+    if (db + (len - w->b1) < w->sigma + norm(I - Vec2{w->b1, 0.0})) {
+      const double k = db - w->sigma, sx = len - I.x, den = 2.0 * (k + sx);
+      if (den > 0.0) w->b1 = std::min(w->b1, len - (sx * sx + I.y * I.y - k * k) / den + tol);
     }
     return w->b1 - w->b0 > tol;
   }
+
+  double length(const Window& w) const { return frame_[3 * w.h]; }
 
   // h's record, initialised on its first use in the query.
   HalfedgeRecord& record(int h) {
@@ -444,7 +445,7 @@ class Search {
   // unless they are one window made twice), and cuts the queued windows the same way where w
   // beats them; a window left empty is dead. False when w is.
   bool compete(Window* w) {
-    const double len = w->len, tol = 1e-12 * len;
+    const double len = length(*w), tol = 1e-12 * len;
     const int sides[2] = {w->h, mesh_.twin(w->h)};
     for (int side = 0; side < 2; ++side) {
       HalfedgeRecord& r = scratch_.halfedges[sides[side]];
@@ -536,7 +537,7 @@ class Search {
     windows_[index].state = Window::kPropagated;
     Window w = windows_[index];
     const int h = w.h;
-    const double len = w.len;
+    const double len = length(w);
     if (!trim(&w)) return;
     const int c = mesh_.opposite_vertex(h);
     const double cx = frame_[3 * h + 1], cy = frame_[3 * h + 2];
@@ -582,7 +583,7 @@ class Search {
         const bool beaten = dist(mesh_.to(h)) + norm(p0 - B) < w.sigma + norm(p0 - I);
         if (s1 > s0 && !beaten)
           add_window(
-              {g, lac, s0 * lac, s1 * lac, {dot(I, e), cross(e, I)}, w.sigma, w.pseudo, index});
+              {g, s0 * lac, s1 * lac, {dot(I, e), cross(e, I)}, w.sigma, w.pseudo, index});
       }
     }
     // Rays through [max(b0, xc), b1] leave through C -> B: the child on twin(next(h)), frame C.
@@ -599,7 +600,7 @@ class Search {
         const bool beaten = dist(mesh_.from(h)) + norm(p1 - A) < w.sigma + norm(p1 - I);
         if (s1 > s0 && !beaten)
           add_window(
-              {g, lcb, s0 * lcb, s1 * lcb, {dot(r, e), cross(e, r)}, w.sigma, w.pseudo, index});
+              {g, s0 * lcb, s1 * lcb, {dot(r, e), cross(e, r)}, w.sigma, w.pseudo, index});
       }
     }
   }
@@ -624,7 +625,7 @@ class Search {
         for (const int w : chain) {
           const Window& x = windows_[w];
           leg.halfedges.push_back(mesh_.twin(x.h));
-          leg.lambdas.push_back(std::clamp(1.0 - 0.5 * (x.b0 + x.b1) / x.len, 0.0, 1.0));
+          leg.lambdas.push_back(std::clamp(1.0 - 0.5 * (x.b0 + x.b1) / length(x), 0.0, 1.0));
         }
         leg.start_face = mesh_.face(leg.halfedges.front());
       } else {
