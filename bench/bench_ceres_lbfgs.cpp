@@ -17,9 +17,9 @@
 
 #include <ceres/ceres.h>
 
-#include "geometry/geodesic.h"
-#include "geometry/mesh_io.h"
-#include "geometry/mesh_validation.h"
+#include "geometry/geodesic/geodesic.h"
+#include "geometry/mesh/mesh_io.h"
+#include "geometry/mesh/mesh_validation.h"
 
 using namespace windplan;
 
@@ -102,7 +102,8 @@ int main(int argc, char** argv) {
 
     auto t0 = std::chrono::steady_clock::now();
     const auto rn = refine_path(mesh, start, {}, fixed);
-    t_newton.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    t_newton.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     it_newton.push_back(rn.summary.iterations);
     x_newton.push_back((rn.summary.final_length - best) / best);
 
@@ -110,7 +111,8 @@ int main(int argc, char** argv) {
     lb.solver = GeodesicSolver::Lbfgs;
     t0 = std::chrono::steady_clock::now();
     const auto rl = refine_path(mesh, start, {}, lb);
-    t_lbfgs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    t_lbfgs.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     it_lbfgs.push_back(rl.summary.iterations);
     x_lbfgs.push_back((rl.summary.final_length - best) / best);
 
@@ -128,17 +130,20 @@ int main(int argc, char** argv) {
     ceres::GradientProblemSolver::Summary summary;
     t0 = std::chrono::steady_clock::now();
     ceres::Solve(options, problem, s.data(), &summary);
-    t_ceres.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    t_ceres.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     it_ceres.push_back(summary.iterations.size());
     x_ceres.push_back((summary.final_cost - best) / best);
     ++done;
   }
   std::printf("mesh %s, %d strips (fixed strip, perturbed start)\n", file.c_str(), done);
-  std::printf("| solver | median ms | median iterations | median excess over the refined geodesic |\n");
+  std::printf(
+      "| solver | median ms | median iterations | median excess over the refined geodesic |\n");
   std::printf("|---|---|---|---|\n");
-  std::printf("| windplan projected Newton | %.3f | %.0f | %.2e |\n", median(t_newton), median(it_newton),
-              median(x_newton));
-  std::printf("| windplan projected L-BFGS | %.3f | %.0f | %.2e |\n", median(t_lbfgs), median(it_lbfgs), median(x_lbfgs));
+  std::printf("| windplan projected Newton | %.3f | %.0f | %.2e |\n", median(t_newton),
+              median(it_newton), median(x_newton));
+  std::printf("| windplan projected L-BFGS | %.3f | %.0f | %.2e |\n", median(t_lbfgs),
+              median(it_lbfgs), median(x_lbfgs));
   std::printf("| Ceres GradientProblemSolver L-BFGS, lambda = (1+sin s)/2 | %.3f | %.0f | %.2e |\n",
               median(t_ceres), median(it_ceres), median(x_ceres));
   return 0;

@@ -10,11 +10,11 @@
 #include <sstream>
 
 #include "export/export_plan.h"
-#include "export/gcode.h"
-#include "export/report.h"
-#include "export/svg.h"
-#include "export/unroll.h"
-#include "export/viewer.h"
+#include "export/files/report.h"
+#include "export/plots/svg.h"
+#include "export/plots/unroll.h"
+#include "export/plots/viewer.h"
+#include "export/program/gcode.h"
 #include "tests/export/plan_fixtures.h"
 
 using namespace windplan;

@@ -1,8 +1,8 @@
 // Table 2 of Liu et al. (an optimization-driven approach for geodesic paths on triangle meshes):
 // time per geodesic path between random vertex pairs on meshes of 20K to 300K faces, for both
 // solvers of the geodesic core (projected Newton, projected L-BFGS), with the length excess over
-// the CGAL exact geodesic (geometry/exact_geodesic.h). Prints a markdown table and per-mesh
-// details; see bench/README.md. Needs ../shared/data/meshes (or mesh files as arguments).
+// the CGAL exact geodesic (geometry/geodesic/exact_geodesic.h). Prints a markdown table and
+// per-mesh details; see bench/README.md. Needs ../shared/data/meshes (or mesh files as arguments).
 //
 // usage: bench_geodesic [--pairs N] [--targets-per-source K] [--exact-sources S]
 //                       [--exact-sources-small S] [--seed N] [--repeat R] [--quick]
@@ -21,11 +21,11 @@
 
 #include <time.h>
 
-#include "geometry/exact_geodesic.h"
-#include "geometry/geodesic.h"
-#include "geometry/mesh.h"
-#include "geometry/mesh_io.h"
-#include "geometry/mesh_validation.h"
+#include "geometry/geodesic/exact_geodesic.h"
+#include "geometry/geodesic/geodesic.h"
+#include "geometry/mesh/mesh.h"
+#include "geometry/mesh/mesh_io.h"
+#include "geometry/mesh/mesh_validation.h"
 
 using namespace windplan;
 using Clock = std::chrono::steady_clock;

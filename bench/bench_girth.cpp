@@ -1,7 +1,7 @@
-// bench_girth: the girth field (planner/girth.h) on the shipped vessel (R 100, L 300, isotensoid
-// domes, 30 mm polar openings) tessellated finely enough for ~100K winding-surface faces. Prints
-// the mesh size, the samples, the time, the sampling error bound, the time of one exact
-// evaluation, and the interpolation error at held-out vertices (direct evaluation). Asserts
+// bench_girth: the girth field (planner/girth/girth.h) on the shipped vessel (R 100, L 300,
+// isotensoid domes, 30 mm polar openings) tessellated finely enough for ~100K winding-surface
+// faces. Prints the mesh size, the samples, the time, the sampling error bound, the time of one
+// exact evaluation, and the interpolation error at held-out vertices (direct evaluation). Asserts
 // nothing.
 //   usage: bench_girth [remesh_mm=0] [samples=64] [linear_deflection_mm=0.02]
 // The default, linear deflection 0.02 mm without remeshing, gives ~89K winding-surface faces
@@ -16,9 +16,9 @@
 #include <set>
 #include <vector>
 
-#include "planner/girth.h"
-#include "planner/job.h"
-#include "planner/mandrel_builder.h"
+#include "planner/girth/girth.h"
+#include "planner/job/job.h"
+#include "planner/mandrel/mandrel_builder.h"
 
 using namespace windplan;
 

@@ -9,11 +9,11 @@
 #include <cstdlib>
 #include <vector>
 
-#include "geometry/mesh.h"
-#include "geometry/parametric_mandrel.h"
-#include "geometry/tessellate.h"
-#include "planner/job.h"
-#include "planner/mandrel_builder.h"
+#include "geometry/cad/parametric_mandrel.h"
+#include "geometry/cad/tessellate.h"
+#include "geometry/mesh/mesh.h"
+#include "planner/job/job.h"
+#include "planner/mandrel/mandrel_builder.h"
 
 using namespace windplan;
 
@@ -49,8 +49,8 @@ int main(int argc, char** argv) {
       area = md.mesh.total_area();
       max_edge = md.mesh.edge_length_stats()[2];
     }
-    std::printf("%10.3f %9d %9d %13.1f %12.1f %12.2e %10.2f%s\n", defl, V, F, best_tess,
-                best_build, (exact - area) / exact, max_edge, defl == 0.25 ? "  (default)" : "");
+    std::printf("%10.3f %9d %9d %13.1f %12.1f %12.2e %10.2f%s\n", defl, V, F, best_tess, best_build,
+                (exact - area) / exact, max_edge, defl == 0.25 ? "  (default)" : "");
   }
   return 0;
 }

@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "geometry/mesh.h"
-#include "geometry/mesh_io.h"
-#include "geometry/mesh_validation.h"
+#include "geometry/mesh/mesh.h"
+#include "geometry/mesh/mesh_io.h"
+#include "geometry/mesh/mesh_validation.h"
 
 using namespace windplan;
 using Clock = std::chrono::steady_clock;

@@ -1,6 +1,6 @@
-// Replay time of the shipped jobs' G-code programs (export/replay.h), with the motion figures of
-// issue #13: reversals, axis limits, clearance, replay deviation, wind time.
-// Usage: bench_simulate [job.yaml ...]   (default: every configs/*.yaml; vessel first)
+// Replay time of the shipped jobs' G-code programs (export/program/replay.h), with the motion
+// figures of issue #13: reversals, axis limits, clearance, replay deviation, wind time. Usage:
+// bench_simulate [job.yaml ...]   (default: every configs/*.yaml; vessel first)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "export/gcode.h"
-#include "export/gcode_reader.h"
-#include "export/kinematics.h"
-#include "export/replay.h"
-#include "planner/job.h"
+#include "export/machine/kinematics.h"
+#include "export/program/gcode.h"
+#include "export/program/gcode_reader.h"
+#include "export/program/replay.h"
+#include "planner/job/job.h"
 #include "planner/pipeline.h"
 
 using namespace windplan;
@@ -43,13 +43,14 @@ int main(int argc, char** argv) {
       const PipelineResult r = plan_job(job, {});
       const Motion mo = compute_motion(r.plan, job.machine, &r.mandrel.mesh);
       if (job.machine.kind == "robot") {
-        std::printf("%-12s %2zu circuits | robot (no G-code) | X reversals %d (max %d per circuit, "
-                    "%d mid-pass) | A reversals %d | v %.3f a %.3f of limit | clearance min %.3f "
-                    "mm | wind %.1f s | eye X %.0f..%.0f mm, free length <= %.0f mm\n",
-                    path.stem().string().c_str(), mo.circuit_time.size(), mo.carriage_reversals,
-                    mo.max_carriage_reversals_per_circuit, mo.mid_pass_carriage_reversals,
-                    mo.spindle_reversals, mo.limits.velocity_ratio, mo.limits.acceleration_ratio,
-                    mo.min_clearance, mo.wind_time, mo.x.min, mo.x.max, mo.free_length.max);
+        std::printf(
+            "%-12s %2zu circuits | robot (no G-code) | X reversals %d (max %d per circuit, "
+            "%d mid-pass) | A reversals %d | v %.3f a %.3f of limit | clearance min %.3f "
+            "mm | wind %.1f s | eye X %.0f..%.0f mm, free length <= %.0f mm\n",
+            path.stem().string().c_str(), mo.circuit_time.size(), mo.carriage_reversals,
+            mo.max_carriage_reversals_per_circuit, mo.mid_pass_carriage_reversals,
+            mo.spindle_reversals, mo.limits.velocity_ratio, mo.limits.acceleration_ratio,
+            mo.min_clearance, mo.wind_time, mo.x.min, mo.x.max, mo.free_length.max);
         continue;
       }
       const std::string text = gcode_program(mo, r.plan.job_name, job.machine);
@@ -77,9 +78,9 @@ int main(int argc, char** argv) {
           path.stem().string().c_str(), circuits, mo.carriage_reversals,
           mo.max_carriage_reversals_per_circuit, mo.mid_pass_carriage_reversals,
           mo.spindle_reversals, mo.spindle_reversals_in_passes, mo.limits.velocity_ratio,
-          mo.limits.acceleration_ratio, mo.min_clearance, mo.required_clearance,
-          rp.max_deviation, rp.mean_deviation, mo.wind_time, cmin, cmax, mo.x.min, mo.x.max,
-          t_read, rp.blocks, rp.substeps, times[1]);
+          mo.limits.acceleration_ratio, mo.min_clearance, mo.required_clearance, rp.max_deviation,
+          rp.mean_deviation, mo.wind_time, cmin, cmax, mo.x.min, mo.x.max, t_read, rp.blocks,
+          rp.substeps, times[1]);
     } catch (const std::exception& e) {
       std::printf("%-12s error: %s\n", path.stem().string().c_str(), e.what());
     }

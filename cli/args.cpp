@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "geometry/errors.h"
+#include "geometry/base/errors.h"
 
 namespace windplan::cli {
 

@@ -1,7 +1,7 @@
 // windplan cutline <job.yaml | mesh-file> [--name N] [--plane nx,ny,nz,d | --station z]
 //                  [--normal-mode free|fixed|cone] [--max-tilt deg] [--json] [-o cut.csv]
-// Computes coplanar cut-lines (planner/cutlines.h): a job's `cutlines:` list, or one cut-line
-// given by the flags, on the job's winding surface or on a mesh file.
+// Computes coplanar cut-lines (planner/cutlines/cutlines.h): a job's `cutlines:` list, or one
+// cut-line given by the flags, on the job's winding surface or on a mesh file.
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -10,15 +10,15 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "export/cutlines_csv.h"
-#include "geometry/errors.h"
-#include "geometry/json.h"
-#include "geometry/mesh_io.h"
-#include "geometry/mesh_validation.h"
-#include "geometry/winding_surface.h"
-#include "planner/cutlines.h"
-#include "planner/job.h"
-#include "planner/mandrel_builder.h"
+#include "export/files/cutlines_csv.h"
+#include "geometry/base/errors.h"
+#include "geometry/base/json.h"
+#include "geometry/mesh/mesh_io.h"
+#include "geometry/mesh/mesh_validation.h"
+#include "geometry/region/winding_surface.h"
+#include "planner/cutlines/cutlines.h"
+#include "planner/job/job.h"
+#include "planner/mandrel/mandrel_builder.h"
 
 namespace windplan::cli {
 

@@ -1,6 +1,6 @@
-// windplan geodesic / windplan loop: the geodesic core (geometry/geodesic.h) on the command line.
-// A geodesic between two surface points, or a closed geodesic loop refined from a curve, under
-// the Euclidean, a density or an anisotropic metric; the result as text, JSON or CSV.
+// windplan geodesic / windplan loop: the geodesic core (geometry/geodesic/geodesic.h) on the
+// command line. A geodesic between two surface points, or a closed geodesic loop refined from a
+// curve, under the Euclidean, a density or an anisotropic metric; the result as text, JSON or CSV.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -13,19 +13,19 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "export/csv.h"
-#include "geometry/atomic_file.h"
-#include "geometry/closest_point.h"
-#include "geometry/edge_path.h"
-#include "geometry/errors.h"
-#include "geometry/exact_geodesic.h"
-#include "geometry/geodesic.h"
-#include "geometry/json.h"
-#include "geometry/mesh_io.h"
-#include "geometry/mesh_validation.h"
-#include "geometry/parallel.h"
-#include "planner/job.h"
-#include "planner/mandrel_builder.h"
+#include "export/files/csv.h"
+#include "geometry/base/atomic_file.h"
+#include "geometry/base/errors.h"
+#include "geometry/base/json.h"
+#include "geometry/base/parallel.h"
+#include "geometry/geodesic/edge_path.h"
+#include "geometry/geodesic/exact_geodesic.h"
+#include "geometry/geodesic/geodesic.h"
+#include "geometry/mesh/closest_point.h"
+#include "geometry/mesh/mesh_io.h"
+#include "geometry/mesh/mesh_validation.h"
+#include "planner/job/job.h"
+#include "planner/mandrel/mandrel_builder.h"
 
 namespace windplan::cli {
 

@@ -1,5 +1,5 @@
 // windplan girth <job.yaml> [-o girth.csv] [--json]
-// Builds the job's mandrel, computes the girth field on its winding surface (planner/girth.h)
+// Builds the job's mandrel, computes the girth field on its winding surface (planner/girth/girth.h)
 // and reports it; optionally writes the per-vertex field as CSV.
 #include <algorithm>
 #include <iostream>
@@ -7,11 +7,11 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "export/csv.h"
-#include "geometry/json.h"
-#include "planner/girth.h"
-#include "planner/job.h"
-#include "planner/mandrel_builder.h"
+#include "export/files/csv.h"
+#include "geometry/base/json.h"
+#include "planner/girth/girth.h"
+#include "planner/job/job.h"
+#include "planner/mandrel/mandrel_builder.h"
 
 namespace windplan::cli {
 

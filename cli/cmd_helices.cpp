@@ -7,9 +7,9 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "export/export_plan.h"
-#include "export/report.h"
-#include "geometry/json.h"
-#include "planner/job.h"
+#include "export/files/report.h"
+#include "geometry/base/json.h"
+#include "planner/job/job.h"
 #include "planner/pipeline.h"
 
 namespace windplan::cli {

@@ -6,12 +6,12 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "geometry/cad_export.h"
-#include "geometry/errors.h"
-#include "geometry/json.h"
-#include "geometry/mesh_io.h"
-#include "planner/job.h"
-#include "planner/mandrel_builder.h"
+#include "geometry/base/errors.h"
+#include "geometry/base/json.h"
+#include "geometry/cad/cad_export.h"
+#include "geometry/mesh/mesh_io.h"
+#include "planner/job/job.h"
+#include "planner/mandrel/mandrel_builder.h"
 
 namespace windplan::cli {
 
@@ -43,8 +43,8 @@ int run_mandrel(const std::vector<std::string>& argv) {
   if (!windable) {
     // Say what is there: the candidate regions and the suggested keys, then fail.
     std::cout << "mandrel: " << m.description << "\n  the wound region is not an annulus; "
-              << "candidate regions (axis origin (" << m.axis.origin.transpose()
-              << "), direction (" << m.axis.direction.transpose() << ")):\n"
+              << "candidate regions (axis origin (" << m.axis.origin.transpose() << "), direction ("
+              << m.axis.direction.transpose() << ")):\n"
               << region_table(m.candidates, "  ");
     if (m.suggestion.found) {
       std::cout << "  suggested (under mandrel:): " << m.suggestion.keys() << "\n";
@@ -64,9 +64,8 @@ int run_mandrel(const std::vector<std::string>& argv) {
   }
 
   const MeshHealth& h = m.health;
-  const double rmax = m.profile.empty()
-                          ? 0.0
-                          : *std::max_element(m.profile.radius.begin(), m.profile.radius.end());
+  const double rmax =
+      m.profile.empty() ? 0.0 : *std::max_element(m.profile.radius.begin(), m.profile.radius.end());
   if (args.flag("--json")) {
     JsonWriter j;
     j.begin_object();
@@ -159,8 +158,8 @@ int run_mandrel(const std::vector<std::string>& argv) {
   for (int i = 0; i < 2; ++i) {
     const WindingLoop& L = m.winding.loops[i];
     s << "    " << (i == 0 ? "start" : "end  ") << " loop: " << L.vertices.size()
-      << " vertices, length " << L.length << " mm, mean radius " << L.mean_radius
-      << " mm, axial " << L.axial << " mm\n";
+      << " vertices, length " << L.length << " mm, mean radius " << L.mean_radius << " mm, axial "
+      << L.axial << " mm\n";
   }
   if (job.mandrel.region.enabled) {
     s << "  region: axial " << job.mandrel.region.start << " .. " << job.mandrel.region.end

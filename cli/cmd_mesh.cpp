@@ -5,12 +5,12 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "geometry/errors.h"
-#include "geometry/json.h"
-#include "geometry/mesh_io.h"
-#include "geometry/mesh_validation.h"
-#include "planner/job.h"
-#include "planner/mandrel_mesh.h"
+#include "geometry/base/errors.h"
+#include "geometry/base/json.h"
+#include "geometry/mesh/mesh_io.h"
+#include "geometry/mesh/mesh_validation.h"
+#include "planner/job/job.h"
+#include "planner/mandrel/mandrel_mesh.h"
 
 namespace windplan::cli {
 

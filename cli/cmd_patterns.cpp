@@ -1,19 +1,19 @@
 // windplan patterns <job.yaml> [--json] [--top N]
 // The pattern table of a job on a shape of revolution: the closing patterns near the requested
-// winding, each planned and measured on its laid bands (planner/winding_pattern.h,
-// planner/coverage.h), as the pattern tables of winding software list them.
+// winding, each planned and measured on its laid bands (planner/winding/winding_pattern.h,
+// planner/winding/coverage.h), as the pattern tables of winding software list them.
 #include <cstdio>
 #include <iostream>
 #include <sstream>
 
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "geometry/errors.h"
-#include "geometry/json.h"
-#include "planner/coverage.h"
-#include "planner/job.h"
-#include "planner/mandrel_builder.h"
-#include "planner/revolution_winding.h"
+#include "geometry/base/errors.h"
+#include "geometry/base/json.h"
+#include "planner/job/job.h"
+#include "planner/mandrel/mandrel_builder.h"
+#include "planner/winding/coverage.h"
+#include "planner/winding/revolution_winding.h"
 
 namespace windplan::cli {
 
@@ -27,7 +27,8 @@ const char* const kPatternsHelp =
     "Each row is planned and measured on its laid bands: K, p, winding angle on the largest\n"
     "parallel, turnaround radius (and how far it moved), nominal cover factor, measured bare\n"
     "fraction, widest gap and overlap (everywhere, and on the largest sections: a vessel's\n"
-    "cylinder, where the bands lie side by side), most bands stacked and plies built (2 for one full\n"
+    "cylinder, where the bands lie side by side), most bands stacked and plies built (2 for one "
+    "full\n"
     "helical layer). The first row is what `winding.pattern: auto` winds; a job picks another\n"
     "with `winding.pattern: {circuits: K, skip: p}`.\n\n"
     "  --json      print the table as JSON\n"
@@ -65,8 +66,8 @@ int run_patterns(const std::vector<std::string>& argv) {
   CoverageOptions co;
   co.band_width = wo.band_width;
   co.stations = wo.coverage_stations;
-  // With winding.slippage the run winds a friction plan (planner/friction_winding.h), closed by
-  // its slippage or c: the one row is that plan, measured like the others.
+  // With winding.slippage the run winds a friction plan (planner/winding/friction_winding.h),
+  // closed by its slippage or c: the one row is that plan, measured like the others.
   const bool friction = wants_friction_turnarounds(pr, wo);
   std::vector<PatternCandidate> all;
   if (friction) {
@@ -137,12 +138,13 @@ int run_patterns(const std::vector<std::string>& argv) {
        "  overlap[mm] (largest)  stack  plies\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
-    std::snprintf(buf, sizeof buf,
-                  "%s %4d %4d  %10.3f  %14.3f  %9.3f  %10.4f  %5.3f  %7.2f  %7.2f  %11.2f %9.2f  %5d  "
-                  "%5.2f\n",
-                  i == 0 ? "*" : " ", r.k.circuits, r.k.skip, r.k.angle_deg, r.k.c, r.k.moved,
-                  r.k.turns_per_pass, r.k.cover_factor, 100.0 * r.cov.bare_fraction,
-                  r.cov.widest_gap, r.cov.widest_overlap, r.cov.widest_overlap_largest, r.cov.max_stack, r.cov.mean_plies);
+    std::snprintf(
+        buf, sizeof buf,
+        "%s %4d %4d  %10.3f  %14.3f  %9.3f  %10.4f  %5.3f  %7.2f  %7.2f  %11.2f %9.2f  %5d  "
+        "%5.2f\n",
+        i == 0 ? "*" : " ", r.k.circuits, r.k.skip, r.k.angle_deg, r.k.c, r.k.moved,
+        r.k.turns_per_pass, r.k.cover_factor, 100.0 * r.cov.bare_fraction, r.cov.widest_gap,
+        r.cov.widest_overlap, r.cov.widest_overlap_largest, r.cov.max_stack, r.cov.mean_plies);
     s << buf;
   }
   s << "  * what winding.pattern: auto winds\n";

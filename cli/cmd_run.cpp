@@ -12,13 +12,13 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "export/export_plan.h"
-#include "export/layup_export.h"
-#include "export/manifest.h"
-#include "export/output_set.h"
-#include "export/report.h"
-#include "planner/job.h"
-#include "planner/layup.h"
+#include "export/files/layup_export.h"
+#include "export/files/manifest.h"
+#include "export/files/output_set.h"
+#include "export/files/report.h"
+#include "planner/job/job.h"
 #include "planner/pipeline.h"
+#include "planner/plan_layup.h"
 #include "windplan_version.h"
 
 namespace windplan::cli {
@@ -67,14 +67,15 @@ int run_run(const std::vector<std::string>& argv) {
     manifest.inputs.push_back(manifest_entry(job.mandrel.file, "mandrel", true));
   }
   for (const CutLineOptions& c : job.cutlines) {
-    if (!c.init.empty()) manifest.inputs.push_back(manifest_entry(c.init, "cutline " + c.name, true));
+    if (!c.init.empty())
+      manifest.inputs.push_back(manifest_entry(c.init, "cutline " + c.name, true));
   }
 
   StageProgress progress(std::cerr, ::isatty(STDERR_FILENO) == 1, "windplan run");
   PipelineOptions po;
   po.on_stage_start = [&](const std::string& stage) { progress.start(stage); };
   po.on_stage = [&](const StageTiming& t) { progress.finish(t.stage, t.seconds); };
-  // A job with `layers:` is a layup (planner/layup.h): every layer in order, one program.
+  // A job with `layers:` is a layup (planner/plan_layup.h): every layer in order, one program.
   PipelineResult r;
   LayupResult layup;
   const bool layered = !job.layers.empty();

@@ -1,6 +1,6 @@
 // windplan simulate <job.yaml> <program> [--json FILE]
 // Reads back a G-code program (windplan's or a user's edit, in the job's dialect), runs it through
-// the job's machine model and replays where the fibre lands (export/replay.h).
+// the job's machine model and replays where the fibre lands (export/program/replay.h).
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -8,12 +8,12 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "export/gcode_reader.h"
-#include "export/replay.h"
-#include "geometry/atomic_file.h"
-#include "geometry/errors.h"
-#include "geometry/json.h"
-#include "planner/job.h"
+#include "export/program/gcode_reader.h"
+#include "export/program/replay.h"
+#include "geometry/base/atomic_file.h"
+#include "geometry/base/errors.h"
+#include "geometry/base/json.h"
+#include "planner/job/job.h"
 #include "planner/pipeline.h"
 
 namespace windplan::cli {
@@ -79,7 +79,8 @@ int run_simulate(const std::vector<std::string>& argv) {
   std::cout << rp.summary << "\n  report: " << out.string() << "\n";
   if (job.machine.replay_tolerance > 0.0 && rp.max_deviation > job.machine.replay_tolerance) {
     char buf[200];
-    std::snprintf(buf, sizeof buf, "%s:%d: the replay lays the fibre %.3f mm from the plan, more "
+    std::snprintf(buf, sizeof buf,
+                  "%s:%d: the replay lays the fibre %.3f mm from the plan, more "
                   "than machine.replay_tolerance %.3f mm",
                   program_file.string().c_str(), rp.max_deviation_line, rp.max_deviation,
                   job.machine.replay_tolerance);

@@ -27,7 +27,7 @@ extern const char* const kMandrelHelp;
 int run_mesh(const std::vector<std::string>& args);
 extern const char* const kMeshHelp;
 
-/// cmd_girth.cpp: the girth field of a job's winding surface (planner/girth.h).
+/// cmd_girth.cpp: the girth field of a job's winding surface (planner/girth/girth.h).
 int run_girth(const std::vector<std::string>& args);
 extern const char* const kGirthHelp;
 
@@ -39,7 +39,7 @@ int run_loop(const std::vector<std::string>& args);
 extern const char* const kLoopHelp;
 
 /// cmd_cutline.cpp: coplanar cut-lines of a job (its cutlines: list) or from flags, on a job's
-/// winding surface or a mesh file (planner/cutlines.h).
+/// winding surface or a mesh file (planner/cutlines/cutlines.h).
 int run_cutline(const std::vector<std::string>& args);
 extern const char* const kCutlineHelp;
 

@@ -1,13 +1,13 @@
 // windplan: the command-line tool. Exit codes: 0 ok, 1 bad input (a one-line message naming the
 // file, key or element), 2 usage error, 3 internal error. No stack traces for user errors.
 #include <cstring>
-#include <string>
 #include <iostream>
 #include <memory>
+#include <string>
 
 #include "cli/commands.h"
-#include "geometry/errors.h"
-#include "geometry/parallel.h"
+#include "geometry/base/errors.h"
+#include "geometry/base/parallel.h"
 #include "windplan_version.h"
 
 namespace {
@@ -52,8 +52,9 @@ void print_help() {
                "       windplan --help | --version\n\n"
                "commands:\n";
   for (const auto& c : windplan::cli::commands()) {
-    std::cout << "  " << c.name << std::string(12 - std::min<std::size_t>(11, std::strlen(c.name)), ' ')
-              << c.summary << "\n";
+    std::cout << "  " << c.name
+              << std::string(12 - std::min<std::size_t>(11, std::strlen(c.name)), ' ') << c.summary
+              << "\n";
   }
   std::cout << "\n'windplan <command> --help' describes a command.\n"
                "Every command takes --threads N: at most N threads (default: all cores); the\n"
@@ -87,14 +88,13 @@ int main(int argc, char** argv) {
         return 0;
       }
     }
-    // --threads N, common to every command: a process-wide limit (geometry/parallel.h).
+    // --threads N, common to every command: a process-wide limit (geometry/base/parallel.h).
     std::unique_ptr<windplan::ThreadLimit> limit;
     for (std::size_t i = 0; i < rest.size(); ++i) {
       if (rest[i] != "--threads") continue;
       char* end = nullptr;
       const long n = i + 1 < rest.size() ? std::strtol(rest[i + 1].c_str(), &end, 10) : 0;
-      if (i + 1 >= rest.size() || end == rest[i + 1].c_str() || *end != '\0' || n < 1 ||
-          n > 4096) {
+      if (i + 1 >= rest.size() || end == rest[i + 1].c_str() || *end != '\0' || n < 1 || n > 4096) {
         std::cerr << "windplan " << c.name << ": --threads expects an integer >= 1"
                   << (i + 1 < rest.size() ? ", got '" + rest[i + 1] + "'" : std::string()) << "\n"
                   << "run 'windplan " << c.name << " --help' for usage\n";

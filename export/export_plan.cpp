@@ -1,22 +1,22 @@
 #include "export/export_plan.h"
 
-#include "export/axes_svg.h"
-#include "export/cutlines_csv.h"
-#include "export/stability_svg.h"
+#include "export/files/cutlines_csv.h"
+#include "export/plots/axes_svg.h"
+#include "export/plots/stability_svg.h"
 
 #include <cstdio>
 
-#include "export/gcode.h"
-#include "export/gcode_reader.h"
-#include "export/output_set.h"
-#include "export/ply_polylines.h"
-#include "export/report.h"
-#include "export/svg.h"
-#include "export/unroll.h"
-#include "export/viewer.h"
-#include "geometry/atomic_file.h"
-#include "geometry/errors.h"
-#include "geometry/mesh_io.h"
+#include "export/files/output_set.h"
+#include "export/files/ply_polylines.h"
+#include "export/files/report.h"
+#include "export/plots/svg.h"
+#include "export/plots/unroll.h"
+#include "export/plots/viewer.h"
+#include "export/program/gcode.h"
+#include "export/program/gcode_reader.h"
+#include "geometry/base/atomic_file.h"
+#include "geometry/base/errors.h"
+#include "geometry/mesh/mesh_io.h"
 
 namespace windplan {
 
@@ -87,8 +87,8 @@ CsvTable eye_pose_table(const Motion& motion) {
               "radial_x",   "radial_y",   "radial_z"};
   for (const MachineState& s : motion.states) {
     t.rows.push_back({double(s.circuit), double(s.index), s.t_s, s.a_deg, s.eye.x(), s.eye.y(),
-                      s.eye.z(), s.direction.x(), s.direction.y(), s.direction.z(),
-                      s.radial.x(), s.radial.y(), s.radial.z()});
+                      s.eye.z(), s.direction.x(), s.direction.y(), s.direction.z(), s.radial.x(),
+                      s.radial.y(), s.radial.z()});
   }
   return t;
 }
@@ -140,7 +140,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   auto wrote = [&](const std::string& name) {
     ++done;
     if (context.on_file) context.on_file(name, done, total);
-    output_test_pause(name);  // (a test hook: export/output_set.h)
+    output_test_pause(name);  // (a test hook: export/files/output_set.h)
   };
   if (output.csv) {
     write_csv_file(dir / "fibre_path.csv", fibre_path_table(plan));

@@ -13,11 +13,11 @@
 //           eye_pose.csv    (machine.kind robot only) circuit, index, t_s, A, eye position and
 //                           unit fibre direction and unit radial direction of the eye (its full
 //                           pose: the third axis is their cross product) in the mandrel frame
-//   gcode:  toolpath.ngc | toolpath.gcode | toolpath.nc (lathe2/lathe4; see export/gcode.h)
-//   report: report.json, report.md (see export/report.h)
-//   ply:    mesh.ply (the mandrel), paths.ply (see export/ply_polylines.h)
-//   svg:    development.svg (see export/svg.h), axes.svg (export/axes_svg.h)
-//   viewer: viewer.html (see export/viewer.h)
+//   gcode:  toolpath.ngc | toolpath.gcode | toolpath.nc (lathe2/lathe4; see export/program/gcode.h)
+//   report: report.json, report.md (see export/files/report.h)
+//   ply:    mesh.ply (the mandrel), paths.ply (see export/files/ply_polylines.h)
+//   svg:    development.svg (see export/plots/svg.h), axes.svg (export/plots/axes_svg.h)
+//   viewer: viewer.html (see export/plots/viewer.h)
 // "index" is always the index of the point in its circuit's dense points.
 #include <filesystem>
 #include <functional>
@@ -25,26 +25,15 @@
 #include <string>
 #include <vector>
 
-#include "export/csv.h"
-#include "export/kinematics.h"
-#include "export/replay.h"
-#include "geometry/mesh.h"
-#include "planner/machine_options.h"
-#include "planner/plan.h"
+#include "export/files/csv.h"
+#include "export/files/export_result.h"
+#include "export/machine/kinematics.h"
+#include "export/program/replay.h"
+#include "geometry/mesh/mesh.h"
+#include "planner/job/machine_options.h"
+#include "planner/plan/plan.h"
 
 namespace windplan {
-
-struct ExportResult {
-  std::filesystem::path directory;
-  std::vector<std::string> files;  ///< names written, in order (relative to directory)
-  Motion motion;                   ///< eye, axes, times (from compute_motion)
-  /// The replay of the G-code program (lathe kinds with a non-empty mandrel mesh); has_replay
-  /// false otherwise.
-  bool has_replay = false;
-  ReplayResult replay;
-  MachineOptions machine;          ///< as used
-  bool timings = false;            ///< output.timings
-};
 
 /// What export_plan may use besides the plan: the wound region and a progress hook.
 struct ExportContext {
@@ -62,11 +51,11 @@ struct ExportContext {
   /// Called after each file with its name, the files written so far and their number.
   std::function<void(const std::string& file, int done, int total)> on_file;
   /// Files another writer puts into the directory (a layup's laminate files,
-  /// export/layup_export.h): listed in ExportResult::files and the reports, before them.
+  /// export/files/layup_export.h): listed in ExportResult::files and the reports, before them.
   std::vector<std::string> also_written;
 };
 
-/// Computes the motion, replays the G-code (export/replay.h) and writes the files.
+/// Computes the motion, replays the G-code (export/program/replay.h) and writes the files.
 /// \throw InputError (bad envelope, clearance, axis limits; see compute_motion; a replay that
 ///        deviates more than machine.replay_tolerance from the plan: then no file is written),
 ///        IoError (cannot write).

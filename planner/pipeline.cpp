@@ -4,10 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "geometry/format_number.h"
-#include "planner/coverage.h"
-#include "planner/cutlines.h"
-#include "planner/job_limits.h"
+#include "geometry/base/format_number.h"
+#include "planner/cutlines/cutlines.h"
+#include "planner/job/job_limits.h"
+#include "planner/winding/coverage.h"
 
 namespace windplan {
 
@@ -40,7 +40,7 @@ std::string general(double v) {
 }
 
 // "winding.turns = 5 exceeds the 0.65 turns a geodesic can make between ... use turns <= 0.65,
-// ...": the beta = 0 passes cannot be geodesics (planner/clairaut.h).
+// ...": the beta = 0 passes cannot be geodesics (planner/winding/clairaut.h).
 std::string turn_limit_warning(const ClairautLimit& lim, const WindingOptions& wo) {
   const bool s0 = wo.has_start_station(), s1 = wo.has_end_station();
   const std::string ends = !s0 && !s1 ? "the boundary loops (the polar openings or tube ends)"
@@ -66,14 +66,15 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
   PlanMetrics timings;
   Stage mandrel("mandrel", &timings, options);
   Mandrel md = build_mandrel(job);
-  check_plan_size(job.winding, md);  // (mesh and CAD mandrels: their size is known now)
+  check_plan_size(job.winding, md.winding.mesh,
+                  md.axis);  // (mesh and CAD mandrels: their size is known now)
   mandrel.done();
   PipelineResult r = plan_winding(std::move(md), job, job.winding, options);
   std::vector<StageTiming>& t = r.plan.metrics.timings;
   t.insert(t.begin(), timings.timings.begin(), timings.timings.end());
   if (!job.cutlines.empty()) {
     Stage cut("cutlines", &r.plan.metrics, options);
-    r.plan.cutlines = compute_cutlines(r.mandrel, job.cutlines);
+    r.plan.cutlines = compute_cutlines(r.mandrel.winding.mesh, r.mandrel.axis, job.cutlines);
     cut.done();
   }
   return r;
@@ -104,9 +105,9 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   girth.done();
 
   // Shapes of revolution with plain geodesics: Clairaut's integral on the meridian, a closing
-  // pattern and circuits that are copies of one another (planner/revolution_winding.h). With
-  // beta > 0, off a shape of revolution, or between dwell ends at more turns than a geodesic
-  // can make: the geodesic core (planner/helix.h).
+  // pattern and circuits that are copies of one another (planner/winding/revolution_winding.h).
+  // With beta > 0, off a shape of revolution, or between dwell ends at more turns than a geodesic
+  // can make: the geodesic core (planner/winding/helix.h).
   Stage helices("helices", &timings, options);
   if (md.revolution && wo.beta == 0.0) {
     r.revolution = plan_revolution_winding(ws.mesh, ws.face_map, md.axis, wo);
@@ -144,8 +145,8 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     pi.advance_deg = std::fmod(pc.advance * 180.0 / M_PI, 360.0);
     pi.projection_max = rw.projection_max;
     plan.metrics.turns_per_pass = pc.turns_per_pass;
-    plan.metrics.circuits_for_coverage = static_cast<int>(
-        std::ceil(pc.circuits * (1.0 - 1e-12) / std::max(1e-12, pc.cover_factor)));
+    plan.metrics.circuits_for_coverage =
+        static_cast<int>(std::ceil(pc.circuits * (1.0 - 1e-12) / std::max(1e-12, pc.cover_factor)));
     plan.metrics.pattern =
         "K=" + std::to_string(pc.circuits) + ", skip p=" + std::to_string(pc.skip) + ", advance " +
         format_fixed(pi.advance_deg, 3) + " deg per circuit, closes after " +
@@ -157,7 +158,7 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
                    " mm: moved " + format_fixed(pc.moved, 2) + " mm to close the pattern)"
              : std::string()) +
         ", " + format_fixed(pc.angle_deg, 2) + " deg on the largest parallel";
-    if (rw.friction) {  // friction turnarounds (planner/friction_winding.h)
+    if (rw.friction) {  // friction turnarounds (planner/winding/friction_winding.h)
       FrictionFigures& ff = plan.metrics.friction_turnarounds;
       ff = friction_figures(rw.friction_plan, plan.circuits, wo.mu);
       const FrictionWinding& fw = rw.friction_plan;
@@ -196,8 +197,8 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     r.passes = circuit_pass_reports(plan.circuits, md.axis, "clairaut");
   } else {
     plan.circuits = build_circuits(ws.mesh, r.helices, ws.face_map, md.axis, wo);
-    plan.metrics = compute_plan_metrics(ws.mesh, r.helices, plan.circuits, r.face_girth,
-                                        md.axis, md.revolution, wo);
+    plan.metrics = compute_plan_metrics(ws.mesh, r.helices, plan.circuits, r.face_girth, md.axis,
+                                        md.revolution, wo);
     r.passes = pass_reports(r.helices, plan.circuits, md.axis);
     if (md.revolution && wo.beta == 0.0) {
       plan.metrics.warnings.push_back("pattern: " + r.revolution.problem.why +
@@ -205,7 +206,7 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
                                       "along the smaller end");
     }
   }
-  // Coverage on the laid bands, from the circuits alone (planner/coverage.h).
+  // Coverage on the laid bands, from the circuits alone (planner/winding/coverage.h).
   CoverageOptions co;
   co.band_width = wo.band_width;
   co.stations = wo.coverage_stations;
@@ -213,13 +214,15 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   PlanMetrics& pm = plan.metrics;
   pm.coverage = measure_coverage(ws.mesh, md.axis, plan.circuits, co);
   pm.cover_factor = pm.coverage.cover_factor;
-  if (r.clairaut) {  // the band spacing on the stations (the core's route has its own, per meridian)
+  if (r.clairaut) {  // the band spacing on the stations (the core's route has its own, per
+                     // meridian)
     pm.spacing_cv = pm.coverage.spacing_cv;
     pm.spacing_mean = pm.coverage.spacing_mean;
   }
   if (!pm.coverage.measured()) {
-    pm.warnings.push_back("coverage: not measured: no plane normal to the spindle axis cuts the "
-                          "wound region in a loop around the axis between the passes' ends");
+    pm.warnings.push_back(
+        "coverage: not measured: no plane normal to the spindle axis cuts the "
+        "wound region in a loop around the axis between the passes' ends");
   } else if (pm.coverage.bare_fraction > 0.0) {
     const StationCoverage* worst = &pm.coverage.stations.front();
     for (const StationCoverage& st : pm.coverage.stations) {
@@ -246,8 +249,7 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
       r.has_turn_limit = true;
       plan.metrics.geodesic_turn_limit = r.turn_limit.turns;
       plan.metrics.geodesic_min_radius = r.turn_limit.min_radius;
-      if (!r.clairaut && wo.beta == 0.0 && r.turn_limit.bounded &&
-          wo.turns > r.turn_limit.turns) {
+      if (!r.clairaut && wo.beta == 0.0 && r.turn_limit.bounded && wo.turns > r.turn_limit.turns) {
         plan.metrics.warnings.push_back(turn_limit_warning(r.turn_limit, wo));
       }
     }

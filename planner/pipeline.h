@@ -1,10 +1,11 @@
 #pragma once
 // The planning pipeline of a job: mandrel -> winding surface -> girth field -> density ->
-// helices (planner/helix.h) -> continuous circuits with their differential geometry and the plan
-// metrics (planner/fibre_metrics.h) -> cut-lines (planner/cutlines.h) -> WindingPlan.
+// helices (planner/winding/helix.h) -> continuous circuits with their differential geometry and the
+// plan metrics (planner/winding/fibre_metrics.h) -> cut-lines (planner/cutlines/cutlines.h) ->
+// WindingPlan.
 //
 // On a shape of revolution the metrics stage also computes the geodesic turn limit N_max between
-// the ends of the passes (the boundary loops, or the stations; planner/clairaut.h) from the
+// the ends of the passes (the boundary loops, or the stations; planner/winding/clairaut.h) from the
 // wound region's meridian, reports it (PlanMetrics::geodesic_turn_limit) and, when beta = 0 and
 // winding.turns > N_max, warns that the passes cannot be geodesics and will wrap along the
 // smaller end (with beta > 0 the density bends the passes: the figure is reported, no warning).
@@ -17,14 +18,14 @@
 #include <string>
 #include <vector>
 
-#include "planner/clairaut.h"
-#include "planner/fibre_metrics.h"
-#include "planner/girth.h"
-#include "planner/helix.h"
-#include "planner/revolution_winding.h"
-#include "planner/job.h"
-#include "planner/mandrel_builder.h"
-#include "planner/plan.h"
+#include "planner/girth/girth.h"
+#include "planner/job/job.h"
+#include "planner/mandrel/mandrel_builder.h"
+#include "planner/plan/plan.h"
+#include "planner/winding/clairaut.h"
+#include "planner/winding/fibre_metrics.h"
+#include "planner/winding/helix.h"
+#include "planner/winding/revolution_winding.h"
 
 namespace windplan {
 
@@ -41,7 +42,7 @@ struct PipelineResult {
   GirthField girth;
   std::vector<double> face_girth;  ///< per winding-surface face (mm): girth field or 2 pi r
   /// true: the circuits come from Clairaut's integral (a shape of revolution, beta = 0;
-  /// planner/revolution_winding.h) and `revolution` holds them (its circuits moved into the
+  /// planner/winding/revolution_winding.h) and `revolution` holds them (its circuits moved into the
   /// plan); false: from the geodesic core (`helices`).
   bool clairaut = false;
   RevolutionWinding revolution;
@@ -58,8 +59,8 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options = {});
 
 /// The winding stages of plan_job (girth, helices, metrics and coverage, the turn limit; not the
 /// mandrel, not the cut-lines) on a mandrel already built, with `winding` in place of
-/// job.winding: the helical layers of a layup (planner/layup.h) run it on the surfaces built by
-/// the layers under them.
+/// job.winding: the helical layers of a layup (planner/plan_layup.h) run it on the surfaces built
+/// by the layers under them.
 PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOptions& winding,
                             const PipelineOptions& options = {});
 

@@ -5,7 +5,7 @@
 #include <functional>
 #include <vector>
 
-#include "geometry/mesh.h"
+#include "geometry/mesh/mesh.h"
 
 namespace windplan::test {
 

@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include "geometry/mesh_io.h"
+#include "geometry/mesh/mesh_io.h"
 #include "tests/cli/cli_runner.h"
 #include "tests/mesh_fixtures.h"
 #include "tests/test_data.h"

@@ -15,8 +15,8 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include "geometry/cad_import.h"
-#include "geometry/mesh_io.h"
+#include "geometry/cad/cad_import.h"
+#include "geometry/mesh/mesh_io.h"
 #include "tests/test_data.h"
 
 namespace windplan {
@@ -70,7 +70,8 @@ TEST_F(MandrelCli, JsonIsPureAndComplete) {
     const CliRun r = run({config(job), "--json"});
     ASSERT_EQ(r.code, 0) << job << ": " << r.err;
     ASSERT_FALSE(r.out.empty());
-    EXPECT_EQ(r.out.front(), '{') << "stdout must start with the JSON object: " << r.out.substr(0, 200);
+    EXPECT_EQ(r.out.front(), '{') << "stdout must start with the JSON object: "
+                                  << r.out.substr(0, 200);
     EXPECT_EQ(r.out.substr(r.out.size() - 2), "}\n");
     const YAML::Node j = YAML::Load(r.out);  // JSON is YAML
     EXPECT_TRUE(j["mesh"]["closed"].as<bool>()) << job;
@@ -86,7 +87,7 @@ TEST_F(MandrelCli, WritesMeshesAndStep) {
   const fs::path mesh = dir_ / "vessel.ply", annulus = dir_ / "annulus.obj",
                  step = dir_ / "vessel.step";
   const CliRun r = run({config("pipe.yaml"), "-o", mesh.string(), "--winding", annulus.string(),
-                     "--step", step.string()});
+                        "--step", step.string()});
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("start loop"), std::string::npos) << r.out;
   EXPECT_EQ(read_mesh(mesh).triangles.size() > read_mesh(annulus).triangles.size(), true);
@@ -138,8 +139,9 @@ TEST_F(MandrelCli, NonAnnulusPrintsTheRegionTableAndTheSuggestedKeys) {
   // The story: the same canister as a closed mesh file (written by -o even though it
   // cannot be wound) fails the same way, and winds with the suggested keys.
   ASSERT_TRUE(fs::exists(dir_ / "canister.ply"));
-  const std::string mesh_job = "mandrel:\n  source: mesh\n  file: canister.ply\n"
-                               "  axis: {origin: [0, 0, 0], direction: [0, 0, 1]}\n";
+  const std::string mesh_job =
+      "mandrel:\n  source: mesh\n  file: canister.ply\n"
+      "  axis: {origin: [0, 0, 0], direction: [0, 0, 1]}\n";
   std::ofstream(dir_ / "mesh.yaml") << mesh_job;
   const CliRun m = run({(dir_ / "mesh.yaml").string()});
   EXPECT_EQ(m.code, 1);
@@ -147,8 +149,8 @@ TEST_F(MandrelCli, NonAnnulusPrintsTheRegionTableAndTheSuggestedKeys) {
   double a = 0, b = 0;
   ASSERT_EQ(std::sscanf(r.err.c_str() + k, "Set mandrel.region: {start: %lf, end: %lf}", &a, &b),
             2);
-  std::ofstream(dir_ / "mesh.yaml") << mesh_job << "  region: {start: " << a << ", end: " << b
-                                    << "}\n";
+  std::ofstream(dir_ / "mesh.yaml")
+      << mesh_job << "  region: {start: " << a << ", end: " << b << "}\n";
   const CliRun w = run({(dir_ / "mesh.yaml").string()});
   EXPECT_EQ(w.code, 0) << w.err;
   EXPECT_NE(w.out.find("annulus"), std::string::npos) << w.out;
@@ -217,8 +219,9 @@ TEST_F(MandrelCli, RegionOverTwoTubesNeedsAComponent) {
     }
   }
   obj.close();
-  const std::string job = "mandrel:\n  source: mesh\n  file: two_tubes.obj\n"
-                          "  axis: {origin: [0, 0, 0], direction: [0, 0, 1]}\n";
+  const std::string job =
+      "mandrel:\n  source: mesh\n  file: two_tubes.obj\n"
+      "  axis: {origin: [0, 0, 0], direction: [0, 0, 1]}\n";
   std::ofstream(dir_ / "two.yaml") << job << "  region: {start: 100, end: 400}\n";
   const CliRun r = run({(dir_ / "two.yaml").string()});
   EXPECT_EQ(r.code, 1);

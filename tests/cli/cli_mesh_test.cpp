@@ -9,10 +9,10 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include "geometry/mesh_io.h"
-#include "geometry/mesh_validation.h"
-#include "tests/mesh_fixtures.h"
+#include "geometry/mesh/mesh_io.h"
+#include "geometry/mesh/mesh_validation.h"
 #include "tests/cli/cli_runner.h"
+#include "tests/mesh_fixtures.h"
 #include "tests/test_data.h"
 
 namespace windplan {

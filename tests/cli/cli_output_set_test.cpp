@@ -1,5 +1,5 @@
-// windplan run's output folder as a subprocess (export/output_set.h): a run killed during export
-// leaves the previous complete set, two runs into one folder (one refused), the manifest's
+// windplan run's output folder as a subprocess (export/files/output_set.h): a run killed during
+// export leaves the previous complete set, two runs into one folder (one refused), the manifest's
 // hashes against sha256sum, no file of another job left beside a new set; and the bad inputs of
 // issue 18 that only the whole program shows (name escaping out/, garbage echoed, warnings).
 #include <fcntl.h>
@@ -104,7 +104,7 @@ std::string sha256sum(const fs::path& p) {
 }
 
 // Every {"name": n, "size": s, "sha256": h} of the manifest's "files", read independently of
-// export/manifest.cpp (a plain scan of the text).
+// export/files/manifest.cpp (a plain scan of the text).
 std::vector<std::array<std::string, 3>> manifest_files(const std::string& json) {
   std::vector<std::array<std::string, 3>> out;
   std::size_t pos = json.find("\"files\"");
@@ -136,8 +136,9 @@ class CliOutputSet : public CliTest {
   // A second job into the same folder: another name and G-code dialect (toolpath.gcode).
   fs::path marlin_job() const {
     const fs::path p = dir_ / "marlin.yaml";
-    std::ofstream(p) << "name: marlin_pipe\nmandrel: {source: pipe, pipe: {radius: 40, length: 300}}\n"
-                        "machine: {gcode: {dialect: marlin}}\nwinding: {turns: 2, circuits: 3}\n";
+    std::ofstream(p)
+        << "name: marlin_pipe\nmandrel: {source: pipe, pipe: {radius: 40, length: 300}}\n"
+           "machine: {gcode: {dialect: marlin}}\nwinding: {turns: 2, circuits: 3}\n";
     return p;
   }
 };
@@ -170,7 +171,8 @@ TEST_F(CliOutputSet, AnotherJobsFilesAreNotLeftBesideTheNewSet) {
   EXPECT_FALSE(fs::exists(out / "toolpath.gcode"));  // once left beside the new toolpath.ngc
   EXPECT_TRUE(fs::exists(out / "toolpath.ngc"));
   EXPECT_EQ(names_in(dir_).count(".set.lock"), 1u);
-  for (const std::string& n : names_in(dir_)) EXPECT_EQ(n.find(".set.staging"), std::string::npos) << n;
+  for (const std::string& n : names_in(dir_))
+    EXPECT_EQ(n.find(".set.staging"), std::string::npos) << n;
 }
 
 TEST_F(CliOutputSet, RunKilledDuringExportLeavesThePreviousCompleteSetAndNoTempFile) {
@@ -202,7 +204,8 @@ TEST_F(CliOutputSet, RunStoppedByACatchableSignalRemovesItsTemporaryFiles) {
     ASSERT_TRUE(p.paused()) << slurp(dir_ / "paused_err.txt");
     EXPECT_EQ(p.stop(sig), sig);
     EXPECT_EQ(names_in(dir_).count("set"), 0u) << sig;  // no set was ever complete
-    for (const std::string& n : names_in(dir_)) EXPECT_EQ(n.find("staging"), std::string::npos) << n;
+    for (const std::string& n : names_in(dir_))
+      EXPECT_EQ(n.find("staging"), std::string::npos) << n;
   }
 }
 
@@ -223,7 +226,8 @@ TEST_F(CliOutputSet, SecondRunIntoAHeldFolderIsRefused) {
 TEST_F(CliOutputSet, JobNameCannotEscapeTheOutputFolder) {
   const fs::path job = dir_ / "jobs" / "j.yaml";
   fs::create_directories(job.parent_path());
-  std::ofstream(job) << "name: \"../../escape\"\nmandrel: {source: pipe, pipe: {radius: 50, length: 500}}\n";
+  std::ofstream(job)
+      << "name: \"../../escape\"\nmandrel: {source: pipe, pipe: {radius: 50, length: 500}}\n";
   const test::RunResult r = run({"run", job.string()});
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("key 'name': must not contain '..'"), std::string::npos) << r.err;
@@ -242,8 +246,9 @@ TEST_F(CliOutputSet, GarbageFromAMeshFileIsNeverEchoedRaw) {
 
 TEST_F(CliOutputSet, CoarseRemeshWarnsWithTheAreaChange) {
   const fs::path job = dir_ / "coarse.yaml";
-  std::ofstream(job) << "mandrel: {source: pipe, remesh: 50, pipe: {radius: 50, length: 500}}\n"
-                        "winding: {turns: 2, circuits: 2}\noutput: {csv: false, ply: false, svg: false}\n";
+  std::ofstream(job)
+      << "mandrel: {source: pipe, remesh: 50, pipe: {radius: 50, length: 500}}\n"
+         "winding: {turns: 2, circuits: 2}\noutput: {csv: false, ply: false, svg: false}\n";
   // (windplan mandrel: on this coarse mesh the pipe's waist falls below the turnaround radius,
   // so `run` stops in the planner after the mandrel stage.)
   const test::RunResult r = run({"mandrel", job.string()});
@@ -254,11 +259,12 @@ TEST_F(CliOutputSet, CoarseRemeshWarnsWithTheAreaChange) {
 }
 
 TEST_F(CliOutputSet, AutoCircuitsOverflowOnAMeshMandrelIsRefused) {
-  // band_width: 1e-9 once overflowed planner/helix.cpp's int conversion into 1 circuit, exit 0.
-  // A mesh mandrel's size is known only once read, so the pipeline checks it then (helix.cpp
-  // keeps a guard at the conversion).
+  // band_width: 1e-9 once overflowed planner/winding/helix.cpp's int conversion into 1 circuit,
+  // exit 0. A mesh mandrel's size is known only once read, so the pipeline checks it then
+  // (helix.cpp keeps a guard at the conversion).
   const fs::path job = dir_ / "tiny_band.yaml";
-  std::ofstream(job) << "mandrel: {source: mesh, file: " << (test::source_dir() / "configs/meshes/tube.obj").string()
+  std::ofstream(job) << "mandrel: {source: mesh, file: "
+                     << (test::source_dir() / "configs/meshes/tube.obj").string()
                      << "}\nwinding: {band_width: 0.005}\n";
   const test::RunResult r = run({"run", job.string(), "--out", (dir_ / "o").string()});
   EXPECT_EQ(r.code, 1) << r.err;

@@ -4,8 +4,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -151,7 +151,8 @@ TEST_F(CliRun, PatternsTableStartsWithWhatAutoWinds) {
   EXPECT_EQ(plan["metrics"]["pattern_info"]["skip"].as<int>(), first["skip"].as<int>());
   EXPECT_NEAR(plan["metrics"]["pattern_info"]["turnaround_radius"].as<double>(),
               first["turnaround_radius"].as<double>(), 1e-9);
-  EXPECT_EQ(plan["metrics"]["coverage"]["bare_fraction"].as<double>(), first["bare_fraction"].as<double>());
+  EXPECT_EQ(plan["metrics"]["coverage"]["bare_fraction"].as<double>(),
+            first["bare_fraction"].as<double>());
   for (const YAML::Node& row : table["patterns"]) {
     EXPECT_GE(row["turnaround_radius"].as<double>(), table["window_lo"].as<double>());
     EXPECT_LE(row["turnaround_radius"].as<double>(), table["window_hi"].as<double>());
@@ -216,7 +217,8 @@ TEST_F(CliRun, BadWindingInputIsExitOneWithTheKey) {
         {"pattern: {circuits: 7, skip: 3}\n  turnaround_window: 0", "winding.pattern: K=7, p=3"}}) {
     std::ofstream(job) << "mandrel:\n  source: vessel\n  vessel:\n    radius: 100\n"
                           "    length: 300\n    dome: {type: hemispherical, polar_opening: 30}\n"
-                          "winding:\n  band_width: 16\n  " << winding << "\n";
+                          "winding:\n  band_width: 16\n  "
+                       << winding << "\n";
     const Proc v = run({"run", job.string(), "--out", (dir_ / "o").string()});
     EXPECT_EQ(v.code, 1) << winding;
     EXPECT_NE(v.err.find(key), std::string::npos) << v.err;
@@ -357,7 +359,7 @@ TEST_F(CliRun, SharedMandrelMeshesWindOrSayWhatToChange) {
   }
 }
 
-// ---- layups (planner/layup.h): the shipped vessel_layup.yaml and bad layer input ----
+// ---- layups (planner/plan_layup.h): the shipped vessel_layup.yaml and bad layer input ----
 
 TEST_F(CliRun, VesselLayupEveryLayerInTheReportAndInOrderInTheProgram) {
   const fs::path out = dir_ / "layup";
@@ -407,7 +409,8 @@ TEST_F(CliRun, VesselLayupEveryLayerInTheReportAndInOrderInTheProgram) {
     ++pauses;
   }
   EXPECT_EQ(pauses, 3u);
-  for (const char* f : {"laminate.csv", "laminate.vtu", "layer_profiles.csv", "layer_profiles.svg"}) {
+  for (const char* f :
+       {"laminate.csv", "laminate.vtu", "layer_profiles.csv", "layer_profiles.svg"}) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
   }
   EXPECT_NE(read_all(out / "report.md").find("### Layer 4: helical2 (helical)"), std::string::npos);
@@ -440,7 +443,8 @@ TEST_F(CliRun, BadLayerInputIsExitOneWithTheKey) {
     EXPECT_NE(r.err.find(cases[i].key), std::string::npos) << r.err;
     // One line: the error (warnings and stage lines aside).
     std::size_t errors = 0;
-    for (std::size_t p = r.err.find("error"); p != std::string::npos; p = r.err.find("error", p + 1)) {
+    for (std::size_t p = r.err.find("error"); p != std::string::npos;
+         p = r.err.find("error", p + 1)) {
       ++errors;
     }
     EXPECT_EQ(errors, 1u) << r.err;

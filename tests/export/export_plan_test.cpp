@@ -13,10 +13,10 @@
 
 #include <gtest/gtest.h>
 
-#include "export/report.h"
-#include "geometry/atomic_file.h"
-#include "geometry/errors.h"
-#include "planner/job.h"
+#include "export/files/report.h"
+#include "geometry/base/atomic_file.h"
+#include "geometry/base/errors.h"
+#include "planner/job/job.h"
 #include "tests/export/gcode_parser.h"
 #include "tests/export/plan_fixtures.h"
 #include "tests/mesh_fixtures.h"
@@ -67,8 +67,8 @@ WindingPlan sample_plan(int n = 500, int circuits = 3) {
 Mesh sample_mesh() { return Mesh(test::open_cylinder(50, 700, 24, 10)); }
 
 // The sample plan's circuits are separate helices that all start at z = 0 (not one continuous
-// fibre), so its G-code replay (export/replay.h) deviates by design: these tests replay and report
-// only (replay_tolerance 0); the replay has its own tests.
+// fibre), so its G-code replay (export/program/replay.h) deviates by design: these tests replay and
+// report only (replay_tolerance 0); the replay has its own tests.
 MachineOptions report_only() {
   MachineOptions m;
   m.replay_tolerance = 0;
@@ -149,7 +149,7 @@ TEST(ExportPlan, WritesEveryFileConsistently) {
   EXPECT_NE(svg.find("id=\"circuit-2\""), std::string::npos);
   EXPECT_NE(svg.find("id=\"cutline-0\""), std::string::npos);
   // The sample plan is not flagged a shape of revolution and its mesh is an annulus: unrolled in
-  // its conformal coordinates (export/unroll.h).
+  // its conformal coordinates (export/plots/unroll.h).
   EXPECT_NE(svg.find("height between the ends"), std::string::npos);
   // paths.ply: header counts match the body.
   const auto ply = lines_of(read_text_file(d / "paths.ply"));
@@ -185,8 +185,8 @@ TEST(ExportPlan, WritesEveryFileConsistently) {
   EXPECT_NE(summary.find("report.md"), std::string::npos);
 }
 
-// The geodesic turn limit (planner/clairaut.h): only for shapes of revolution (NaN: no key, no
-// row); +inf (a cylinder) is JSON null and "none"; a number otherwise.
+// The geodesic turn limit (planner/winding/clairaut.h): only for shapes of revolution (NaN: no key,
+// no row); +inf (a cylinder) is JSON null and "none"; a number otherwise.
 TEST(ExportPlan, ReportsCarryTheGeodesicTurnLimitOfShapesOfRevolution) {
   WindingPlan plan = sample_plan(100, 1);
   plan.metrics.turns_per_pass = 5;
@@ -326,9 +326,9 @@ TEST(ExportPlan, JobSectionsDriveTheExport) {
       "/jobs/tank.yaml");
   const fs::path d = temp_dir("job");
   const ExportResult r = export_plan(sample_plan(), sample_mesh(), job.machine, job.output, d);
-  EXPECT_EQ(r.files, (std::vector<std::string>{"fibre_path.csv", "payout.csv", "axes.csv",
-                                               "cutlines.csv", "toolpath.gcode", "report.json",
-                                               "report.md"}));
+  EXPECT_EQ(r.files,
+            (std::vector<std::string>{"fibre_path.csv", "payout.csv", "axes.csv", "cutlines.csv",
+                                      "toolpath.gcode", "report.json", "report.md"}));
   const std::string g = read_text_file(d / "toolpath.gcode");
   EXPECT_NE(g.find("G92 C0"), std::string::npos);
   EXPECT_FALSE(fs::exists(d / "development.svg"));

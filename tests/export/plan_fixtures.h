@@ -2,7 +2,7 @@
 // Winding plans made in code from closed-form curves, for the export tests.
 #include <cmath>
 
-#include "planner/plan.h"
+#include "planner/plan/plan.h"
 
 namespace windplan::test {
 

@@ -1,12 +1,12 @@
-// libFuzzer harness: the PLY mesh reader (geometry/mesh_io.h, read_mesh_data on ".ply").
+// libFuzzer harness: the PLY mesh reader (geometry/mesh/mesh_io.h, read_mesh_data on ".ply").
 // Every input must give a triangle soup or an IoError naming the element; anything else -- another
 // exception, a crash, a sanitizer report, a hang -- is a finding. Run: docs/bad_inputs.md.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
-#include "geometry/errors.h"
-#include "geometry/mesh_io.h"
+#include "geometry/base/errors.h"
+#include "geometry/mesh/mesh_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);

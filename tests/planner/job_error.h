@@ -3,12 +3,13 @@
 // marked text for any other exception (which a test then shows as the failure it is).
 #include <string>
 
-#include "geometry/errors.h"
-#include "planner/job.h"
+#include "geometry/base/errors.h"
+#include "planner/job/job.h"
 
 namespace windplan::test {
 
-inline std::string job_load_error(const std::string& yaml, const std::string& file = "/jobs/j.yaml") {
+inline std::string job_load_error(const std::string& yaml,
+                                  const std::string& file = "/jobs/j.yaml") {
   try {
     load_job_from_string(yaml, file);
   } catch (const ConfigError& e) {

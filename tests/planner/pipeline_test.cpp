@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "geometry/errors.h"
+#include "geometry/base/errors.h"
 #include "tests/test_data.h"
 
 namespace windplan {
@@ -109,7 +109,8 @@ TEST(Pipeline, StationsBoundThePassesAndTheTurnarounds) {
   double arcs = 0.0;  // the dwell arcs of the circuits: half a turn or so on each station circle
   for (const Circuit& c : r.plan.circuits) {
     for (const CircuitSegment& s : c.segments) {
-      if (s.kind == CircuitSegment::Kind::Turnaround) arcs += c.points[s.last].s - c.points[s.first].s;
+      if (s.kind == CircuitSegment::Kind::Turnaround)
+        arcs += c.points[s.last].s - c.points[s.first].s;
     }
   }
   EXPECT_NEAR(m.turnarounds.length, arcs, 1e-6 * arcs);
@@ -143,8 +144,8 @@ bool has_turn_warning(const PlanMetrics& m) {
   return false;
 }
 
-// The geodesic turn limit (planner/clairaut.h) of a vessel with hemispherical domes: from the
-// equator to the opening r0 a great circle tangent to the opening turns by exactly pi / 2, and
+// The geodesic turn limit (planner/winding/clairaut.h) of a vessel with hemispherical domes: from
+// the equator to the opening r0 a great circle tangent to the opening turns by exactly pi / 2, and
 // the cylinder adds L r0 / (R sqrt(R^2 - r0^2)), so N_max = (pi + L r0 / (R sqrt(R^2 - r0^2)))
 // / (2 pi) = 0.6502 for R 100, L 300, r0 30 (mm): the fewest turns a pass can make when it turns
 // around on the domes. The tessellated mandrel gives it to 0.2% (the meridian's chords). N = 1
@@ -244,10 +245,13 @@ TEST(Pipeline, VesselsWindGeodesicTurnaroundsWithFullCover) {
   for (const char* f : {"vessel.yaml", "vessel_step.yaml"}) {
     jobs.emplace_back(f, load_job(test::source_dir() / "configs" / f));
   }
-  jobs.emplace_back("elliptical", load_job_from_string(
-      "name: e\nmandrel:\n  source: vessel\n  remesh: 6\n  vessel:\n    radius: 100\n"
-      "    length: 300\n    dome: {type: elliptical, polar_opening: 30, aspect: 0.6}\n"
-      "winding:\n  band_width: 16\n", "/tmp/e.yaml"));
+  jobs.emplace_back(
+      "elliptical",
+      load_job_from_string(
+          "name: e\nmandrel:\n  source: vessel\n  remesh: 6\n  vessel:\n    radius: 100\n"
+          "    length: 300\n    dome: {type: elliptical, polar_opening: 30, aspect: 0.6}\n"
+          "winding:\n  band_width: 16\n",
+          "/tmp/e.yaml"));
   for (auto& [name, job] : jobs) {
     SCOPED_TRACE(name);
     job.cutlines.clear();

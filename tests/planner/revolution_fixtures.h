@@ -6,8 +6,8 @@
 #include <functional>
 #include <vector>
 
-#include "geometry/axis.h"
-#include "geometry/mesh.h"
+#include "geometry/mesh/mesh.h"
+#include "geometry/region/axis.h"
 #include "tests/mesh_fixtures.h"
 
 namespace windplan::test {

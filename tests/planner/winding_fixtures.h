@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/mesh.h"
+#include "geometry/mesh/mesh.h"
 #include "tests/mesh_fixtures.h"
 
 namespace windplan::test {

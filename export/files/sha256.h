@@ -1,0 +1,33 @@
+#pragma once
+// SHA-256 (FIPS 180-4) of files and strings, for the output manifest (export/files/manifest.h): a
+// shop checks a set with `sha256sum` before loading a program. Small and self-contained so that
+// windplan needs no crypto library; verified against the FIPS test vectors and sha256sum.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace windplan {
+
+/// Incremental SHA-256.
+class Sha256 {
+ public:
+  Sha256();
+  void update(const void* data, std::size_t size);
+  /// The digest as 64 lower-case hex digits; the object is spent afterwards.
+  std::string hex_digest();
+
+ private:
+  void block(const unsigned char* p);
+  std::uint32_t h_[8];
+  unsigned char buf_[64];
+  std::size_t buf_len_ = 0;
+  std::uint64_t total_ = 0;
+};
+
+/// SHA-256 of a string, hex.
+std::string sha256_hex(const std::string& data);
+
+/// SHA-256 of a file's bytes, hex. \throw IoError if it cannot be read.
+std::string sha256_file(const std::filesystem::path& path);
+
+}  // namespace windplan

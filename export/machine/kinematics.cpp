@@ -1,0 +1,415 @@
+#include "export/machine/kinematics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+
+#include "export/machine/clearance.h"
+#include "export/machine/monotone_axes.h"
+#include "export/machine/resample.h"
+#include "export/machine/tangent_smoothing.h"
+#include "geometry/base/errors.h"
+#include "geometry/mesh/closest_point.h"
+
+namespace windplan {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = 180.0 / kPi;
+
+std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// Brings `raw` (deg) within 180 of `prev` by whole turns: the unwrapped continuation.
+double unwrap_deg(double raw, double prev) { return prev + std::remainder(raw - prev, 360.0); }
+
+}  // namespace
+
+double AxisFrame::angle(const Vec3& p) const {
+  const Vec3 q = p - origin;
+  const double a = q.dot(u);
+  const double b = q.dot(v);
+  if (a == 0.0 && b == 0.0) return 0.0;
+  return std::atan2(b, a);
+}
+
+AxisFrame make_axis_frame(const SpindleAxis& axis) {
+  AxisFrame f;
+  f.origin = axis.origin;
+  const double n = axis.direction.norm();
+  if (!(n > 0.0) || !std::isfinite(n)) throw InputError("the spindle axis has no direction");
+  f.d = axis.direction / n;
+  // The world axis least aligned with d; ties go to the first one (x, y, z).
+  int best = 0;
+  for (int i = 1; i < 3; ++i) {
+    if (std::fabs(f.d[i]) < std::fabs(f.d[best]) - 1e-12) best = i;
+  }
+  const Vec3 e = Vec3::Unit(best);
+  f.u = (e - e.dot(f.d) * f.d).normalized();
+  f.v = f.d.cross(f.u);
+  return f;
+}
+
+EyeSolution solve_payout_eye(const AxisFrame& frame, const Envelope& env, const Vec3& p,
+                             const Vec3& t_in, const std::string& where) {
+  const std::string at = where.empty() ? std::string() : where + ": ";
+  const double tn = t_in.norm();
+  if (!(tn > 1e-12) || !std::isfinite(tn)) {
+    throw InputError(at + "the fibre tangent is zero or not finite");
+  }
+  const Vec3 t = t_in / tn;
+  if (!p.allFinite()) throw InputError(at + "the fibre point is not finite");
+  EyeSolution s;
+  if (env.fixed_length) {
+    s.free_length = env.free_length;
+    s.eye = p + env.free_length * t;
+    return s;
+  }
+  auto f = [&](double l) {
+    const Vec3 e = p + l * t;
+    return frame.radius(e) - env.radius_at(frame.axial(e));
+  };
+  const double r0 = frame.radius(p);
+  const double renv0 = env.radius_at(frame.axial(p));
+  double fl = r0 - renv0;
+  if (!(fl < 0.0)) {
+    throw InputError(at + "the clearance envelope (radius " + num(renv0) + " mm at axial " +
+                     num(frame.axial(p)) + " mm) is inside the mandrel (point radius " + num(r0) +
+                     " mm)");
+  }
+  const double t_perp = (t - t.dot(frame.d) * frame.d).norm();
+  if (t_perp < 1e-12) {
+    throw InputError(at +
+                     "the fibre tangent is parallel to the spindle axis and never leaves "
+                     "the clearance envelope");
+  }
+  const double r_max = *std::max_element(env.r.begin(), env.r.end());
+  // Beyond l_max the radius t_perp * l - r0 exceeds every envelope radius.
+  const double l_max = (r_max + r0) / t_perp + 1.0;
+  const double lipschitz = 1.0 + env.max_slope;
+  double lo = 0.0, l = 0.0;
+  int it = 0;
+  while (fl < 0.0) {
+    // Sphere tracing: |f'| <= lipschitz, so no root lies within -f / lipschitz.
+    const double step = std::max(-fl / lipschitz, 1e-7);
+    lo = l;
+    l += step;
+    fl = f(l);
+    if (++it > 1000000 || l > l_max) {
+      throw InputError(at + "the fibre tangent never leaves the clearance envelope");
+    }
+  }
+  double hi = l;
+  while (hi - lo > 1e-10) {
+    const double mid = 0.5 * (lo + hi);
+    if (f(mid) < 0.0) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+    ++it;
+  }
+  s.free_length = 0.5 * (lo + hi);
+  s.eye = p + s.free_length * t;
+  s.iterations = it;
+  return s;
+}
+
+bool uses_inverse_time(const GcodeOptions& g) {
+  if (g.feed == "inverse_time") return true;
+  if (g.feed == "per_minute") return false;
+  return g.dialect == "linuxcnc";
+}
+
+std::array<FeedAxis, 4> feed_axes(const MachineOptions& opts) {
+  return {FeedAxis{opts.a.max_velocity, opts.a.max_acceleration},
+          FeedAxis{opts.x.max_velocity, opts.x.max_acceleration},
+          FeedAxis{opts.y.max_velocity, opts.y.max_acceleration},
+          FeedAxis{opts.b.max_velocity, opts.b.max_acceleration}};
+}
+
+int driven_axes(const MachineOptions& opts) { return opts.kind == "lathe2" ? 2 : 4; }
+
+namespace {
+
+// Sign changes between consecutive non-zero moves of v[begin..end); calls at(i) with the index of
+// the turning value for each.
+template <class F>
+int count_reversals(const std::vector<double>& v, int begin, int end, F at) {
+  int count = 0, dir = 0, last = begin;
+  for (int i = begin + 1; i < end; ++i) {
+    const double d = v[i] - v[i - 1];
+    if (std::fabs(d) < 1e-9) continue;
+    const int s = d > 0 ? 1 : -1;
+    if (dir != 0 && s != dir) {
+      ++count;
+      at(last);
+    }
+    dir = s;
+    last = i;
+  }
+  return count;
+}
+
+// Reversal figures of one circuit's states [begin, end).
+void count_circuit_reversals(const Circuit& c, const std::vector<MachineState>& st, int begin,
+                             int end, Motion* m) {
+  std::vector<double> xs(st.size()), as(st.size());
+  for (int i = begin; i < end; ++i) {
+    xs[i] = st[i].x_mm;
+    as[i] = st[i].a_deg;
+  }
+  // The pass containing dense index k strictly inside it, or nullptr.
+  auto pass_of = [&c](int k) -> const CircuitSegment* {
+    for (const CircuitSegment& seg : c.segments) {
+      if (seg.kind == CircuitSegment::Kind::Pass && k > seg.first && k < seg.last) return &seg;
+    }
+    return nullptr;
+  };
+  const int cx = count_reversals(xs, begin, end, [&](int i) {
+    const int k = st[i].index;
+    if (const CircuitSegment* seg = pass_of(k)) {
+      const double s0 = c.points[seg->first].s, s1 = c.points[seg->last].s;
+      const double s = c.points[k].s;
+      if (s > s0 + 0.25 * (s1 - s0) && s < s1 - 0.25 * (s1 - s0)) ++m->mid_pass_carriage_reversals;
+    }
+  });
+  m->carriage_reversals += cx;
+  m->max_carriage_reversals_per_circuit = std::max(m->max_carriage_reversals_per_circuit, cx);
+  m->spindle_reversals += count_reversals(as, begin, end, [&](int i) {
+    if (pass_of(st[i].index)) ++m->spindle_reversals_in_passes;
+  });
+}
+
+}  // namespace
+
+Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const Mesh* mandrel) {
+  std::string why;
+  if (!opts.is_valid(&why)) throw ConfigError("machine: " + why);
+  Motion m;
+  m.inverse_time = uses_inverse_time(opts.gcode);
+  m.layers = plan.layers;
+  const AxisFrame frame = make_axis_frame(plan.axis);
+  const Envelope env = make_envelope(swept_profile(plan, mandrel), opts.envelope, opts.kind);
+  m.envelope = env.description;
+  const bool lathe2 = opts.kind == "lathe2";
+  // Machine axes that move (and bound the time): lathe2 drives A and X only.
+  const AxisOptions* axes[4] = {&opts.a, &opts.x, &opts.y, &opts.b};
+  const char* names[4] = {"A", "X", "Y", "B"};
+  const char* units[4] = {"deg", "mm", "mm", "deg"};
+  const int n_axes = driven_axes(opts);
+  std::unique_ptr<ClosestPointQuery> query;
+  if (mandrel && mandrel->num_faces() > 0) query = std::make_unique<ClosestPointQuery>(*mandrel);
+  m.required_clearance = env.fixed_length ? 0.0 : opts.envelope.clearance;
+  double min_clearance = std::numeric_limits<double>::infinity();
+
+  double laid_before = 0.0;
+  bool first = true;
+  MachineState prev;
+  std::vector<int> circuit_begin;
+  for (std::size_t ordinal = 0; ordinal < plan.circuits.size(); ++ordinal) {
+    const Circuit& c = plan.circuits[ordinal];
+    const int n = static_cast<int>(c.points.size());
+    if (n == 0) continue;
+    m.dense_points += n;
+    std::vector<Vec3> fibre(n), eyes(n), raw_t(n);
+    std::vector<double> s(n), kappa(n);
+    for (int i = 0; i < n; ++i) {
+      const FibrePoint& fp = c.points[i];
+      fibre[i] = fp.position;
+      raw_t[i] = fp.tangent;
+      s[i] = fp.s;
+      kappa[i] = std::hypot(fp.k_n, fp.k_g);
+    }
+    // Pieces: a dwell arc (Turnaround) is its own piece, consecutive passes form one (they meet
+    // tangentially); the smoothing window does not cross a corner between pieces.
+    std::vector<int> piece(n, 0);
+    {
+      int id = 0;
+      bool prev_turn = false;
+      for (std::size_t g = 0; g < c.segments.size(); ++g) {
+        const bool turn = c.segments[g].kind == CircuitSegment::Kind::Turnaround;
+        if (g > 0 && (turn || prev_turn)) ++id;
+        for (int i = std::max(0, c.segments[g].first); i <= c.segments[g].last && i < n; ++i) {
+          piece[i] = id;
+        }
+        prev_turn = turn;
+      }
+    }
+    const std::vector<Vec3> tangent =
+        smooth_tangents(fibre, s, kappa, raw_t, opts.tangent_window, 2.0, piece);
+    std::vector<EyeSolution> sol(n);
+    for (int i = 0; i < n; ++i) {
+      const double tn = raw_t[i].norm();
+      if (tn > 0.0) {
+        const double cosang = std::clamp(tangent[i].dot(raw_t[i]) / tn, -1.0, 1.0);
+        m.max_tangent_change = std::max(m.max_tangent_change, std::acos(cosang) * kDeg);
+      }
+      try {
+        sol[i] = solve_payout_eye(frame, env, fibre[i], tangent[i]);
+      } catch (const InputError& e) {
+        // The point is named only on failure (no string per point on the hot path).
+        throw InputError("circuit " + std::to_string(c.index) + ", point " + std::to_string(i) +
+                         ": " + e.what());
+      }
+      eyes[i] = sol[i].eye;
+      m.max_eye_iterations = std::max(m.max_eye_iterations, sol[i].iterations);
+    }
+    if (query) {
+      const ClearanceCheck cc = check_clearance(*query, eyes);
+      if (cc.min_distance < min_clearance) {
+        min_clearance = cc.min_distance;
+        m.min_clearance_circuit = c.index;
+        m.min_clearance_index = cc.worst;
+      }
+      if (cc.min_distance < m.required_clearance - opts.chord_tolerance) {
+        const Vec3& e = cc.worst_eye;
+        throw InputError("machine.envelope: circuit " + std::to_string(c.index) + ", point " +
+                         std::to_string(cc.worst) + ": the eye at (" + num(e.x()) + ", " +
+                         num(e.y()) + ", " + num(e.z()) + ") mm is " + num(cc.min_distance) +
+                         " mm from the mandrel, less than the clearance " +
+                         num(m.required_clearance) + " mm (" + env.description + ")");
+      }
+    }
+    std::vector<int> forced;
+    for (const CircuitSegment& seg : c.segments) {
+      forced.push_back(seg.first);
+      forced.push_back(seg.last);
+    }
+    const ResampleResult rs = resample_by_chord({&fibre, &eyes}, opts.chord_tolerance, forced);
+    m.max_chord_deviation = std::max(m.max_chord_deviation, rs.max_deviation);
+    const double s0 = c.points.front().s;
+    circuit_begin.push_back(static_cast<int>(m.states.size()));
+    for (int k : rs.kept) {
+      const FibrePoint& fp = c.points[k];
+      MachineState st;
+      st.circuit = c.index;
+      st.ordinal = static_cast<int>(ordinal);
+      st.index = k;
+      st.position = fp.position;
+      st.eye = sol[k].eye;
+      st.direction = tangent[k];
+      st.free_length = sol[k].free_length;
+      st.paid_out = laid_before + (fp.s - s0) + st.free_length;
+      const double a_raw = -frame.angle(st.eye) * kDeg;
+      st.a_deg = first ? a_raw : unwrap_deg(a_raw, prev.a_deg);
+      st.x_mm = frame.axial(st.eye);
+      st.y_mm = frame.radius(st.eye);
+      const Vec3 q = st.eye - frame.origin;
+      const Vec3 radial = q - q.dot(frame.d) * frame.d;
+      const double rn = radial.norm();
+      if (rn > 1e-12) st.radial = radial / rn;
+      if (!lathe2) {
+        double b_raw = first ? 0.0 : prev.b_deg;
+        if (rn > 1e-12) {
+          const Vec3 circ = frame.d.cross(radial / rn);
+          b_raw = std::atan2(st.direction.dot(circ), st.direction.dot(frame.d)) * kDeg;
+        }
+        st.b_deg = first ? b_raw : unwrap_deg(b_raw, prev.b_deg);
+      }
+      const double value[4] = {st.a_deg, st.x_mm, st.y_mm, st.b_deg};
+      for (int ax = 0; ax < n_axes; ++ax) {
+        const double mv = axes[ax]->sign * value[ax] + axes[ax]->offset;
+        if (mv < axes[ax]->min || mv > axes[ax]->max) {
+          throw InputError("machine.axes." + std::string(names[ax]) + ": axis " + names[ax] +
+                           " (letter " + axes[ax]->letter + ") would move to " + num(mv) + " " +
+                           units[ax] + ", outside its travel [" + num(axes[ax]->min) + ", " +
+                           num(axes[ax]->max) + "], at circuit " + std::to_string(c.index) +
+                           ", point " + std::to_string(k));
+        }
+      }
+      auto grow = [first](Range* r, double v) {
+        if (first) {
+          r->min = r->max = v;
+        } else {
+          r->min = std::min(r->min, v);
+          r->max = std::max(r->max, v);
+        }
+      };
+      grow(&m.a, st.a_deg);
+      grow(&m.x, st.x_mm);
+      grow(&m.y, st.y_mm);
+      grow(&m.b, st.b_deg);
+      grow(&m.free_length, st.free_length);
+      m.states.push_back(st);
+      prev = st;
+      first = false;
+    }
+    if (opts.monotone_axes) {
+      const int b = circuit_begin.back(), e = static_cast<int>(m.states.size());
+      std::vector<double> xs(e), as(e);
+      for (int i = b; i < e; ++i) {
+        xs[i] = m.states[i].x_mm;
+        as[i] = m.states[i].a_deg;
+      }
+      m.max_monotone_change_x =
+          std::max(m.max_monotone_change_x, monotone_between_extremes(&xs, b, e));
+      m.max_monotone_change_a = std::max(m.max_monotone_change_a, monotone_overall(&as, b, e));
+      for (int i = b; i < e; ++i) {
+        MachineState& st = m.states[i];
+        st.x_mm = xs[i];
+        st.a_deg = as[i];
+        const double th = -st.a_deg / kDeg;
+        st.eye = frame.origin + st.x_mm * frame.d +
+                 st.y_mm * (std::cos(th) * frame.u + std::sin(th) * frame.v);
+        st.free_length = (st.eye - st.position).norm();
+      }
+      prev = m.states.back();
+    }
+    count_circuit_reversals(c, m.states, circuit_begin.back(), static_cast<int>(m.states.size()),
+                            &m);
+    laid_before += c.points.back().s - s0;
+  }
+  if (query && std::isfinite(min_clearance)) m.min_clearance = min_clearance;
+
+  // The feed plan over all moves.
+  std::vector<AxisValues> values(m.states.size());
+  std::vector<double> cap(m.states.size(), 0.0);
+  for (std::size_t i = 0; i < m.states.size(); ++i) {
+    const MachineState& st = m.states[i];
+    values[i] = {st.a_deg, st.x_mm, st.y_mm, st.b_deg};
+    if (i > 0 && opts.max_fibre_speed > 0.0) {
+      const MachineState& p = m.states[i - 1];
+      const double laid = std::fabs((st.paid_out - st.free_length) - (p.paid_out - p.free_length));
+      double len2 = 0.0;
+      for (int a = 0; a < n_axes; ++a) len2 += std::pow(values[i][a] - values[i - 1][a], 2);
+      if (laid > 0.0) cap[i] = opts.max_fibre_speed * std::sqrt(len2) / laid;
+    }
+  }
+  const std::array<FeedAxis, 4> fa = feed_axes(opts);
+  const FeedPlan fp = plan_feed(values, n_axes, fa, cap);
+  m.limits = check_axis_limits(values, fp.duration, n_axes, fa);
+  m.circuit_time.assign(circuit_begin.size(), 0.0);
+  for (std::size_t i = 0; i < m.states.size(); ++i) {
+    MachineState& st = m.states[i];
+    if (i == 0) continue;
+    const MachineState& p = m.states[i - 1];
+    const double dur = fp.duration[i];
+    st.duration = dur;
+    st.t_s = p.t_s + dur;
+    double dist2 = 0.0;
+    for (int a = 0; a < n_axes; ++a) dist2 += std::pow(values[i][a] - values[i - 1][a], 2);
+    if (dur > 0.0) {
+      st.feed = m.inverse_time ? 60.0 / dur : 60.0 * std::sqrt(dist2) / dur;
+    } else {
+      // No motion: the modal feed stays; before any motion a nominal one (a control rejects F0).
+      st.feed = p.feed > 0.0 ? p.feed : (m.inverse_time ? 60000.0 : 60.0 * opts.x.max_velocity);
+    }
+  }
+  for (std::size_t k = 0; k < circuit_begin.size(); ++k) {
+    const int b = circuit_begin[k];
+    const int e =
+        k + 1 < circuit_begin.size() ? circuit_begin[k + 1] : static_cast<int>(m.states.size());
+    if (e > b) m.circuit_time[k] = m.states[e - 1].t_s - (b > 0 ? m.states[b - 1].t_s : 0.0);
+  }
+  m.wind_time = m.states.empty() ? 0.0 : m.states.back().t_s;
+  return m;
+}
+
+}  // namespace windplan

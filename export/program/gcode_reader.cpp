@@ -1,0 +1,296 @@
+#include "export/program/gcode_reader.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+
+#include "geometry/base/errors.h"
+
+namespace windplan {
+
+namespace {
+
+struct Word {
+  char letter;
+  double value;
+  std::string text;
+};
+
+struct Line {
+  int number = 0;  // 1-based
+  std::vector<Word> words;
+};
+
+std::string code_of(const Word& w) {
+  std::string s(1, w.letter);
+  const double v = w.value;
+  if (v == std::floor(v)) return s + std::to_string(static_cast<long long>(v));
+  return s + w.text;
+}
+
+}  // namespace
+
+GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
+                        const std::string& name) {
+  const std::string& dialect = machine.gcode.dialect;
+  const bool fanuc = dialect == "fanuc", marlin = dialect == "marlin";
+  const bool lathe2 = machine.kind == "lathe2";
+  auto fail = [&](int line, const std::string& msg) -> void {
+    throw InputError(name + ":" + std::to_string(line) + ": " + msg);
+  };
+  auto other = [&](int line, const std::string& what, const std::string& who) {
+    fail(line, what + " belongs to a " + who + " program; the job's dialect is " + dialect +
+                   " (machine.gcode.dialect)");
+  };
+  // Axes: letter -> (value index A X Y B, options).
+  struct AxisRef {
+    int index;
+    const AxisOptions* o;
+  };
+  std::map<char, AxisRef> axes;
+  axes[machine.x.letter[0]] = {1, &machine.x};
+  axes[machine.a.letter[0]] = {0, &machine.a};
+  if (!lathe2) {
+    axes[machine.y.letter[0]] = {2, &machine.y};
+    axes[machine.b.letter[0]] = {3, &machine.b};
+  }
+
+  // Tokenise; programs by O label (fanuc) in order of appearance.
+  std::vector<Line> lines;
+  std::map<int, std::size_t> labels;  // O number -> first line index after it
+  std::istringstream in(text);
+  std::string raw;
+  int number = 0;
+  while (std::getline(in, raw)) {
+    ++number;
+    if (!raw.empty() && raw.back() == '\r') raw.pop_back();
+    std::string s;
+    int depth = 0;
+    for (char c : raw) {
+      if (c == ';' && depth == 0) {
+        if (fanuc) other(number, "a ';' comment", "linuxcnc or marlin");
+        break;
+      }
+      if (c == '(') {
+        if (marlin) other(number, "a '( )' comment", "linuxcnc or fanuc");
+        ++depth;
+        continue;
+      }
+      if (c == ')') {
+        if (depth == 0) fail(number, "')' without '('");
+        --depth;
+        continue;
+      }
+      if (depth == 0) s += c;
+    }
+    if (depth != 0) fail(number, "unclosed '(' comment");
+    Line ln;
+    ln.number = number;
+    std::size_t i = 0;
+    while (i < s.size()) {
+      const unsigned char c = static_cast<unsigned char>(s[i]);
+      if (std::isspace(c)) {
+        ++i;
+        continue;
+      }
+      if (s[i] == '%') {
+        if (marlin) other(number, "a '%' line", "linuxcnc or fanuc");
+        ++i;
+        continue;
+      }
+      if (!std::isalpha(c)) fail(number, std::string("unexpected character '") + s[i] + "'");
+      const char letter = static_cast<char>(std::toupper(c));
+      ++i;
+      const std::size_t start = i;
+      while (i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || s[i] == '.' ||
+                              s[i] == '-' || s[i] == '+')) {
+        ++i;
+      }
+      const std::string num = s.substr(start, i - start);
+      char* end = nullptr;
+      const double v = std::strtod(num.c_str(), &end);
+      if (num.empty() || end != num.c_str() + num.size() || !std::isfinite(v)) {
+        fail(number, std::string("word ") + letter + " without a valid number");
+      }
+      ln.words.push_back({letter, v, num});
+    }
+    if (ln.words.empty()) continue;
+    if (ln.words[0].letter == 'O') {
+      if (!fanuc) other(number, "an O program label", "fanuc");
+      labels[static_cast<int>(ln.words[0].value)] = lines.size();
+      continue;
+    }
+    lines.push_back(ln);
+  }
+
+  GcodeProgram prog;
+  double value[4] = {0, 0, 0, 0};
+  bool known[4] = {false, false, false, false};
+  const bool needed[4] = {true, true, !lathe2, !lathe2};
+  double a_shift = 0.0;  // Marlin G92: planner A = word + shift
+  double feed = 0.0;
+  bool have_feed = false;
+  int motion = -1;  // modal 0 / 1
+  bool inverse = false;
+  std::vector<std::size_t> stack;
+  std::size_t pc = 0;
+  int steps = 0;
+  while (pc < lines.size()) {
+    if (++steps > 50000000) fail(lines[pc].number, "the program does not end (call loop)");
+    const Line& ln = lines[pc++];
+    bool move = false, g92 = false;
+    int call = -1;
+    double newv[4] = {value[0], value[1], value[2], value[3]};
+    bool set[4] = {false, false, false, false};
+    bool end = false, ret = false;
+    for (const Word& w : ln.words) {
+      const std::string code = code_of(w);
+      if (w.letter == 'N') {
+        if (!fanuc) other(ln.number, "an N line number", "fanuc");
+        continue;
+      }
+      if (w.letter == 'G') {
+        if (code == "G0" || code == "G00") {
+          motion = 0;
+        } else if (code == "G1" || code == "G01") {
+          motion = 1;
+        } else if (code == "G21" || code == "G90") {
+        } else if (code == "G94") {
+          inverse = false;
+        } else if (code == "G93") {
+          if (marlin) other(ln.number, "G93 (inverse time)", "linuxcnc or fanuc");
+          inverse = true;
+          prog.inverse_time = true;
+        } else if (code == "G92") {
+          if (!marlin) other(ln.number, "G92", "marlin");
+          g92 = true;
+        } else if (code == "G20") {
+          fail(ln.number, "G20 (inch units): windplan programs are in mm (G21)");
+        } else if (code == "G91") {
+          fail(ln.number, "G91 (incremental): windplan programs are absolute (G90)");
+        } else {
+          fail(ln.number, "unknown code " + code + " for a " + dialect + " winder program");
+        }
+        continue;
+      }
+      if (w.letter == 'M') {
+        if (code == "M2" || code == "M02") {
+          if (fanuc) other(ln.number, code, "linuxcnc or marlin");
+          end = true;
+        } else if (code == "M30") {
+          if (marlin) other(ln.number, code, "linuxcnc or fanuc");
+          end = true;
+        } else if (code == "M84") {
+          if (!marlin) other(ln.number, code, "marlin");
+          end = true;
+        } else if (code == "M0" || code == "M00") {
+          // A pause between layers (the operator ties off and cuts): no motion.
+        } else if (code == "M98") {
+          if (!fanuc) other(ln.number, code, "fanuc");
+          call = 0;
+        } else if (code == "M99") {
+          if (!fanuc) other(ln.number, code, "fanuc");
+          ret = true;
+        } else {
+          fail(ln.number, "unknown code " + code + " for a " + dialect + " winder program");
+        }
+        continue;
+      }
+      if (w.letter == 'P') {
+        if (call != 0) fail(ln.number, "P word without M98");
+        call = static_cast<int>(w.value);
+        continue;
+      }
+      if (w.letter == 'F') {
+        if (!(w.value > 0.0)) fail(ln.number, "F must be > 0 (got " + w.text + ")");
+        feed = w.value;
+        have_feed = true;
+        continue;
+      }
+      const auto it = axes.find(w.letter);
+      if (it == axes.end()) {
+        fail(ln.number, std::string("unknown word ") + w.letter + w.text + " (a " + machine.kind +
+                            " machine has axes " +
+                            (lathe2 ? machine.x.letter + " " + machine.a.letter
+                                    : machine.x.letter + " " + machine.y.letter + " " +
+                                          machine.a.letter + " " + machine.b.letter) +
+                            ")");
+      }
+      const AxisRef& ax = it->second;
+      if (g92) {
+        if (ax.index != 0 || !marlin) fail(ln.number, "G92 re-zeroes the spindle axis only");
+        // The machine's A becomes w.value here: shift = planner A - sign * word.
+        a_shift = value[0] - ax.o->sign * w.value;
+        continue;
+      }
+      double v;
+      if (marlin && ax.index == 0) {
+        v = ax.o->sign * w.value + a_shift;  // sign = +-1: its own inverse
+      } else {
+        v = ax.o->sign * (w.value - ax.o->offset);
+      }
+      const double machine_value = ax.o->sign * v + ax.o->offset;
+      if (!(marlin && ax.index == 0) &&
+          (machine_value < ax.o->min - 1e-9 || machine_value > ax.o->max + 1e-9)) {
+        fail(ln.number, "axis " + ax.o->letter + " moves to " + w.text + ", outside its travel [" +
+                            std::to_string(ax.o->min) + ", " + std::to_string(ax.o->max) +
+                            "] (machine.axes)");
+      }
+      newv[ax.index] = v;
+      set[ax.index] = true;
+      move = true;
+    }
+    if (call > 0) {
+      const auto lab = labels.find(call);
+      if (lab == labels.end())
+        fail(ln.number, "M98 calls O" + std::to_string(call) + ", not in the program");
+      stack.push_back(pc);
+      pc = lab->second;
+      continue;
+    }
+    if (call == 0) fail(ln.number, "M98 without a P program number");
+    if (move && !g92) {
+      if (motion < 0) fail(ln.number, "an axis word before any G0 or G1");
+      for (int k = 0; k < 4; ++k) {
+        if (set[k]) known[k] = true;
+        if (needed[k] && !known[k]) {
+          fail(ln.number, "the first move leaves an axis undefined (give every axis word)");
+        }
+      }
+      if (motion == 1 && !have_feed) fail(ln.number, "G1 without a feed (F)");
+      GcodeBlock b;
+      b.line = ln.number;
+      b.rapid = motion == 0;
+      b.a = newv[0];
+      b.x = newv[1];
+      b.y = newv[2];
+      b.b = newv[3];
+      b.feed = feed;
+      b.inverse_time = inverse;
+      prog.blocks.push_back(b);
+      for (int k = 0; k < 4; ++k) value[k] = newv[k];
+    }
+    if (ret) {
+      if (stack.empty()) fail(ln.number, "M99 outside a subprogram");
+      pc = stack.back();
+      stack.pop_back();
+      continue;
+    }
+    if (end) {
+      prog.ended = true;
+      break;
+    }
+  }
+  if (!prog.ended) {
+    fail(number, std::string("the program has no end code (") +
+                     (marlin  ? "M84"
+                      : fanuc ? "M30"
+                              : "M2") +
+                     ")");
+  }
+  return prog;
+}
+
+}  // namespace windplan

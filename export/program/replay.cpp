@@ -1,0 +1,415 @@
+#include "export/program/replay.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "export/machine/eye_envelope.h"
+#include "export/machine/kinematics.h"
+#include "export/machine/resample.h"
+#include "geometry/base/errors.h"
+#include "geometry/mesh/closest_point.h"
+
+namespace windplan {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The mandrel surface for the walk: closest points with normals interpolated from the face-corner
+// normals (a faceted normal would make the tangency jump from edge to edge).
+class Surface {
+ public:
+  explicit Surface(const Mesh& mesh) : mesh_(mesh), query_(mesh) {
+    // Per face corner: the angle-weighted normals of the faces round the vertex that are within
+    // 40 deg of this face's normal, so that a crease (a pipe's rim where the end cap meets the
+    // wall) keeps two normals instead of one leaning 45 deg between them.
+    const auto& tris = mesh.triangles();
+    const auto& pts = mesh.points();
+    const int nf = mesh.num_faces();
+    std::vector<std::vector<std::pair<int, double>>> fan(mesh.num_vertices());
+    std::vector<Vec3> fn(nf);
+    for (int f = 0; f < nf; ++f) {
+      fn[f] = mesh.face_normal(f);
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 e1 = pts[tris[f][(k + 1) % 3]] - pts[tris[f][k]];
+        const Vec3 e2 = pts[tris[f][(k + 2) % 3]] - pts[tris[f][k]];
+        const double ang = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+        fan[tris[f][k]].push_back({f, ang});
+      }
+    }
+    face_n_ = fn;
+    fan_.resize(mesh.num_vertices());
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      for (const auto& fa : fan[v]) fan_[v].push_back(fa.first);
+    }
+    const double crease = std::cos(40.0 * kPi / 180.0);
+    corner_.resize(static_cast<std::size_t>(nf) * 3);
+    for (int f = 0; f < nf; ++f) {
+      for (int k = 0; k < 3; ++k) {
+        Vec3 n = Vec3::Zero();
+        for (const auto& [g, ang] : fan[tris[f][k]]) {
+          if (fn[g].dot(fn[f]) >= crease) n += ang * fn[g];
+        }
+        corner_[3 * f + k] = n.norm() > 1e-12 ? Vec3(n.normalized()) : fn[f];
+      }
+    }
+  }
+  struct Point {
+    Vec3 p = Vec3::Zero();
+    Vec3 n = Vec3::UnitX();
+  };
+  /// The closest point with its interpolated normal. On a crease (an edge or vertex shared by
+  /// faces more than 40 deg apart, e.g. a tube's rim) the face whose normal is closest to `ref`
+  /// (the walking contact's normal) is taken, so that the walk stays on its side of the crease.
+  Point project(const Vec3& q, const Vec3* ref = nullptr) const {
+    const ClosestPointQuery::Hit h = query_.closest(q);
+    Point out;
+    out.p = h.position;
+    int f = containing_face(mesh_, h.point);
+    if (ref && h.point.kind != SurfacePoint::Kind::Face) {
+      // Faces round the triangle's vertex nearest to the hit.
+      const auto& t0 = mesh_.triangles()[f];
+      int v = t0[0];
+      for (int k = 1; k < 3; ++k) {
+        if ((mesh_.points()[t0[k]] - h.position).squaredNorm() <
+            (mesh_.points()[v] - h.position).squaredNorm()) {
+          v = t0[k];
+        }
+      }
+      double best = face_n_[f].dot(*ref);
+      for (int g : fan_[v]) {
+        const auto& tg = mesh_.triangles()[g];
+        Vec3 bg;
+        const Vec3 pg = closest_point_on_triangle(
+            h.position, mesh_.points()[tg[0]], mesh_.points()[tg[1]], mesh_.points()[tg[2]], &bg);
+        if ((pg - h.position).norm() > 1e-6) continue;  // the hit is not on this face
+        if (face_n_[g].dot(*ref) > best) {
+          best = face_n_[g].dot(*ref);
+          f = g;
+        }
+      }
+    }
+    const auto& t = mesh_.triangles()[f];
+    Vec3 bary = h.point.bary;
+    if (h.point.kind != SurfacePoint::Kind::Face || f != h.point.element) {
+      // Barycentric coordinates of the hit in face f.
+      closest_point_on_triangle(h.position, mesh_.points()[t[0]], mesh_.points()[t[1]],
+                                mesh_.points()[t[2]], &bary);
+    }
+    Vec3 n = bary[0] * corner_[3 * f] + bary[1] * corner_[3 * f + 1] + bary[2] * corner_[3 * f + 2];
+    const double nn = n.norm();
+    out.n = nn > 0.0 ? Vec3(n / nn) : mesh_.face_normal(f);
+    return out;
+  }
+
+  double distance(const Vec3& q) const { return query_.closest(q).distance; }
+
+ private:
+  const Mesh& mesh_;
+  ClosestPointQuery query_;
+  std::vector<Vec3> corner_;
+  std::vector<Vec3> face_n_;
+  std::vector<std::vector<int>> fan_;
+};
+
+double lift(const Surface::Point& p, const Vec3& eye) { return (eye - p.p).dot(p.n); }
+
+// Advances the contact point P towards the eye until the free fibre is tangent (header comment).
+// The lift (E - P(h)) . n(P(h)) along the walk P(h) = proj(P + h dir) is bracketed starting from
+// the previous step's walk length *h_guess, then its root found by regula falsi (Illinois).
+void advance(const Surface& surf, const Vec3& eye, Surface::Point* P, double* h_guess,
+             double max_walk) {
+  double walked = 0.0;
+  for (int round = 0; round < 16 && walked < max_walk; ++round) {
+    const Vec3 d = eye - P->p;
+    const double len = d.norm();
+    const double f0 = lift(*P, eye);
+    if (!(len > 0.0) || f0 >= -1e-12 * len) return;
+    const Vec3 w = d - d.dot(P->n) * P->n;
+    const double wn = std::min(w.norm(), max_walk - walked);
+    if (!(wn > 1e-12)) return;
+    const Vec3 dir = w.normalized();
+    const Vec3 ref = P->n;
+    auto at = [&](double h) { return surf.project(P->p + h * dir, &ref); };
+    double h_lo = 0.0, f_lo = f0;
+    Surface::Point lo = *P, hi;
+    double h = std::clamp(*h_guess, 1e-4, wn), f_hi = 0.0;
+    bool found = false;
+    while (true) {
+      const Surface::Point q = at(h);
+      const double f = lift(q, eye);
+      if (f >= 0.0) {
+        hi = q;
+        f_hi = f;
+        found = true;
+        break;
+      }
+      lo = q;
+      h_lo = h;
+      f_lo = f;
+      if (h >= wn) break;
+      h = std::min(2.0 * h, wn);
+    }
+    if (!found) {
+      *P = lo;  // not tangent within reach: go as far as that and aim again
+      walked += h_lo;
+      continue;
+    }
+    double h_hi = h;
+    int side = 0;
+    for (int it = 0; it < 40 && h_hi - h_lo > 1e-6; ++it) {
+      double mid = (h_lo * f_hi - h_hi * f_lo) / (f_hi - f_lo);
+      if (!(mid > h_lo && mid < h_hi)) mid = 0.5 * (h_lo + h_hi);
+      const Surface::Point q = at(mid);
+      const double f = lift(q, eye);
+      if (f >= 0.0) {
+        h_hi = mid;
+        f_hi = f;
+        hi = q;
+        if (side == 1) f_lo *= 0.5;
+        side = 1;
+      } else {
+        h_lo = mid;
+        f_lo = f;
+        lo = q;
+        if (side == -1) f_hi *= 0.5;
+        side = -1;
+      }
+      if (std::fabs(f) < 1e-9) break;
+    }
+    *h_guess = std::max(1e-4, h_hi);
+    *P = hi;
+    return;
+  }
+}
+
+// Distance of p to the polyline q (cumulative arc length sq), searched on the segments from
+// `back` mm behind the last match to `ahead` mm after it; moves ptr to the best segment. The
+// window is short in arc length so that a later pass crossing this one is never taken for it.
+double track(const std::vector<Vec3>& q, const std::vector<double>& sq, const Vec3& p, double back,
+             double ahead, int* ptr) {
+  const int m = static_cast<int>(q.size());
+  if (m == 1) return (p - q[0]).norm();
+  int lo = std::min(*ptr, m - 2), hi = lo;
+  while (lo > 0 && sq[*ptr] - sq[lo] < back) --lo;
+  while (hi < m - 2 && sq[hi] - sq[*ptr] < ahead) ++hi;
+  double best = std::numeric_limits<double>::infinity();
+  int at = *ptr;
+  for (int j = lo; j <= hi; ++j) {
+    const double dd = distance_to_segment(p, q[j], q[j + 1]);
+    if (dd < best) {
+      best = dd;
+      at = j;
+    }
+  }
+  *ptr = at;
+  return best;
+}
+
+Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double l2 = ab.squaredNorm();
+  if (!(l2 > 0.0)) return a;
+  return a + std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) * ab;
+}
+
+int reversals(const std::vector<double>& v) {
+  int count = 0, dir = 0;
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    const double d = v[i] - v[i - 1];
+    if (std::fabs(d) < 1e-9) continue;
+    const int s = d > 0 ? 1 : -1;
+    if (dir != 0 && s != dir) ++count;
+    dir = s;
+  }
+  return count;
+}
+
+}  // namespace
+
+ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan,
+                            const Mesh& mandrel, const MachineOptions& machine,
+                            const ReplayOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (machine.kind == "robot") throw InputError("machine.kind: robot has no G-code to replay");
+  if (program.blocks.empty()) throw InputError("the program has no moves");
+  if (mandrel.num_faces() == 0) throw InputError("the mandrel mesh is empty");
+  std::vector<Vec3> planned, planned_n;
+  std::vector<int> circuit_start;  // index of each circuit's first point in `planned`
+  std::vector<char> held;          // on a turnaround: a pin ring or boss holds the fibre there
+  for (const Circuit& c : plan.circuits) {
+    std::vector<char> on_turn(c.points.size(), 0);
+    for (const CircuitSegment& seg : c.segments) {
+      if (seg.kind != CircuitSegment::Kind::Turnaround) continue;
+      for (int i = std::max(0, seg.first); i <= seg.last && i < static_cast<int>(on_turn.size());
+           ++i) {
+        on_turn[i] = 1;
+      }
+    }
+    if (!c.points.empty()) circuit_start.push_back(static_cast<int>(planned.size()));
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      const FibrePoint& p = c.points[i];
+      if (planned.empty() || (p.position - planned.back()).norm() > 1e-12) {
+        planned.push_back(p.position);
+        planned_n.push_back(p.normal);
+        held.push_back(on_turn[i]);
+      } else {
+        held.back() = held.back() || on_turn[i];
+      }
+    }
+  }
+  if (planned.empty()) throw InputError("the plan has no fibre points");
+  std::vector<double> planned_s(planned.size(), 0.0);
+  for (std::size_t i = 1; i < planned.size(); ++i) {
+    planned_s[i] = planned_s[i - 1] + (planned[i] - planned[i - 1]).norm();
+  }
+  // The first turnaround point at or after each planned point (-1: none).
+  std::vector<int> next_held(planned.size(), -1);
+  for (int i = static_cast<int>(planned.size()) - 1; i >= 0; --i) {
+    next_held[i] = held[i] ? i : (i + 1 < static_cast<int>(planned.size()) ? next_held[i + 1] : -1);
+  }
+  const bool lathe2 = machine.kind == "lathe2";
+  const AxisFrame frame = make_axis_frame(plan.axis);
+  double eye_radius = 0.0;
+  if (lathe2) {
+    eye_radius = make_envelope(swept_profile(plan, &mandrel), machine.envelope, "lathe2").r.front();
+  }
+  auto eye_at = [&](double a_deg, double x, double y) {
+    const double th = -a_deg * kPi / 180.0;
+    const double r = lathe2 ? eye_radius : y;
+    return Vec3(frame.origin + x * frame.d + r * (std::cos(th) * frame.u + std::sin(th) * frame.v));
+  };
+
+  const Surface surf(mandrel);
+  ReplayResult r;
+  r.blocks = static_cast<int>(program.blocks.size());
+  r.min_clearance = std::numeric_limits<double>::infinity();
+  Surface::Point P;
+  P.p = planned.front();
+  P.n = planned_n.front();
+  int ptr = 0;
+  double h_guess = 0.05;
+  double dev_sum = 0.0;
+  const int n_axes = lathe2 ? 2 : 4;
+  const std::array<FeedAxis, 4> fa = feed_axes(machine);
+  std::vector<AxisValues> values;
+  std::vector<double> durations;
+  std::vector<double> xs, as;
+  const GcodeBlock* prev = nullptr;
+  for (const GcodeBlock& b : program.blocks) {
+    const AxisValues v{b.a, b.x, lathe2 ? eye_radius : b.y, b.b};
+    double dur = 0.0;
+    if (prev) {
+      const AxisValues pv = values.back();
+      double dist2 = 0.0, slow = 0.0;
+      for (int a = 0; a < n_axes; ++a) {
+        dist2 += (v[a] - pv[a]) * (v[a] - pv[a]);
+        slow = std::max(slow, std::fabs(v[a] - pv[a]) / fa[a].max_velocity);
+      }
+      if (b.rapid) {
+        dur = slow;
+      } else if (b.inverse_time) {
+        dur = dist2 > 0.0 ? 60.0 / b.feed : 0.0;
+      } else {
+        dur = std::sqrt(dist2) / (b.feed / 60.0);
+      }
+      // The eye's path in the mandrel frame, cut into sub-steps.
+      const Vec3 e0 = eye_at(prev->a, prev->x, pv[2]);
+      const Vec3 e1 = eye_at(b.a, b.x, v[2]);
+      const double travel =
+          std::hypot((e1 - e0).norm(), std::fabs(b.a - prev->a) * kPi / 180.0 *
+                                           std::max(std::fabs(v[2]), std::fabs(pv[2])));
+      if (b.rapid) {
+        // A rapid move between layers: the tow is cut, and tied on again at the next circuit's
+        // first point (export/program/gcode.h); no fibre is laid on the way.
+        const auto next = std::upper_bound(circuit_start.begin(), circuit_start.end(), ptr);
+        if (next != circuit_start.end()) {
+          ptr = std::min<int>(*next, static_cast<int>(planned.size()) - 1);
+          P.p = planned[ptr];
+          P.n = planned_n[ptr];
+        }
+      }
+      const int n = b.rapid ? 0 : std::max(1, static_cast<int>(std::ceil(travel / options.step)));
+      for (int k = 1; k <= n; ++k) {
+        const double t = static_cast<double>(k) / n;
+        const Vec3 e = eye_at(prev->a + t * (b.a - prev->a), prev->x + t * (b.x - prev->x),
+                              pv[2] + t * (v[2] - pv[2]));
+        const int last = static_cast<int>(planned.size()) - 1;
+        double dev = 0.0;
+        // The pins catch the fibre as it arrives at the ring: within `catch_distance` before it.
+        const int nh = next_held[ptr];
+        if (!held[ptr] && nh >= 0 && planned_s[nh] - planned_s[ptr] <= options.catch_distance) {
+          ptr = nh;
+        }
+        if (held[ptr] && ptr < last) {
+          // On a turnaround the pins or the boss lay the fibre along the plan: the contact moves
+          // along the planned arc to the first point whose free fibre to the eye is tangent.
+          int j = ptr;
+          while (j < last && held[j] && (e - planned[j]).dot(planned_n[j]) < 0.0) ++j;
+          ptr = j;
+          // The plan's normal: at a rim the closest face may be the end cap's.
+          P.p = planned[j];
+          P.n = planned_n[j];
+          ++r.held_substeps;
+        } else {
+          advance(surf, e, &P, &h_guess, 4.0 * options.step);
+          dev = track(planned, planned_s, P.p, options.search_back, options.search_ahead, &ptr);
+        }
+        dev_sum += dev;
+        ++r.substeps;
+        if (dev > r.max_deviation) {
+          r.max_deviation = dev;
+          r.max_deviation_line = b.line;
+          r.max_deviation_point = P.p;
+        }
+      }
+      const double clear = surf.distance(e1);
+      if (clear < r.min_clearance) {
+        r.min_clearance = clear;
+        r.min_clearance_line = b.line;
+      }
+    } else {
+      // The first position: the fibre is tied on at the plan's first point (no walk: the mesh's
+      // normals at a boundary are one-sided).
+      const Vec3 e = eye_at(b.a, b.x, v[2]);
+      r.min_clearance = surf.distance(e);
+      r.min_clearance_line = b.line;
+    }
+    r.wind_time += dur;
+    values.push_back(v);
+    durations.push_back(dur);
+    xs.push_back(b.x);
+    as.push_back(b.a);
+    auto grow = [&](double* lo, double* hi, double x) {
+      if (!prev) {
+        *lo = *hi = x;
+      } else {
+        *lo = std::min(*lo, x);
+        *hi = std::max(*hi, x);
+      }
+    };
+    grow(&r.a_min, &r.a_max, b.a);
+    grow(&r.x_min, &r.x_max, b.x);
+    grow(&r.y_min, &r.y_max, v[2]);
+    grow(&r.b_min, &r.b_max, b.b);
+    prev = &b;
+  }
+  r.mean_deviation = r.substeps > 0 ? dev_sum / r.substeps : 0.0;
+  r.carriage_reversals = reversals(xs);
+  r.spindle_reversals = reversals(as);
+  r.limits = check_axis_limits(values, durations, n_axes, fa);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "replay: %d blocks, deviation max %.3f mm (line %d) mean %.4f mm, min clearance "
+                "%.2f mm, wind time %.1f s, reversals X %d A %d",
+                r.blocks, r.max_deviation, r.max_deviation_line, r.mean_deviation, r.min_clearance,
+                r.wind_time, r.carriage_reversals, r.spindle_reversals);
+  r.summary = buf;
+  return r;
+}
+
+}  // namespace windplan

@@ -1,0 +1,81 @@
+#pragma once
+// Replay of a G-code program through the job's machine model: where the fibre lands.
+//
+// Each block's axis values (export/program/gcode_reader.h) put the eye, in the mandrel frame, at
+//   E = o + X d + Y (cos(-A) u + sin(-A) v)
+// (export/machine/kinematics.h: the axis frame, A = -theta(E)); lathe2 programs have no Y, the eye
+// runs on the kind's eye cylinder (export/machine/eye_envelope.h). Within a block the axes move
+// linearly, and the move is cut into sub-steps of at most `step` mm of eye travel in the mandrel
+// frame.
+//
+// The fibre runs from its contact point P on the mandrel straight to the eye, tangent to the
+// surface at P. When the eye moves to E', the straight fibre from P would cut into the surface
+// ((E' - P) . n(P) < 0): the fibre wraps on and P advances along the surface towards E' (the
+// tangent-plane direction of E' - P) until the free fibre is tangent again ((E' - P) . n = 0,
+// found by bracketing and regula falsi on straight steps projected back onto the mesh, at most
+// 4 `step` per sub-step (a contact that finds no tangency, e.g. pulled over a tube's open end,
+// does not run away along the rim), with normals
+// interpolated from face-corner normals that do not average across creases). When the free fibre
+// lifts off, P stays: laid fibre does not come off. This is the payout lag of a real winder; on a
+// cylinder it lays z_P' = (z_E - z_P) / tan(beta) per radian (beta = acos(r / R_eye)), whose steady
+// state is the planned helix. The fibre starts at the planned path's first point (where it is tied
+// on); a rapid G0 after that (between layers: the tow is cut) ties it on again at the next
+// circuit's first point. On the plan's turnarounds (CircuitSegment::Kind::Turnaround: dwell arcs on
+// pin rings, stations or a boss) the pins or the boss hold the fibre: once the contact comes within
+// catch_distance (10 mm, along the plan) of one, it moves along the planned arc to the first
+// planned point whose free fibre to the eye is tangent ((E - P) . n >= 0 with the plan's normal),
+// and no deviation is counted (held_substeps counts those sub-steps); it leaves the arc at its end,
+// free again.
+//
+// Deviation: the distance of every sub-step's contact point to the planned fibre polyline (all
+// circuits in order), searched in a window of arc length that moves along it.
+// Time: G93 blocks take 60 / F s; G94 blocks take distance / (F / 60) with the distance of the
+// driven axes (degrees counted as mm); a G0 takes the slowest axis at max_velocity.
+#include <string>
+#include <vector>
+
+#include "export/machine/feed_plan.h"
+#include "export/program/gcode_reader.h"
+#include "geometry/mesh/mesh.h"
+#include "planner/job/machine_options.h"
+#include "planner/plan/plan.h"
+
+namespace windplan {
+
+struct ReplayOptions {
+  double step = 0.5;  ///< mm: largest eye travel (mandrel frame) per sub-step, > 0
+  /// mm of planned path searched behind and ahead of the last match for the deviation.
+  double search_back = 10.0;
+  double search_ahead = 40.0;
+  /// mm: a contact this close (along the plan) to a turnaround is caught by its pins or boss.
+  double catch_distance = 10.0;
+};
+
+struct ReplayResult {
+  int blocks = 0;
+  int substeps = 0;
+  int held_substeps = 0;       ///< sub-steps on turnarounds (pins or boss lay the fibre)
+  double max_deviation = 0.0;  ///< mm, contact point to the planned path
+  int max_deviation_line = 0;  ///< program line of the block where it is largest
+  Vec3 max_deviation_point = Vec3::Zero();
+  double mean_deviation = 0.0;  ///< mm, over sub-steps
+  double min_clearance = 0.0;   ///< mm, eye to the mandrel mesh over every sub-step
+  int min_clearance_line = 0;
+  double wind_time = 0.0;  ///< s, from the feed words
+  int carriage_reversals = 0;
+  int spindle_reversals = 0;
+  double a_min = 0, a_max = 0, x_min = 0, x_max = 0, y_min = 0, y_max = 0, b_min = 0, b_max = 0;
+  AxisLimitCheck limits;  ///< block velocities and accelerations from the feed words
+  double seconds = 0.0;   ///< wall time of the replay
+  std::string summary;    ///< one line
+};
+
+/// \param program from read_gcode with the same machine options
+/// \param plan the planned fibre path (and the spindle axis and mandrel radius profile)
+/// \param mandrel the mandrel mesh
+/// \throw InputError for an empty program or mesh, or a kind with no G-code (robot)
+ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan,
+                            const Mesh& mandrel, const MachineOptions& machine,
+                            const ReplayOptions& options = {});
+
+}  // namespace windplan

@@ -1,0 +1,760 @@
+// Bounded exact window propagation (see geometry/geodesic/geodesic_windows.h).
+//
+// Window frame: a window lives on halfedge h and propagates into face(h). In h's frame from(h)
+// is the origin, to(h) is (L, 0), the third corner of face(h) has y > 0 and the unfolded
+// pseudo-source I = (sx, sy) has sy <= 0 (it lies on the side of face(twin(h))). A point (x, 0)
+// of the window's interval [b0, b1] is at distance sigma + |I - (x, 0)| from the source.
+#include "geometry/geodesic/geodesic_windows.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+
+#include "geometry/base/errors.h"
+#include "geometry/base/parallel.h"
+#include "geometry/geodesic/edge_path.h"
+#include "geometry/geodesic/radix_queue.h"
+#include "geometry/geodesic/window_distance.h"
+
+namespace windplan {
+
+bool WindowSearchOptions::is_valid(std::string* why) const {
+  if (!(upper_bound > 0.0)) {
+    if (why) *why = "upper_bound must be > 0 (mesh units)";
+    return false;
+  }
+  if (max_windows < 0) {
+    if (why) *why = "max_windows must be >= 0 (0: no limit)";
+    return false;
+  }
+  return true;
+}
+
+WindowMesh prepare_window_mesh(const Mesh& mesh) {
+  WindowMesh w;
+  w.pseudo_source.assign(mesh.num_vertices(), 0);
+  constexpr double kTwoPi = 6.283185307179586;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (mesh.vertex_halfedge(v) < 0) continue;
+    w.pseudo_source[v] = mesh.is_boundary_vertex(v) || mesh.cone_angle(v) >= kTwoPi - 1e-9;
+  }
+  w.frame.resize(3 * static_cast<std::size_t>(mesh.num_interior_halfedges()));
+  for (int h = 0; h < mesh.num_interior_halfedges(); ++h) {
+    const Vec3& a = mesh.position(mesh.from(h));
+    const Vec3& b = mesh.position(mesh.to(h));
+    const Vec3& c = mesh.position(mesh.opposite_vertex(h));
+    const double len = (b - a).norm();
+    const double cx = len > 0.0 ? (c - a).dot(b - a) / len : 0.0;
+    w.frame[3 * h] = len;
+    w.frame[3 * h + 1] = cx;
+    w.frame[3 * h + 2] = std::sqrt(std::max(0.0, (c - a).squaredNorm() - cx * cx));
+  }
+  return w;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Vec2 {
+  double x, y;
+};
+Vec2 operator-(const Vec2& a, const Vec2& b) { return {a.x - b.x, a.y - b.y}; }
+double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
+double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
+double norm(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
+
+struct Window {
+  int h;  // its edge's length is WindowMesh::frame[3 h] (Search::length)
+  double b0, b1;
+  Vec2 source;         // I in h's frame
+  double sigma;        // distance of the pseudo-source from the source
+  int pseudo;          // pseudo-source vertex
+  int parent;          // window propagated into this one (-1: lit by `pseudo` directly)
+  double bound = 0.0;  // lower bound of the paths to the target through the window (A* key)
+  int next = -1;       // the next window on the same edge (Scratch::head), -1: last
+  char state = kQueued;
+
+  static constexpr char kQueued = 0, kPropagated = 1, kDead = 2;
+};
+
+struct Event {
+  double key;
+  int index;  // >= 0: window; < 0: vertex -(index + 1)
+};
+
+// Where the ray from I through X meets the line P + s (Q - P): s (NaN when parallel).
+double ray_hit(const Vec2& I, const Vec2& X, const Vec2& P, const Vec2& Q) {
+  const Vec2 d = X - I;
+  const double den = cross(Q - P, d);
+  if (den == 0.0) return std::numeric_limits<double>::quiet_NaN();
+  return cross(I - P, d) / den;
+}
+
+// A query's record of a vertex: its distance and what gave it.
+struct VertexRecord {
+  unsigned stamp;
+  int provider_window;  // the window whose ray reached it (-1: an edge from provider_vertex)
+  int provider_vertex;
+  double dist;
+  // An event in the queue will expand it at this distance. (Its key cannot tell: the queue
+  // may raise a key, geometry/geodesic/radix_queue.h.)
+  bool pending;
+};
+
+// A query's record of a halfedge (one cache line's worth, read together).
+struct HalfedgeRecord {
+  unsigned stamp;
+  int head;  // the first of its windows (linked through Window::next), -1: none
+  // One angle, one split (Xin and Wang): the shortest distance to the corner opposite h that
+  // a window on h gave (+infinity: none yet), and where that ray crossed h.
+  double split_dist, split_x;
+  double target_x, target_y;  // the target in h's frame (target_in_frame); NaN: not yet
+};
+
+// Per-thread buffers reused across queries (32 bytes per vertex, 40 per halfedge, plus about
+// 90 per window of the largest search so far): the records are valid when their stamp is the
+// query's (no O(V) clearing per query).
+struct Scratch {
+  unsigned stamp = 0;
+  std::vector<VertexRecord> vertices;
+  std::vector<HalfedgeRecord> halfedges;
+  std::vector<Window> windows;
+  RadixQueue<Event> queue;
+  std::vector<int> outgoing;
+
+  void begin(const Mesh& mesh) {
+    const std::size_t nv = mesh.num_vertices(), nh = mesh.num_halfedges();
+    if (vertices.size() != nv || halfedges.size() != nh || ++stamp == 0) {
+      stamp = 1;
+      vertices.assign(nv, VertexRecord{0, -1, -1, 0.0, false});
+      halfedges.assign(nh, HalfedgeRecord{0, -1, 0.0, 0.0, 0.0, 0.0});
+    }
+    windows.clear();
+    queue.clear();
+  }
+};
+
+class Search {
+ public:
+  // target < 0: every vertex's distance (Dijkstra order, no bound).
+  Search(const Mesh& mesh, const WindowMesh& window_mesh, int source, int target,
+         const WindowSearchOptions& options, const Landmarks* landmarks = nullptr)
+      : mesh_(mesh),
+        pseudo_(window_mesh.pseudo_source),
+        frame_(window_mesh.frame.data()),
+        source_(source),
+        target_(target),
+        options_(options),
+        target_position_(target >= 0 ? mesh.position(target) : Vec3::Zero()),
+        landmarks_(target >= 0 && landmarks != nullptr && landmarks->count > 0 ? landmarks
+                                                                               : nullptr),
+        scratch_(thread_scratch()),
+        windows_(scratch_.windows),
+        queue_(scratch_.queue),
+        outgoing_(scratch_.outgoing),
+        best_(options.upper_bound),
+        distance_order_(target < 0 || std::isfinite(options.upper_bound)) {
+    scratch_.begin(mesh);
+    if (landmarks_ != nullptr) {
+      const int k = landmarks_->count;
+      target_landmark_.assign(landmarks_->dist.begin() + static_cast<std::size_t>(target) * k,
+                              landmarks_->dist.begin() + static_cast<std::size_t>(target + 1) * k);
+    }
+  }
+
+  // The distances of a full run (target < 0).
+  std::vector<double> distances() const {
+    std::vector<double> d(mesh_.num_vertices());
+    for (int v = 0; v < mesh_.num_vertices(); ++v) d[v] = dist(v);
+    return d;
+  }
+
+  // A thread keeps its buffers for the next query up to this many windows (about 100 bytes
+  // each with the queue: 100 MB per thread, which a batch on 32 threads multiplies); a larger
+  // search gives its memory back when it ends (reallocating costs little beside such a
+  // search: bench/README.md, session 6, p90 1.35M windows in 554 ms at 300K faces).
+  static constexpr std::size_t kKeptWindows = std::size_t{1} << 20;
+
+  ~Search() {
+    if (windows_.capacity() > kKeptWindows) {
+      std::vector<Window>().swap(windows_);
+      queue_.release();
+    }
+  }
+
+  WindowSearchResult run() {
+    WindowSearchResult result;
+    relax(source_, 0.0, -1, -1);
+    scratch_.vertices[source_].pending = false;  // expanded here, not again by its event
+    expand_vertex(source_, 0.0);
+    while (!queue_.empty() && !aborted_) {
+      const Event e = queue_.pop();
+      // Keys never exceed bounds: once a key reaches the best length, every bound left does.
+      if (e.key >= best_) break;
+      if (e.index >= 0) {
+        if (windows_[e.index].bound >= best_) continue;
+        propagate(e.index);
+        ++result.windows_propagated;
+      } else {
+        // Expanded once per distance it gets: the first of its events to come out expands it
+        // at its current distance, the others are stale.
+        const int v = -e.index - 1;
+        VertexRecord& r = scratch_.vertices[v];
+        if (r.pending && vertex_key(v, r.dist) < best_) {
+          r.pending = false;
+          expand_vertex(v, r.dist);
+        }
+      }
+    }
+    result.windows = static_cast<long>(windows_.size());
+    result.vertex_events = vertex_events_;
+    result.complete = !aborted_;
+    if (target_ < 0 || aborted_ || !(dist(target_) < options_.upper_bound)) return result;
+    result.distance = dist(target_);
+    result.found = build_path(&result.path, &result.vertices_passed);
+    return result;
+  }
+
+ private:
+  static Scratch& thread_scratch() {
+    static thread_local Scratch scratch;
+    return scratch;
+  }
+  double dist(int v) const {
+    const VertexRecord& r = scratch_.vertices[v];
+    return r.stamp == scratch_.stamp ? r.dist : std::numeric_limits<double>::infinity();
+  }
+
+  void relax(int v, double d, int window, int from_vertex) {
+    if (!(d < dist(v))) return;
+    VertexRecord& r = scratch_.vertices[v];
+    r = VertexRecord{scratch_.stamp, window, from_vertex, d, false};
+    if (v == target_) {
+      best_ = std::min(best_, d);
+      return;
+    }
+    if (!pseudo_[v]) return;
+    if (vertex_key(v, d) < best_) {
+      push({order_key(v, d), -(v + 1)});
+      r.pending = true;
+    }
+  }
+
+  // The target in h's frame, unfolded to the side y > 0.
+  // (Kept in h's record: an edge gets a few windows.)
+  Vec2 target_in_frame(int h) {
+    HalfedgeRecord& r = record(h);
+    if (std::isnan(r.target_x)) {
+      const Vec3& a = mesh_.position(mesh_.from(h));
+      const Vec3 at = target_position_ - a;
+      r.target_x = at.dot(mesh_.position(mesh_.to(h)) - a) / frame_[3 * h];
+      r.target_y = std::sqrt(std::max(0.0, at.squaredNorm() - r.target_x * r.target_x));
+    }
+    return {r.target_x, r.target_y};
+  }
+
+  // The queue's order: the A* bound while no length is known (the target is then reached
+  // first), the distance from the source once one is (Dijkstra's order: a window is
+  // propagated after the shorter windows that can cut it, so fewer are propagated in vain;
+  // the bound against the best length still prunes the same windows).
+  double order_key(int v, double d) const { return distance_order_ ? d : vertex_key(v, d); }
+
+  double vertex_key(int v, double d) const {
+    if (target_ < 0) return d;
+    return d +
+           std::max((mesh_.position(v) - target_position_).norm(), landmark_bound(v, v, 0.0, 0.0));
+  }
+
+  // Lights the edges opposite to v in its faces with v as the pseudo-source.
+  // (d is v's current distance: the pending flag in run() keeps stale events out.)
+  void expand_vertex(int v, double d) {
+    ++vertex_events_;
+    const Vec3& pv = mesh_.position(v);
+    outgoing_.clear();
+    const int first = mesh_.vertex_halfedge(v);
+    for (int o = first; o >= 0;) {
+      outgoing_.push_back(o);
+      o = mesh_.ccw_rotate(o);
+      if (o == first) break;
+    }
+    const bool all = v == source_ || mesh_.is_boundary_vertex(v) || !continuation_range(v);
+    for (std::size_t i = 0; i < outgoing_.size(); ++i) {
+      const int o = outgoing_[i];
+      relax(mesh_.to(o), d + mesh_.halfedge_length(o), -1, v);
+      const int p = mesh_.prev(o);
+      relax(mesh_.from(p), d + mesh_.halfedge_length(p), -1, v);
+      if (!all && !continues_[i]) continue;
+      const int h = mesh_.twin(mesh_.next(o));
+      if (mesh_.is_boundary_halfedge(h)) continue;
+      const Vec3& a = mesh_.position(mesh_.from(h));
+      const Vec3& b = mesh_.position(mesh_.to(h));
+      const double len = frame_[3 * h];
+      if (!(len > 0.0)) continue;
+      const double x = (pv - a).dot(b - a) / len;
+      const double y = -std::sqrt(std::max(0.0, (pv - a).squaredNorm() - x * x));
+      add_window({h, 0.0, len, {x, y}, d, v, -1});
+    }
+  }
+
+  // A shortest path through the saddle v that arrived along direction u leaves it at an angle
+  // >= pi from -u on both sides (otherwise a path around v would be shorter): only the faces
+  // around v meeting that range need windows lit by v. Sets continues_ per outgoing_ entry;
+  // false when the arrival direction is unknown (then every face is lit).
+  bool continuation_range(int v) {
+    const std::size_t n = outgoing_.size();
+    corner_.resize(n + 1);
+    corner_[0] = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+      corner_[i + 1] = corner_[i] + mesh_.corner_angle(outgoing_[i]);
+    const double total = corner_[n];
+    // The angle, counter-clockwise from outgoing_[0], of the direction back along the arrival.
+    double back = -1.0;
+    const int pw = scratch_.vertices[v].provider_window;
+    if (pw >= 0) {
+      const Window& w = windows_[pw];
+      const int o = mesh_.prev(w.h);  // v -> from(w.h) in face(w.h)
+      const double cx = frame_[3 * w.h + 1], cy = frame_[3 * w.h + 2];
+      const Vec2 ca{-cx, -cy}, ci{w.source.x - cx, w.source.y - cy};
+      const double beta = std::atan2(std::abs(cross(ca, ci)), dot(ca, ci));
+      for (std::size_t i = 0; i < n; ++i)
+        if (outgoing_[i] == o) back = corner_[i] + beta;
+    } else {
+      const int u = scratch_.vertices[v].provider_vertex;
+      for (std::size_t i = 0; i < n; ++i)
+        if (mesh_.to(outgoing_[i]) == u) back = corner_[i];
+    }
+    if (back < 0.0) return false;
+    constexpr double kPi = 3.141592653589793, kTol = 1e-9;
+    const double lo = kPi - kTol, hi = total - kPi + kTol;
+    continues_.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      double r0 = corner_[i] - back, r1 = corner_[i + 1] - back;
+      if (r0 < 0.0) {
+        r0 += total;
+        r1 += total;
+      }
+      // [r0, r1] and its copy one turn down, against [lo, hi].
+      continues_[i] = (r0 <= hi && r1 >= lo) || (r0 - total <= hi && r1 - total >= lo);
+    }
+    return true;
+  }
+
+  void add_window(Window w) {
+    const double len = length(w);
+    if (!(w.b1 - w.b0 > 1e-12 * len)) return;
+    if (!trim(&w)) return;
+    if (!compete(&w)) return;
+    // min over x in [b0, b1] of |I - (x, 0)| + |(x, 0) - t|: the target at its distance r
+    // from the edge's line, unfolded to the other side (T = (tx, r)); the sum is convex in x
+    // with its minimum where I -> T crosses the line.
+    const double nearest = w.sigma + norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0});
+    if (target_ < 0) {
+      push_window(w, nearest, nearest);
+      return;
+    }
+    const Vec2 T = target_in_frame(w.h);
+    const Vec2& I = w.source;
+    const double cross_x = T.y - I.y > 0.0 ? I.x + (T.x - I.x) * (-I.y) / (T.y - I.y) : I.x;
+    const double x = std::clamp(cross_x, w.b0, w.b1);
+    const Vec2 X{x, 0.0};
+    double key = w.sigma + norm(X - I) + norm(T - X);
+    if (landmarks_ != nullptr) {
+      // Any x of the interval is within b1 of from(h) and len - b0 of to(h).
+      key =
+          std::max(key, nearest + landmark_bound(mesh_.from(w.h), mesh_.to(w.h), w.b1, len - w.b0));
+    }
+    push_window(w, distance_order_ ? nearest : key, key);
+  }
+
+  // ALT lower bound on d(x, t) for the points x within ra of vertex a and rb of vertex b:
+  // max over landmarks L of |d(L, t) - d(L, x)| with d(L, x) bracketed through a and b.
+  double landmark_bound(int a, int b, double ra, double rb) const {
+    if (landmarks_ == nullptr) return 0.0;
+    const int k = landmarks_->count;
+    const double* la = landmarks_->dist.data() + static_cast<std::size_t>(a) * k;
+    const double* lb = landmarks_->dist.data() + static_cast<std::size_t>(b) * k;
+    double bound = 0.0;
+    for (int i = 0; i < k; ++i) {
+      const double upper = std::min(la[i] + ra, lb[i] + rb);
+      const double lower = std::max(la[i] - ra, lb[i] - rb);
+      bound = std::max({bound, target_landmark_[i] - upper, lower - target_landmark_[i]});
+    }
+    return std::isfinite(bound) ? bound : 0.0;
+  }
+
+  void push(const Event& e) { queue_.push(e); }
+
+  // `order`: the queue key; `bound`: the A* bound against the best length.
+  void push_window(const Window& w, double order, double bound) {
+    if (!(bound < best_)) return;
+    const int index = static_cast<int>(windows_.size());
+    int& first = head(w.h);
+    windows_.push_back(w);
+    windows_.back().bound = bound;
+    windows_.back().next = first;
+    first = index;
+    push({order, index});
+    if (options_.max_windows > 0 && static_cast<long>(windows_.size()) > options_.max_windows)
+      aborted_ = true;
+  }
+
+  // The endpoint vertices' distances along the edge against the window's: g_A(x) = d(A) + x -
+  // (sigma + |I x|) has slope 1 - (slope of |I x|) >= 0, so A wins (g_A < 0) on a prefix of the
+  // interval, and B likewise on a suffix. Cuts those parts off (a little less, for round-off);
+  // false when nothing is left.
+  bool trim(Window* w) const {
+    const double len = length(*w), tol = 1e-12 * len;
+    const Vec2 I = w->source;
+    const double da = dist(mesh_.from(w->h));
+    if (da + w->b1 < w->sigma + norm(I - Vec2{w->b1, 0.0})) return false;
+    if (da + w->b0 < w->sigma + norm(I - Vec2{w->b0, 0.0})) {
+      // d(A) + x = sigma + |I x|, i.e. 2 x (k + sx) = sx^2 + sy^2 - k^2 with k = d(A) - sigma.
+      const double k = da - w->sigma, den = 2.0 * (k + I.x);
+      if (den > 0.0) w->b0 = std::max(w->b0, (I.x * I.x + I.y * I.y - k * k) / den - tol);
+    }
+    const double db = dist(mesh_.to(w->h));
+    if (db + (len - w->b0) < w->sigma + norm(I - Vec2{w->b0, 0.0})) return false;
+    if (db + (len - w->b1) < w->sigma + norm(I - Vec2{w->b1, 0.0})) {
+      const double k = db - w->sigma, sx = len - I.x, den = 2.0 * (k + sx);
+      if (den > 0.0) w->b1 = std::min(w->b1, len - (sx * sx + I.y * I.y - k * k) / den + tol);
+    }
+    return w->b1 - w->b0 > tol;
+  }
+
+  double length(const Window& w) const { return frame_[3 * w.h]; }
+
+  // h's record, initialised on its first use in the query.
+  HalfedgeRecord& record(int h) {
+    HalfedgeRecord& r = scratch_.halfedges[h];
+    if (r.stamp != scratch_.stamp) {
+      constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+      r = HalfedgeRecord{scratch_.stamp, -1,  std::numeric_limits<double>::infinity(), 0.0,
+                         kNaN,           kNaN};
+    }
+    return r;
+  }
+
+  int& head(int h) { return record(h).head; }
+
+  // The windows on an edge against each other (Mitchell, Mount and Papadimitriou's window
+  // intersection, from the ends only): where another window on the same edge, lit from either
+  // side, is shorter than w, every ray of w through that part is beaten there, hence beyond.
+  // Cuts from w's ends what another window beats by more than round-off (a tie keeps both,
+  // unless they are one window made twice), and cuts the queued windows the same way where w
+  // beats them; a window left empty is dead. False when w is.
+  bool compete(Window* w) {
+    const double len = length(*w), tol = 1e-12 * len;
+    const int sides[2] = {w->h, mesh_.twin(w->h)};
+    for (int side = 0; side < 2; ++side) {
+      HalfedgeRecord& r = scratch_.halfedges[sides[side]];
+      if (r.stamp != scratch_.stamp) continue;
+      int* link = &r.head;
+      while (*link >= 0) {
+        Window& o = windows_[*link];
+        if (o.state != Window::kQueued) {
+          *link = o.next;
+          continue;
+        }
+        // o (queued: the others leave the list above) in w's frame.
+        const bool same = side == 0;
+        const double ob0 = same ? o.b0 : len - o.b1, ob1 = same ? o.b1 : len - o.b0;
+        const double lo = std::max(w->b0, ob0), hi = std::min(w->b1, ob1);
+        bool o_beaten = false;
+        if (hi - lo > tol) {
+          const EdgeDistance wd{w->sigma, w->source.x, w->source.y};
+          const EdgeDistance od{o.sigma, same ? o.source.x : len - o.source.x, o.source.y};
+          const double eps = 1e-12 * (w->sigma + len);
+          // Pieces of [lo, hi] split where w - o crosses +eps or -eps (the points where w
+          // shifted by -+eps equals o): on each, w - o stays above eps, below -eps, or
+          // between (a tie), whichever its midpoint shows.
+          double x[6];
+          int n = 0;
+          x[n++] = lo;
+          const EdgeDistance above{wd.sigma - eps, wd.sx, wd.sy},
+              below{wd.sigma + eps, wd.sx, wd.sy};
+          n += equal_distance_points(above, od, lo, hi, x + n);
+          n += equal_distance_points(below, od, lo, hi, x + n);
+          for (int i = 2; i < n; ++i)  // the (at most 4) candidates in order
+            for (int j = i; j > 1 && x[j] < x[j - 1]; --j) std::swap(x[j], x[j - 1]);
+          x[n] = hi;
+          // The same pseudo-source unfolded the same way (a window made twice): its rays are
+          // w's, so a tie is no reason to keep both.
+          const bool twin_rays = std::abs(wd.sigma - od.sigma) <= eps &&
+                                 std::abs(wd.sx - od.sx) <= tol && std::abs(wd.sy - od.sy) <= tol;
+          // Per piece: -1 w strictly shorter, +1 o strictly shorter, 0 a tie. Only a strictly
+          // shorter window cuts: two windows from different sources within round-off of each
+          // other over a band both keep it, for one of them may hold the ray to a vertex
+          // that the other's rays miss (found in review: a flat grid's vertex reached only
+          // along edges, 10 % long).
+          int sign[5];
+          for (int i = 0; i < n; ++i) {
+            const double m = 0.5 * (x[i] + x[i + 1]);
+            const double f = wd.at(m) - od.at(m);
+            sign[i] = f < -eps ? -1 : (f > eps || twin_rays ? 1 : 0);
+          }
+          // The window [b0, b1] loses the pieces at its ends that the overlap covers and where
+          // the other one is strictly shorter (sign `beaten`).
+          const auto cut = [&](double* b0, double* b1, int beaten) {
+            if (lo <= *b0 + tol) {
+              int i = 0;
+              while (i < n && sign[i] == beaten) ++i;
+              if (i > 0) *b0 = x[i];
+            }
+            if (hi >= *b1 - tol) {
+              int i = n;
+              while (i > 0 && sign[i - 1] == beaten) --i;
+              if (i < n) *b1 = x[i];
+            }
+          };
+          cut(&w->b0, &w->b1, 1);
+          if (!(w->b1 - w->b0 > tol)) return false;
+          double c0 = ob0, c1 = ob1;  // o, in w's frame
+          cut(&c0, &c1, -1);
+          o_beaten = !(c1 - c0 > tol);
+          if (o_beaten) {
+            o.state = Window::kDead;
+          } else if (same) {
+            o.b0 = c0;
+            o.b1 = c1;
+          } else {
+            o.b0 = len - c1;
+            o.b1 = len - c0;
+          }
+        }
+        if (o_beaten)
+          *link = o.next;
+        else
+          link = &o.next;
+      }
+    }
+    return true;
+  }
+
+  void propagate(int index) {
+    if (windows_[index].state != Window::kQueued) return;
+    windows_[index].state = Window::kPropagated;
+    Window w = windows_[index];
+    const int h = w.h;
+    const double len = length(w);
+    if (!trim(&w)) return;
+    const int c = mesh_.opposite_vertex(h);
+    const double cx = frame_[3 * h + 1], cy = frame_[3 * h + 2];
+    if (!(cy > 0.0)) return;  // degenerate face
+    const Vec2 A{0.0, 0.0}, B{len, 0.0}, C{cx, cy}, I = w.source;
+    // The ray from I through C meets the edge at xc.
+    const double xc = I.x + (cx - I.x) * (-I.y) / (cy - I.y);
+    const double tol = 1e-12 * len;
+    // One angle, one split: when a ray through another window on h reached C more cheaply
+    // (crossing h at x*), the rays of this window that cross the segment x* -> C are beaten at
+    // the crossing point (there d_w >= d_w(C) - |PC| > d*(C) - |PC| = d*), hence beyond it: a
+    // child on the far side of that segment keeps only the part whose rays do not cross it.
+    double keep_left = w.b1, keep_right = w.b0;  // left child within x <= keep_left, ...
+    const double dc = w.sigma + norm(C - I);
+    HalfedgeRecord& r = record(h);
+    if (dc > r.split_dist) {
+      const double xs = r.split_x;
+      if (xc < xs) keep_right = xs;  // rays in (xc, xs) cross x* -> C to reach C -> B
+      if (xc > xs) keep_left = xs;   // rays in (xs, xc) cross it to reach A -> C
+    }
+    if (xc >= w.b0 - tol && xc <= w.b1 + tol) {
+      // This window's ray reaches C: a real path (dc of a window whose cone misses C is no
+      // path, but it still bounds that window's distances on the segment x* -> C above).
+      relax(c, dc, index, -1);
+      if (dc < r.split_dist) {
+        r.split_dist = dc;
+        r.split_x = xc;
+      }
+    }
+    const int hp = mesh_.prev(h), hn = mesh_.next(h);
+    const double lac = frame_[3 * hp], lcb = frame_[3 * hn];
+    // Rays through [b0, min(b1, xc)] leave through A -> C: the child on twin(prev(h)), frame A.
+    if (w.b0 < std::min(xc, keep_left)) {
+      const int g = mesh_.twin(hp);
+      if (!mesh_.is_boundary_halfedge(g)) {
+        const double hi = std::min({w.b1, xc, keep_left});
+        const double s0 = std::clamp(ray_hit(I, {w.b0, 0.0}, A, C), 0.0, 1.0);
+        const double s1 = hi >= xc ? 1.0 : std::clamp(ray_hit(I, {hi, 0.0}, A, C), 0.0, 1.0);
+        const Vec2 e{cx / lac, cy / lac};
+        // ICH's third check: B beats the child at its end nearest A, hence everywhere on it
+        // (moving towards C, the ray from I turns towards A -> C no less than the line from B).
+        const Vec2 p0{s0 * cx, s0 * cy};
+        const bool beaten = dist(mesh_.to(h)) + norm(p0 - B) < w.sigma + norm(p0 - I);
+        if (s1 > s0 && !beaten)
+          add_window({g, s0 * lac, s1 * lac, {dot(I, e), cross(e, I)}, w.sigma, w.pseudo, index});
+      }
+    }
+    // Rays through [max(b0, xc), b1] leave through C -> B: the child on twin(next(h)), frame C.
+    if (w.b1 > std::max(xc, keep_right)) {
+      const int g = mesh_.twin(hn);
+      if (!mesh_.is_boundary_halfedge(g)) {
+        const double lo = std::max({w.b0, xc, keep_right});
+        const double s0 = lo <= xc ? 0.0 : std::clamp(ray_hit(I, {lo, 0.0}, C, B), 0.0, 1.0);
+        const double s1 = std::clamp(ray_hit(I, {w.b1, 0.0}, C, B), 0.0, 1.0);
+        const Vec2 e{(len - cx) / lcb, -cy / lcb};
+        const Vec2 r = I - C;
+        // The same with A at the child's end nearest B.
+        const Vec2 p1{cx + s1 * (len - cx), cy - s1 * cy};
+        const bool beaten = dist(mesh_.from(h)) + norm(p1 - A) < w.sigma + norm(p1 - I);
+        if (s1 > s0 && !beaten)
+          add_window({g, s0 * lcb, s1 * lcb, {dot(r, e), cross(e, r)}, w.sigma, w.pseudo, index});
+      }
+    }
+  }
+
+  // The legs between the pseudo-sources the path passes, from the providers back from the
+  // target, joined at those vertices.
+  bool build_path(SurfacePath* path, std::vector<int>* passed) const {
+    std::vector<SurfacePath> legs;
+    std::vector<int> joints;
+    int u = target_;
+    for (int guard = 0; u != source_; ++guard) {
+      if (guard > mesh_.num_vertices()) return false;
+      SurfacePath leg;
+      leg.end = SurfacePoint::at_vertex(u);
+      int v = -1;
+      if (scratch_.vertices[u].provider_window >= 0) {
+        std::vector<int> chain;
+        for (int w = scratch_.vertices[u].provider_window; w >= 0; w = windows_[w].parent)
+          chain.push_back(w);
+        std::reverse(chain.begin(), chain.end());
+        v = windows_[chain.front()].pseudo;
+        for (const int w : chain) {
+          const Window& x = windows_[w];
+          leg.halfedges.push_back(mesh_.twin(x.h));
+          leg.lambdas.push_back(std::clamp(1.0 - 0.5 * (x.b0 + x.b1) / length(x), 0.0, 1.0));
+        }
+        leg.start_face = mesh_.face(leg.halfedges.front());
+      } else {
+        v = scratch_.vertices[u].provider_vertex;
+        if (v < 0) return false;
+        for (const int o : mesh_.outgoing_halfedges(v)) {
+          if (mesh_.to(o) == u || mesh_.from(mesh_.prev(o)) == u) {
+            leg.start_face = mesh_.face(o);
+            break;
+          }
+        }
+        if (leg.start_face < 0) return false;
+      }
+      leg.start = SurfacePoint::at_vertex(v);
+      legs.push_back(std::move(leg));
+      if (v != source_) joints.push_back(v);
+      u = v;
+    }
+    if (legs.empty()) return false;
+    std::reverse(legs.begin(), legs.end());
+    std::reverse(joints.begin(), joints.end());
+    SurfacePath joined = legs.front();
+    for (std::size_t i = 1; i < legs.size(); ++i) {
+      joined = join_at_vertex(mesh_, joined, legs[i], joints[i - 1]);
+      if (joined.start_face < 0) return false;
+    }
+    *path = std::move(joined);
+    *passed = std::move(joints);
+    return true;
+  }
+
+  const Mesh& mesh_;
+  const std::vector<char>& pseudo_;
+  const double* frame_;
+  const int source_, target_;
+  const WindowSearchOptions options_;
+  const Vec3 target_position_;
+  const Landmarks* landmarks_;
+  std::vector<double> target_landmark_;
+  Scratch& scratch_;
+  std::vector<Window>& windows_;
+  RadixQueue<Event>& queue_;
+  std::vector<int>& outgoing_;
+  std::vector<double> corner_;
+  std::vector<char> continues_;
+  double best_;
+  const bool distance_order_;
+  long vertex_events_ = 0;
+  bool aborted_ = false;
+};
+
+void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
+                  std::initializer_list<int> vertices) {
+  for (const int v : vertices) {
+    if (v < 0 || v >= mesh.num_vertices()) {
+      throw InputError("vertex " + std::to_string(v) + " out of range (the mesh has " +
+                       std::to_string(mesh.num_vertices()) + " vertices)");
+    }
+  }
+  if (static_cast<int>(window_mesh.pseudo_source.size()) != mesh.num_vertices() ||
+      window_mesh.frame.size() != 3 * static_cast<std::size_t>(mesh.num_interior_halfedges())) {
+    throw ConfigError("window search: the window mesh (prepare_window_mesh) is not this mesh's");
+  }
+}
+
+}  // namespace
+
+std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
+                                                  int source) {
+  check_inputs(mesh, window_mesh, {source});
+  Search search(mesh, window_mesh, source, -1, WindowSearchOptions{});
+  search.run();
+  return search.distances();
+}
+
+Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh, int count) {
+  Landmarks l;
+  if (count <= 0 || mesh.num_vertices() == 0) return l;
+  // Farthest-point choice in space: the first is the vertex farthest along the bounding box
+  // diagonal, each next one the vertex farthest from those chosen. (Geodesically farthest
+  // points need each field before the next choice, one after another; these let the fields
+  // be computed in parallel, and bound as well: bench/README.md, session 6.)
+  const Vec3 diagonal = mesh.bounding_box().diagonal();
+  int next = -1;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (mesh.vertex_halfedge(v) < 0) continue;
+    if (next < 0 || mesh.position(v).dot(diagonal) > mesh.position(next).dot(diagonal)) next = v;
+  }
+  std::vector<double> nearest(mesh.num_vertices(), std::numeric_limits<double>::infinity());
+  while (next >= 0 && static_cast<int>(l.vertices.size()) < count) {
+    l.vertices.push_back(next);
+    const Vec3 p = mesh.position(next);
+    next = -1;
+    double far = 0.0;
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      if (mesh.vertex_halfedge(v) < 0) continue;
+      nearest[v] = std::min(nearest[v], (mesh.position(v) - p).squaredNorm());
+      if (nearest[v] > far) {
+        far = nearest[v];
+        next = v;
+      }
+    }
+  }
+  l.count = static_cast<int>(l.vertices.size());
+  std::vector<std::vector<double>> fields(l.count);
+  parallel_for_index(l.count, [&](int k) {
+    fields[k] = geodesic_distances_by_windows(mesh, window_mesh, l.vertices[k]);
+  });
+  l.dist.resize(static_cast<std::size_t>(mesh.num_vertices()) * l.count);
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    for (int k = 0; k < l.count; ++k)
+      l.dist[static_cast<std::size_t>(v) * l.count + k] = fields[k][v];
+  return l;
+}
+
+WindowSearchResult shortest_path_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
+                                            int source, int target,
+                                            const WindowSearchOptions& options,
+                                            const Landmarks* landmarks) {
+  const auto t0 = Clock::now();
+  check_inputs(mesh, window_mesh, {source, target});
+  std::string why;
+  if (!options.is_valid(&why)) throw ConfigError("window search: " + why);
+  if (landmarks != nullptr &&
+      landmarks->dist.size() != static_cast<std::size_t>(mesh.num_vertices()) * landmarks->count)
+    throw ConfigError("window search: landmark fields do not match the mesh");
+  WindowSearchResult result;
+  if (source != target)
+    result = Search(mesh, window_mesh, source, target, options, landmarks).run();
+  result.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace windplan

@@ -1,0 +1,107 @@
+#pragma once
+// Bounded exact window propagation: the globally shortest polyhedral geodesic between two mesh
+// vertices, or the proof that none is shorter than a given upper bound.
+//
+// Chen and Han's window propagation with Xin and Wang's vertex filter ("Improving Chen and Han's
+// algorithm on the discrete geodesic problem", ACM TOG 2009), searched best-first as A*: every
+// window (an interval of an edge lit by one unfolded pseudo-source) has the lower bound
+//   sigma + min |I x| + min |x t|   over the points x of its interval,
+// (pseudo-source distance, straight unfolded distance to the interval, Euclidean distance in
+// space from the interval to the target, which no surface path can beat). Windows and vertex
+// events whose bound reaches the best length known (the target's distance found so far, or
+// `upper_bound`, e.g. the length of a locally shortest geodesic already found) are dropped, and
+// the search stops when the smallest bound in the queue reaches it: what remains is a corridor
+// around the geodesic instead of the whole mesh.
+//
+// A window is dropped when an endpoint vertex of its edge reaches its far end more cheaply along
+// the edge (d(A) + x is increasing faster than the window's distance, so the whole window is
+// beaten): the exact part of ICH's filter. The windows on one edge, lit from either side, also
+// cut each other from their ends where one is shorter by more than round-off (Mitchell, Mount and
+// Papadimitriou's window intersection, geometry/geodesic/window_distance.h): this cut the windows
+// of a search by 3x on the bunnies (bench/README.md, session 6). Saddle and boundary vertices are
+// pseudo-sources.
+//
+// Order: without an upper bound, A* (the target is reached first, then the bound prunes); with
+// one, Dijkstra's order by the distance from the source, pruned by the same bound (a window is
+// then propagated after the shorter windows that may cut it). The queue is a radix heap
+// (geometry/geodesic/radix_queue.h): both orders are monotone.
+// Euclidean metric only (the geodesic core uses it for Euclidean queries between vertices; see
+// geodesic_between in geometry/geodesic/geodesic.h). No CGAL: geometry/geodesic/exact_geodesic.h is
+// the reference the tests compare with.
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "geometry/mesh/mesh.h"
+#include "geometry/mesh/surface_path.h"
+
+namespace windplan {
+
+struct WindowSearchOptions {
+  /// Only paths strictly shorter than this are looked for (mesh units; +infinity: any).
+  double upper_bound = std::numeric_limits<double>::infinity();
+  /// Give up (complete = false) after this many windows were created (0: no limit). Memory is
+  /// about 100 bytes per window with its queue entry (bench/README.md, session 6: median 10K
+  /// windows at 20K faces, 274K and a p90 of 1.35M at 300K faces).
+  long max_windows = 0;
+
+  bool is_valid(std::string* why) const;
+};
+
+struct WindowSearchResult {
+  /// A path shorter than upper_bound was found: distance and path are set.
+  bool found = false;
+  /// The search ran to its end (false: max_windows stopped it; then found is false).
+  bool complete = true;
+  double distance = std::numeric_limits<double>::infinity();
+  /// The corridor of the shortest path: the strip of its legs between the pseudo-source
+  /// vertices it passes, joined at them, with crossings inside the windows (a start for
+  /// refine_path, whose funnel straightens it to the exact geodesic of the corridor).
+  SurfacePath path;
+  std::vector<int> vertices_passed;  ///< pseudo-source vertices on the path, source side first
+  long windows = 0;                  ///< windows created
+  long windows_propagated = 0;       ///< windows taken from the queue and propagated
+  long vertex_events = 0;            ///< pseudo-source vertices expanded
+  double time_ms = 0.0;
+};
+
+/// Per-mesh data of the window search, built once per mesh (O(V + F)).
+struct WindowMesh {
+  /// Per vertex: 1 for the vertices geodesics may pass through (saddle: cone angle >=
+  /// 2 pi - 1e-9, flat and boundary vertices), 0 for the others.
+  std::vector<char> pseudo_source;
+  /// Per interior halfedge h, 3 values: the length of h and the corner of face(h) opposite h
+  /// in h's frame (from(h) at the origin, to(h) on the positive x axis, the corner at y >= 0).
+  std::vector<double> frame;
+};
+WindowMesh prepare_window_mesh(const Mesh& mesh);
+
+/// Exact geodesic distance fields from a few landmark vertices, for A* lower bounds by the
+/// triangle inequality: d(x, t) >= |d(L, t) - d(L, x)| (Goldberg and Harrelson's ALT), which
+/// bound paths that wind around the surface far better than the straight distance in space.
+struct Landmarks {
+  int count = 0;
+  std::vector<int> vertices;
+  std::vector<double> dist;  ///< dist[v * count + k]: from landmark k to vertex v
+};
+
+/// `count` landmarks chosen farthest-point in space, their exact distance fields built in
+/// parallel (parallel_for_index): each is a full window propagation.
+Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh, int count);
+
+/// Exact geodesic distances from vertex `source` to every vertex (+infinity on other
+/// components): the full window propagation.
+/// \throw InputError when the vertex is out of range.
+std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
+                                                  int source);
+
+/// The shortest path from vertex `source` to vertex `target` if it is shorter than
+/// options.upper_bound. `window_mesh` is prepare_window_mesh(mesh); `landmarks` (optional)
+/// tighten the A* bounds. Thread-safe (per-thread buffers).
+/// \throw InputError when a vertex index is out of range.
+WindowSearchResult shortest_path_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
+                                            int source, int target,
+                                            const WindowSearchOptions& options = {},
+                                            const Landmarks* landmarks = nullptr);
+
+}  // namespace windplan

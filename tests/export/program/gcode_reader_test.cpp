@@ -1,0 +1,78 @@
+#include "export/program/gcode_reader.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "export/machine/kinematics.h"
+#include "export/program/gcode.h"
+#include "geometry/base/errors.h"
+#include "tests/export/plan_fixtures.h"
+
+namespace windplan {
+namespace {
+
+MachineOptions machine(const std::string& kind, const std::string& dialect) {
+  MachineOptions m;
+  m.kind = kind;
+  m.gcode.dialect = dialect;
+  m.a.offset = 10;  // not applied to Marlin's A (re-zeroed per circuit)
+  m.x.sign = -1;
+  m.x.offset = 5;
+  return m;
+}
+
+TEST(GcodeReader, ReadsBackEveryDialectAndKind) {
+  const WindingPlan plan = test::helix_plan(40, 50, 2, 600, 3);
+  for (const std::string kind : {"lathe2", "lathe4"}) {
+    for (const std::string dialect : {"linuxcnc", "marlin", "fanuc"}) {
+      SCOPED_TRACE(kind + " " + dialect);
+      const MachineOptions m = machine(kind, dialect);
+      const Motion mo = compute_motion(plan, m);
+      const GcodeProgram p = read_gcode(gcode_program(mo, "t", m), m, "t");
+      ASSERT_EQ(p.blocks.size(), mo.states.size());
+      EXPECT_TRUE(p.ended);
+      EXPECT_EQ(p.inverse_time, dialect == "linuxcnc");  // feed auto
+      for (std::size_t i = 0; i < p.blocks.size(); ++i) {
+        const MachineState& s = mo.states[i];
+        EXPECT_NEAR(p.blocks[i].a, s.a_deg, 2e-4);
+        EXPECT_NEAR(p.blocks[i].x, s.x_mm, 2e-4);
+        if (kind == "lathe4") {
+          EXPECT_NEAR(p.blocks[i].y, s.y_mm, 2e-4);
+          EXPECT_NEAR(p.blocks[i].b, s.b_deg, 2e-4);
+        }
+        if (i > 0) EXPECT_NEAR(p.blocks[i].feed, s.feed, 1e-4 * s.feed + 1e-4);
+      }
+    }
+  }
+}
+
+void expect_error(const std::string& text, const MachineOptions& m, const std::string& what) {
+  try {
+    read_gcode(text, m, "edit.ngc");
+    FAIL() << "no error for: " << what;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
+TEST(GcodeReader, BadProgramsNameTheLine) {
+  const MachineOptions lc = machine("lathe2", "linuxcnc");
+  expect_error("G21 G90 G93\nG0 X0 A0\nG1 X1 A1 Q5 F10\nM2\n", lc, "edit.ngc:3: unknown word Q5");
+  expect_error("G21 G90 G93\nG0 X0 A0\nG1 X1 Y3 A1 F10\nM2\n", lc, "edit.ngc:3: unknown word Y3");
+  expect_error("G21\nG90\nG94\nG0 X0 A0\nG92 A0\nM84\n", lc, "edit.ngc:5: G92 belongs to a marlin");
+  expect_error("%\nO1000\nN1 G21 G90 G93\nN2 M98 P1001\nN3 M30\n", lc, "edit.ngc:2: an O program");
+  expect_error("G21 G90 G93\nG0 X0 A0\nG2 X1 A1 F10\nM2\n", lc, "edit.ngc:3: unknown code G2");
+  expect_error("G21 G90 G93\nG0 X0 A0\nG1 X1 A1\nM2\n", lc, "edit.ngc:3: G1 without a feed");
+  expect_error("G21 G90 G93\nG0 X0 A0\nG1 X1 A1 F10\n", lc, "no end code");
+  const MachineOptions marlin = machine("lathe2", "marlin");
+  expect_error("G21\n(comment)\nG0 X0 A0\nM84\n", marlin, "edit.ngc:2: a '( )' comment");
+  expect_error("G21 G93\nG0 X0 A0\nM84\n", marlin, "edit.ngc:1: G93");
+  MachineOptions limited = lc;
+  limited.x.max = 100;
+  expect_error("G21 G90 G93\nG0 X0 A0\nG1 X150 A1 F10\nM2\n", limited,
+               "edit.ngc:3: axis X moves to 150, outside its travel");
+}
+
+}  // namespace
+}  // namespace windplan

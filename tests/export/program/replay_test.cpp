@@ -1,0 +1,76 @@
+#include "export/program/replay.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "export/program/gcode_reader.h"
+#include "geometry/base/errors.h"
+#include "tests/export/plan_fixtures.h"
+#include "tests/mesh_fixtures.h"
+
+namespace windplan {
+namespace {
+
+// A lathe2 program written by hand from the closed form: the eye on the cylinder R_e about z
+// leads the helix point (R cos phi, R sin phi, c phi) by the angle beta = acos(R / R_e) and by
+// c tan(beta) along the axis (the tangent line of the helix leaves the eye cylinder there).
+std::string helix_program(double R, double Re, double c, double turns, int n, double fault_mm = 0,
+                          int fault_from = -1) {
+  const double beta = std::acos(R / Re);
+  std::string s = "%\n(hand-made helix)\nG21 G90 G93\n";
+  for (int i = 0; i < n; ++i) {
+    const double phi = turns * 2 * M_PI * i / (n - 1);
+    double x = c * phi + c * std::tan(beta);
+    if (fault_from >= 0 && i >= fault_from) x += fault_mm;
+    const double a = -(phi + beta) * 180 / M_PI;
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "%s X%.4f A%.4f%s\n", i == 0 ? "G0" : "G1", x, a,
+                  i == 0 ? "" : " F600");
+    s += buf;
+  }
+  return s + "M2\n%\n";
+}
+
+MachineOptions lathe2(double Re) {
+  MachineOptions m;
+  m.kind = "lathe2";
+  m.envelope.radius = Re;
+  return m;
+}
+
+TEST(Replay, HandMadeHelixProgramOnACylinderLaysTheHelix) {
+  const double R = 50, Re = 70, alpha = 60, turns = 2;
+  const WindingPlan plan = test::helix_plan(R, alpha, turns, 2000);
+  const double c = R / std::tan(alpha * M_PI / 180);
+  const Mesh mesh(test::open_cylinder(R, c * turns * 2 * M_PI + 100, 512, 200));
+  const MachineOptions m = lathe2(Re);
+  const GcodeProgram p = read_gcode(helix_program(R, Re, c, turns, 1500), m, "helix.ngc");
+  ASSERT_EQ(p.blocks.size(), 1500u);
+  const ReplayResult r = replay_program(p, plan, mesh, m);
+  std::printf("%s\n", r.summary.c_str());
+  EXPECT_LT(r.max_deviation, 0.05);
+  EXPECT_NEAR(r.min_clearance, Re - R, 0.01);
+  EXPECT_EQ(r.carriage_reversals, 0);
+  EXPECT_EQ(r.spindle_reversals, 0);
+}
+
+TEST(Replay, OneMillimetreCarriageFaultIsCaught) {
+  const double R = 50, Re = 70, alpha = 60, turns = 2;
+  const WindingPlan plan = test::helix_plan(R, alpha, turns, 2000);
+  const double c = R / std::tan(alpha * M_PI / 180);
+  const Mesh mesh(test::open_cylinder(R, c * turns * 2 * M_PI + 100, 512, 200));
+  const MachineOptions m = lathe2(Re);
+  const GcodeProgram p = read_gcode(helix_program(R, Re, c, turns, 1500, 1.0, 500), m, "fault.ngc");
+  const ReplayResult r = replay_program(p, plan, mesh, m);
+  std::printf("%s\n", r.summary.c_str());
+  // An axial shift of 1 mm moves a helix at 60 deg to the axis by sin(60 deg) = 0.87 mm.
+  EXPECT_GT(r.max_deviation, 0.8);
+  EXPECT_LT(r.max_deviation, 1.05);
+  EXPECT_GT(r.max_deviation_line, 500);
+}
+
+}  // namespace
+}  // namespace windplan

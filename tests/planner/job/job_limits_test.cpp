@@ -1,0 +1,126 @@
+// planner/job/job_limits.h: absurd sizes are refused when the job is loaded, before anything is
+// allocated, each naming the key, the value and the bound (issue 18: each of these once ran for
+// minutes, took gigabytes, hung in OCCT, or planned nonsense and exited 0).
+#include "planner/job/job_limits.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "geometry/base/errors.h"
+#include "planner/job/job.h"
+#include "tests/planner/job_error.h"
+#include "tests/test_data.h"
+
+namespace windplan {
+namespace {
+
+const std::string kPipe = "mandrel: {source: pipe, pipe: {radius: 50, length: 500}}\n";
+std::string pipe_with(const std::string& mandrel_keys) {
+  return "mandrel: {source: pipe, " + mandrel_keys + ", pipe: {radius: 50, length: 500}}\n";
+}
+
+struct Case {
+  std::string yaml, key, value, bound;
+};
+
+TEST(JobLimits, EveryAbsurdSizeIsRefusedNamingKeyValueAndBound) {
+  const std::vector<Case> cases = {
+      {kPipe + "winding: {meridians: 1000000000}\n", "winding.meridians", "1e+09", "10000"},
+      {kPipe + "winding: {circuits: 1000000000}\n", "winding.circuits", "1e+09", "10000"},
+      {kPipe + "winding: {turns: 1e6}\n", "winding.turns", "1000000", "100"},
+      {kPipe + "winding: {band_width: 1e-9}\n", "winding.band_width", "1e-09", "0.001 mm"},
+      {kPipe + "winding: {band_width: 1e9}\n", "winding.band_width", "1e+09", "100000 mm"},
+      {kPipe + "girth: {samples: 100000000}\n", "girth.samples", "1e+08", "2000"},
+      {pipe_with("linear_deflection: 1e-6"), "mandrel.linear_deflection", "1e-06", "0.001 mm"},
+      {pipe_with("linear_deflection: 0.001"), "mandrel.linear_deflection", "0.001", "0.005099 mm"},
+      {pipe_with("angular_deflection: 0.001"), "mandrel.angular_deflection", "0.001", "2000000"},
+      {pipe_with("remesh: 0.01"), "mandrel.remesh", "0.01", "2000000"},
+      {pipe_with("remesh: 1e6"), "mandrel.remesh", "1000000", "100000 mm"},
+      {pipe_with("remesh: 100"), "mandrel.remesh", "100", "50.99 mm"},
+      {"mandrel: {source: pipe, pipe: {radius: 1e300, length: 500}}\n", "mandrel.pipe.radius",
+       "1e+300", "100000 mm"},
+      {"mandrel: {source: pipe, pipe: {radius: 50, length: 1e300}}\n", "mandrel.pipe.length",
+       "1e+300", "100000 mm"},
+      {"mandrel: {source: cone, cone: {radius_start: 1e-7, radius_end: 40, length: 400}}\n",
+       "mandrel.cone.radius_start", "1e-07", "0.001 mm"},
+      {"mandrel: {source: bent_tube, bent_tube: {radius: 25, segments: [1e300, 200], bends: "
+       "[{angle: 90, radius: 100}]}}\n",
+       "mandrel.bent_tube.segments", "1e+300", "100000 mm"},
+      {kPipe + "winding: {turns: 90, circuits: 1000}\n", "winding.turns", "90", "plan points"},
+      {kPipe + "machine: {chord_tolerance: 1e-12}\n", "machine.chord_tolerance", "1e-12", "0.001"},
+  };
+  for (const Case& c : cases) {
+    const std::string e = test::job_load_error(c.yaml);
+    EXPECT_NE(e.find(c.key), std::string::npos) << c.yaml << " -> " << e;
+    EXPECT_NE(e.find(c.value), std::string::npos) << c.yaml << " -> " << e;
+    EXPECT_NE(e.find(c.bound), std::string::npos) << c.yaml << " -> " << e;
+    EXPECT_NE(e.find("/jobs/j.yaml"), std::string::npos) << e;
+  }
+}
+
+TEST(JobLimits, MessageGivesTheLineOfTheKey) {
+  const std::string e =
+      test::job_load_error(kPipe + "winding:\n  turns: 2\n  meridians: 1000000\n");
+  EXPECT_EQ(e.rfind("/jobs/j.yaml:4: key 'winding.meridians' = 1000000", 0), 0u) << e;
+}
+
+TEST(JobLimits, ShippedConfigsAreWithinEveryBound) {
+  for (const auto& e : std::filesystem::directory_iterator(test::source_dir() / "configs")) {
+    if (e.path().extension() != ".yaml") continue;
+    EXPECT_NO_THROW(load_job(e.path())) << e.path();
+  }
+}
+
+TEST(JobLimits, TriangleEstimateIsTheClosedFormOfTheChordDeviation) {
+  // Edge l = sqrt(8 R d) when it is the binding one; A / (0.433 l^2) triangles.
+  TessellateOptions t;
+  t.linear_deflection = 0.5;
+  t.angular_deflection = 90.0;
+  const double r = 100.0, l2 = 8.0 * r * t.linear_deflection;
+  EXPECT_NEAR(estimate_tessellation_triangles(1e5, r, t), 1e5 / (0.433 * l2), 1e-9);
+  t.angular_deflection = 1.0;  // now R t = 1.745 mm < 20 mm
+  const double la = r * M_PI / 180.0;
+  EXPECT_NEAR(estimate_tessellation_triangles(1e5, r, t), 1e5 / (0.433 * la * la), 1e-6);
+}
+
+TEST(JobLimits, MeshAndCadMandrelsAreCheckedOnceTheirSizeIsKnown) {
+  MandrelSize s;
+  s.size = 1e7;  // a 10 km mesh: the units are wrong
+  try {
+    check_mandrel_extent(s, "mandrel (tube.obj)");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("check mandrel.units"), std::string::npos) << e.what();
+  }
+  s.size = 500.0;
+  s.area = 1.5e5;
+  EXPECT_THROW(check_remesh_size(s, 0.01), ConfigError);
+  EXPECT_THROW(check_remesh_size(s, 60.0), ConfigError);
+  EXPECT_NO_THROW(check_remesh_size(s, 6.0));
+}
+
+TEST(JobLimits, PlanPointEstimateAndItsBoundOnABuiltMandrel) {
+  WindingOptions w;
+  w.turns = 2.0;
+  w.circuits = 3;
+  // 2 K passes, each crossing 2 (N 2 pi R + L) / l edges.
+  EXPECT_NEAR(estimate_plan_points(w, 10.0, 100.0, 2.0),
+              2.0 * 3.0 * 2.0 * (2.0 * 2.0 * M_PI * 10.0 + 100.0) / 2.0, 1e-9);
+  w.circuits = 0;  // auto: ceil(2 pi R / band width) = ceil(62.8 / 10) = 7
+  EXPECT_NEAR(estimate_plan_points(w, 10.0, 100.0, 2.0),
+              2.0 * 7.0 * 2.0 * (2.0 * 2.0 * M_PI * 10.0 + 100.0) / 2.0, 1e-9);
+  w.turns = 100.0;
+  w.circuits = 10000;
+  try {
+    check_plan_size(w, 50.0, 200.0, 8.0);
+    FAIL();
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("'winding.turns' = 100, 'winding.circuits' = 10000"), std::string::npos) << m;
+    EXPECT_NE(m.find("above the bound 5000000"), std::string::npos) << m;
+  }
+}
+
+}  // namespace
+}  // namespace windplan
