@@ -1,4 +1,4 @@
-// windplan viewer (export/viewer.h): reads the JSON block "windplan-data" and draws the plan with
+// windplan viewer (export/plots/viewer.h): reads the JSON block "windplan-data" and draws the plan with
 // three.js r111. No network, no modules: THREE is the global of the embedded build.
 // Frame: x along the spindle axis, y and z across it (mm). Rendering is on demand (a change of
 // view, time or colour draws one frame), and each frame drawn outside playback is logged as
