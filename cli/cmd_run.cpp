@@ -55,6 +55,7 @@ int run_run(const std::vector<std::string>& argv) {
   } else {
     dir = std::filesystem::path("out") / job.name;
   }
+  if (dir.empty()) throw UsageError("option --out needs a folder name (got an empty string)");
 
   // The folder is locked before planning, so that a second run is refused at once; the inputs
   // are hashed now, as read (an edit during the run does not change the manifest).

@@ -1,5 +1,6 @@
 #include "export/files/manifest.h"
 
+#include <set>
 #include <system_error>
 
 #include "export/files/sha256.h"
@@ -82,6 +83,91 @@ std::vector<std::string> manifest_file_names(const std::string& json) {
     names.push_back(name);
   }
   return names;
+}
+
+namespace {
+
+// A cursor over the manifest text for parse_manifest_files.
+struct Cursor {
+  const std::string& s;
+  std::size_t i = 0;
+  bool eat(const std::string& lit) {
+    if (s.compare(i, lit.size(), lit) != 0) return false;
+    i += lit.size();
+    return true;
+  }
+  void space() {
+    while (i < s.size() && (s[i] == ' ' || s[i] == '\n')) ++i;
+  }
+  // A string as quoted() writes it: \" \\ and \u00XX escapes only.
+  bool string(std::string* out) {
+    if (!eat("\"")) return false;
+    out->clear();
+    while (i < s.size() && s[i] != '"') {
+      char c = s[i++];
+      if (c == '\\') {
+        if (i >= s.size()) return false;
+        c = s[i++];
+        if (c == 'u') {
+          if (i + 4 > s.size() || s.compare(i, 2, "00") != 0) return false;
+          const std::string hex = s.substr(i + 2, 2);
+          i += 4;
+          if (hex.find_first_not_of("0123456789abcdef") != std::string::npos) return false;
+          c = static_cast<char>(std::stoi(hex, nullptr, 16));
+        } else if (c != '"' && c != '\\') {
+          return false;
+        }
+      }
+      *out += c;
+    }
+    return eat("\"");
+  }
+  bool number(std::uintmax_t* out) {
+    const std::size_t start = i;
+    *out = 0;
+    while (i < s.size() && s[i] >= '0' && s[i] <= '9' && i - start < 19) {
+      *out = *out * 10 + static_cast<std::uintmax_t>(s[i++] - '0');
+    }
+    return i > start && (i >= s.size() || s[i] < '0' || s[i] > '9');
+  }
+};
+
+}  // namespace
+
+bool parse_manifest_files(const std::string& json, std::vector<ManifestEntry>* files) {
+  files->clear();
+  if (json.compare(0, 27, "{\n  \"windplan_manifest\": 1,") != 0) return false;
+  const std::size_t at = json.find("\n  \"files\": [");
+  if (at == std::string::npos) return false;
+  Cursor c{json, at + 13};
+  std::set<std::string> seen;
+  std::vector<ManifestEntry> out;
+  c.space();
+  if (!c.eat("]")) {
+    for (;;) {
+      c.space();
+      ManifestEntry e;
+      if (!c.eat("{\"name\": ") || !c.string(&e.name) || !c.eat(", \"size\": ") ||
+          !c.number(&e.size) || !c.eat(", \"sha256\": ") || !c.string(&e.sha256) || !c.eat("}")) {
+        return false;
+      }
+      if (e.name.empty() || e.name == "." || e.name == ".." || e.name == "manifest.json" ||
+          e.name.find_first_of(std::string("/\0", 2)) != std::string::npos ||
+          e.sha256.size() != 64 ||
+          e.sha256.find_first_not_of("0123456789abcdef") != std::string::npos ||
+          !seen.insert(e.name).second) {
+        return false;
+      }
+      out.push_back(e);
+      c.space();
+      if (c.eat("]")) break;
+      if (!c.eat(",")) return false;
+    }
+  }
+  c.space();
+  if (!c.eat("}") || (c.i < json.size() && !(c.eat("\n") && c.i == json.size()))) return false;
+  *files = std::move(out);
+  return true;
 }
 
 }  // namespace windplan

@@ -46,4 +46,10 @@ std::string manifest_json(const Manifest& m);
 /// windplan manifest. (A reader for the layout above, not a general JSON parser.)
 std::vector<std::string> manifest_file_names(const std::string& json);
 
+/// The "files" entries of a manifest's text (name, size, sha256), read strictly in the layout
+/// manifest_json writes: false (and `files` cleared) when the text is anything else (another
+/// layout, a name given twice, a name with '/' or NUL, a hash that is not 64 hex digits). Used
+/// to verify an output folder before it is replaced (export/files/output_set.h).
+bool parse_manifest_files(const std::string& json, std::vector<ManifestEntry>* files);
+
 }  // namespace windplan

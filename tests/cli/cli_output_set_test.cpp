@@ -170,7 +170,7 @@ TEST_F(CliOutputSet, AnotherJobsFilesAreNotLeftBesideTheNewSet) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_FALSE(fs::exists(out / "toolpath.gcode"));  // once left beside the new toolpath.ngc
   EXPECT_TRUE(fs::exists(out / "toolpath.ngc"));
-  EXPECT_EQ(names_in(dir_).count(".set.lock"), 1u);
+  EXPECT_EQ(names_in(dir_).count(".set.lock"), 0u);  // removed by its holder (issue 28)
   for (const std::string& n : names_in(dir_))
     EXPECT_EQ(n.find(".set.staging"), std::string::npos) << n;
 }
@@ -221,6 +221,51 @@ TEST_F(CliOutputSet, SecondRunIntoAHeldFolderIsRefused) {
       << second.err;
   first.stop(SIGKILL);
   EXPECT_EQ(run({"run", marlin_job().string(), "--out", out.string()}).code, 0);
+}
+
+// Issue 28: a forged manifest.json listing a user's file (its true size and hash) made `run`
+// delete it. Every shipped job, into a folder holding a user's file, a report.md of theirs and
+// such a manifest: refused at once naming the file, everything kept, no lock file left.
+TEST_F(CliOutputSet, EveryShippedJobRefusesAFolderWithAForgedManifest) {
+  const fs::path out = dir_ / "documents";
+  fs::create_directories(out);
+  std::ofstream(out / "thesis.docx") << "chapter 1\n";
+  std::ofstream(out / "report.md") << "my report\n";
+  const std::string forged =
+      "{\n  \"windplan_manifest\": 1,\n  \"windplan_version\": \"0.1.0\",\n  \"job\": \"x\",\n"
+      "  \"inputs\": [],\n  \"files\": [\n    {\"name\": \"thesis.docx\", \"size\": 10, "
+      "\"sha256\": \"" +
+      sha256sum(out / "thesis.docx") +
+      "\"},\n    {\"name\": \"report.md\", \"size\": 10, "
+      "\"sha256\": \"" +
+      sha256sum(out / "report.md") + "\"}\n  ]\n}\n";
+  std::ofstream(out / "manifest.json") << forged;
+  const auto before = folder_contents(out);
+  int jobs = 0;
+  for (const auto& e : fs::directory_iterator(test::source_dir() / "configs")) {
+    if (e.path().extension() != ".yaml") continue;
+    ++jobs;
+    const test::RunResult r = run({"run", e.path().string(), "--out", out.string()});
+    EXPECT_EQ(r.code, 1) << e.path() << r.err;
+    EXPECT_NE(r.err.find("did not write: thesis.docx (listed, but not a name windplan writes)"),
+              std::string::npos)
+        << e.path() << r.err;
+    EXPECT_EQ(r.err.find("done in"), std::string::npos) << "planned first: " << r.err;
+    EXPECT_EQ(folder_contents(out), before) << e.path();
+    EXPECT_EQ(names_in(dir_), (std::set<std::string>{"documents", "out.txt", "err.txt"}));
+  }
+  EXPECT_GE(jobs, 10);
+}
+
+TEST_F(CliOutputSet, AnEmptyOrLinkedOutIsRefusedBeforePlanning) {
+  test::RunResult r = run({"run", config("pipe.yaml").string(), "--out", ""});
+  EXPECT_EQ(r.code, 2) << r.err;  // was exit 3, internal error
+  EXPECT_NE(r.err.find("--out needs a folder name"), std::string::npos) << r.err;
+  fs::create_symlink(dir_ / "gone", dir_ / "dangling");
+  r = run({"run", config("pipe.yaml").string(), "--out", (dir_ / "dangling").string()});
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("dangling: is a symbolic link to nothing"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("done in"), std::string::npos) << "planned first: " << r.err;
 }
 
 TEST_F(CliOutputSet, JobNameCannotEscapeTheOutputFolder) {
