@@ -17,6 +17,7 @@
 #include <IGESData_IGESEntity.hxx>
 #include <Interface_Static.hxx>
 #include <STEPControl_Reader.hxx>
+#include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 #include <StepRepr_RepresentationItem.hxx>
 #include <TCollection_HAsciiString.hxx>
@@ -31,6 +32,7 @@
 
 #include "geometry/base/errors.h"
 #include "geometry/cad/cad_shape_occt.h"
+#include "geometry/cad/occt_signals.h"
 
 namespace windplan {
 
@@ -139,7 +141,9 @@ CadImport import_cad(const std::filesystem::path& file, const CadImportOptions& 
   TopoDS_Shape shape;
   // Names of the transferred bodies, looked up from the reader's entities when possible.
   std::vector<std::pair<TopoDS_Shape, std::string>> names;
+  OcctSignalScope signals;  // a damaged file's SIGSEGV in OCCT becomes a Standard_Failure
   try {
+    OCC_CATCH_SIGNALS
     if (format == "step" || format == "iges") {
       Interface_Static::SetCVal("xstep.cascade.unit", "MM");
       std::unique_ptr<XSControl_Reader> reader;
@@ -183,7 +187,9 @@ CadImport import_cad(const std::filesystem::path& file, const CadImportOptions& 
       }
     }
   } catch (const Standard_Failure& e) {
-    throw IoError(name + ": OpenCASCADE could not read it (" + e.GetMessageString() + ")");
+    const std::string what = e.GetMessageString() ? e.GetMessageString() : "";
+    if (what.find("SIG") != std::string::npos) throw IoError(name + ": " + occt_failure_text(what));
+    throw IoError(name + ": OpenCASCADE could not read it (" + what + ")");
   }
   if (shape.IsNull()) throw InputError(name + ": the file contains no shapes");
 
@@ -196,6 +202,7 @@ CadImport import_cad(const std::filesystem::path& file, const CadImportOptions& 
 
   std::vector<Body> bodies;
   try {
+    OCC_CATCH_SIGNALS
     for (TopExp_Explorer ex(shape, TopAbs_SOLID); ex.More(); ex.Next()) {
       Body b;
       b.shape = ex.Current();
@@ -260,7 +267,9 @@ CadImport import_cad(const std::filesystem::path& file, const CadImportOptions& 
       }
     }
   } catch (const Standard_Failure& e) {
-    throw IoError(name + ": OpenCASCADE failed on its topology (" + e.GetMessageString() + ")");
+    const std::string what = e.GetMessageString() ? e.GetMessageString() : "";
+    if (what.find("SIG") != std::string::npos) throw IoError(name + ": " + occt_failure_text(what));
+    throw IoError(name + ": OpenCASCADE failed on its topology (" + what + ")");
   }
   if (bodies.empty()) throw InputError(name + ": the file has no usable solid or shell");
   for (const Body& b : bodies) out.bodies.push_back(b.name);

@@ -11,6 +11,8 @@
 #include <BRep_Tool.hxx>
 #include <Poly_PolygonOnTriangulation.hxx>
 #include <Poly_Triangulation.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
@@ -21,6 +23,7 @@
 
 #include "geometry/base/errors.h"
 #include "geometry/cad/cad_shape_occt.h"
+#include "geometry/cad/occt_signals.h"
 
 namespace windplan {
 
@@ -118,9 +121,20 @@ Tessellation tessellate(const CadShape& cad, const TessellateOptions& options) {
   // apply, not those of a previous call.
   TopoDS_Shape shape = cad.data()->shape;
   BRepTools::Clean(shape);
-  BRepMesh_IncrementalMesh mesher(shape, options.linear_deflection, Standard_False,
-                                  options.angular_deflection * M_PI / 180.0, Standard_False);
-  if (!mesher.IsDone()) throw InputError("tessellation: BRepMesh failed on the CAD shape");
+  bool done = false;
+  {
+    OcctSignalScope signals;  // a damaged model's SIGSEGV in BRepMesh becomes a Standard_Failure
+    try {
+      OCC_CATCH_SIGNALS
+      BRepMesh_IncrementalMesh mesher(shape, options.linear_deflection, Standard_False,
+                                      options.angular_deflection * M_PI / 180.0, Standard_False);
+      done = mesher.IsDone();
+    } catch (const Standard_Failure& e) {
+      throw InputError(std::string("tessellation: ") +
+                       occt_failure_text(e.GetMessageString() ? e.GetMessageString() : ""));
+    }
+  }
+  if (!done) throw InputError("tessellation: BRepMesh failed on the CAD shape");
 
   TopTools_IndexedMapOfShape face_map, edge_map, vertex_map;
   TopExp::MapShapes(shape, TopAbs_FACE, face_map);
