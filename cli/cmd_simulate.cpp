@@ -12,6 +12,7 @@
 #include "export/program/replay.h"
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
+#include "geometry/base/input_file.h"
 #include "geometry/base/json.h"
 #include "planner/job/job.h"
 #include "planner/pipeline.h"
@@ -35,11 +36,8 @@ int run_simulate(const std::vector<std::string>& argv) {
   args.expect_positional(2, "a job file and a G-code program");
   const Job job = load_job(args.positional()[0]);
   const std::filesystem::path program_file = args.positional()[1];
-  std::ifstream in(program_file, std::ios::binary);
-  if (!in) throw IoError(program_file.string() + ": cannot open the program");
-  std::ostringstream text;
-  text << in.rdbuf();
-  const GcodeProgram program = read_gcode(text.str(), job.machine, program_file.string());
+  const std::string text = read_input_file(program_file, kProgramFileCap, "a G-code program");
+  const GcodeProgram program = read_gcode(text, job.machine, program_file.string());
 
   PipelineOptions po;
   const PipelineResult r = plan_job(job, po);

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "geometry/base/errors.h"
+#include "geometry/base/input_file.h"
 
 namespace windplan {
 
@@ -50,14 +51,7 @@ void write_text_atomically(const std::filesystem::path& path, const std::string&
 }
 
 std::string read_text_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw IoError(path.string() + ": no such file");
-  if (std::filesystem::is_directory(path, ec)) throw IoError(path.string() + ": is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path.string() + ": cannot open for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return read_input_file(path, kCsvFileCap, "a text file");
 }
 
 }  // namespace windplan

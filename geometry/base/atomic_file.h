@@ -18,7 +18,8 @@ void write_file_atomically(const std::filesystem::path& path,
 /// Convenience: writes a whole string atomically.
 void write_text_atomically(const std::filesystem::path& path, const std::string& text);
 
-/// Reads a whole file. \throw IoError if it is missing or unreadable.
+/// Reads a whole regular file of at most kCsvFileCap bytes (geometry/base/input_file.h).
+/// \throw IoError if it is missing, unreadable, a directory or special file, or too large.
 std::string read_text_file(const std::filesystem::path& path);
 
 }  // namespace windplan

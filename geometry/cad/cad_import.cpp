@@ -31,6 +31,7 @@
 #include <XSControl_WorkSession.hxx>
 
 #include "geometry/base/errors.h"
+#include "geometry/base/input_file.h"
 #include "geometry/cad/cad_shape_occt.h"
 #include "geometry/cad/occt_signals.h"
 
@@ -130,9 +131,9 @@ CadImport import_cad(const std::filesystem::path& file, const CadImportOptions& 
     throw IoError(name + ": unknown CAD extension '" + file.extension().string() +
                   "' (use .step/.stp, .iges/.igs or .brep)");
   }
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) throw IoError(name + ": no such file");
-  if (std::filesystem::file_size(file, ec) == 0) throw IoError(name + ": the file is empty");
+  if (check_input_file(file, kCadFileCap, "a STEP, IGES or BREP file") == 0) {
+    throw IoError(name + ": the file is empty");
+  }
   check_signature(file, format);
   silence_occt_messages();
 

@@ -12,6 +12,7 @@
 
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
+#include "geometry/base/input_file.h"
 #include "geometry/mesh/mesh_readers.h"
 
 namespace windplan {
@@ -38,23 +39,9 @@ std::string join(const std::vector<std::string>& v) {
 // The whole file in one read: parsing a memory buffer with pointers is what makes a 16 MB OBJ
 // load in tens of milliseconds instead of seconds with iostreams.
 std::string read_whole_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) fail(path, "no such file");
-  if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not a mesh file");
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) fail(path, std::string("cannot open: ") + std::strerror(errno));
-  std::string data;
-  std::fseek(f, 0, SEEK_END);
-  const long size = std::ftell(f);
-  std::fseek(f, 0, SEEK_SET);
-  if (size < 0) {
-    std::fclose(f);
-    fail(path, "cannot determine the file size");
-  }
-  data.resize(static_cast<std::size_t>(size));
-  const std::size_t got = size > 0 ? std::fread(data.data(), 1, data.size(), f) : 0;
-  std::fclose(f);
-  if (got != data.size()) fail(path, "read error");
+  // A regular file of bounded size only (geometry/base/input_file.h): a FIFO or /dev/zero is
+  // refused at once, named as such.
+  std::string data = read_input_file(path, kMeshFileCap, "a mesh file (OBJ, OFF, PLY or STL)");
   if (data.empty()) fail(path, "empty file");
   return data;
 }

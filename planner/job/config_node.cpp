@@ -2,9 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <unordered_map>
 #include <utility>
 
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
+
 #include "geometry/base/atomic_file.h"
+#include "geometry/base/input_file.h"
 
 namespace windplan {
 
@@ -68,7 +74,7 @@ void check_keys(const YAML::Node& n, const std::string& file, const std::string&
     return;
   }
   if (!n.IsMap()) return;
-  std::vector<std::pair<std::string, int>> seen;  // key, line
+  std::unordered_map<std::string, int> seen;  // key -> line (linear: 100K keys took 32 s)
   for (auto it = n.begin(); it != n.end(); ++it) {
     const int line = it->first.Mark().line + 1;
     if (!it->first.IsScalar()) {
@@ -78,16 +84,122 @@ void check_keys(const YAML::Node& n, const std::string& file, const std::string&
     }
     const std::string k = it->first.Scalar();
     const std::string full = path.empty() ? k : path + "." + k;
-    for (const auto& [prev, prev_line] : seen) {
-      if (prev == k) {
-        throw ConfigError(file + ":" + std::to_string(line) + ": duplicate key '" + full +
-                          "' (first given on line " + std::to_string(prev_line) +
-                          "); keep only one");
-      }
+    const auto [prev, fresh] = seen.emplace(k, line);
+    if (!fresh) {
+      throw ConfigError(file + ":" + std::to_string(line) + ": duplicate key '" + full +
+                        "' (first given on line " + std::to_string(prev->second) +
+                        "); keep only one");
     }
-    seen.emplace_back(k, line);
     check_keys(it->second, file, full, depth + 1);
   }
+}
+
+// The document as the parser's events, before any tree is built (issue 28): one document
+// only, no tags, and the number of values it holds with every alias expanded (a 1 KB "billion
+// laughs" file of nested aliases expands to 10^9) bounded by kMaxValues. Aliases are counted,
+// never walked: linear in the text.
+class ShapeCheck : public YAML::EventHandler {
+ public:
+  static constexpr std::uint64_t kMaxValues = 1000000;
+  explicit ShapeCheck(const std::string& file) : file_(file) {}
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& m, YAML::anchor_t a) override { value(m, a, 1); }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t a) override {
+    value(m, 0, a < sizes_.size() ? sizes_[a] : 1);
+  }
+  void OnScalar(const YAML::Mark& m, const std::string& tag, YAML::anchor_t a,
+                const std::string&) override {
+    check_tag(m, tag);
+    value(m, a, 1);
+  }
+  void OnSequenceStart(const YAML::Mark& m, const std::string& tag, YAML::anchor_t a,
+                       YAML::EmitterStyle::value) override {
+    start(m, tag, a);
+  }
+  void OnSequenceEnd() override { end(); }
+  void OnMapStart(const YAML::Mark& m, const std::string& tag, YAML::anchor_t a,
+                  YAML::EmitterStyle::value) override {
+    start(m, tag, a);
+  }
+  void OnMapEnd() override { end(); }
+
+ private:
+  void check_tag(const YAML::Mark& m, const std::string& tag) {
+    if (tag.empty() || tag == "?" || tag == "!") return;
+    const std::string core = "tag:yaml.org,2002:";
+    const std::string shown =
+        tag.compare(0, core.size(), core) == 0 ? "!!" + tag.substr(core.size()) : tag;
+    throw ConfigError(file_ + ":" + std::to_string(m.line + 1) + ": a YAML tag ('" + shown +
+                      "') is not used in a job file; remove it and give the plain value");
+  }
+  void value(const YAML::Mark& m, YAML::anchor_t a, std::uint64_t n) {
+    count_ += n;
+    if (count_ > kMaxValues) {
+      throw ConfigError(file_ + ":" + std::to_string(m.line + 1) + ": the job holds more than " +
+                        std::to_string(kMaxValues) +
+                        " values once its aliases (*name) are expanded (a job file has a few "
+                        "hundred); repeated aliases of aliases are refused");
+    }
+    if (a > 0) {
+      if (sizes_.size() <= a) sizes_.resize(a + 1, 1);
+      sizes_[a] = n;
+    }
+  }
+  void start(const YAML::Mark& m, const std::string& tag, YAML::anchor_t a) {
+    check_tag(m, tag);
+    value(m, 0, 1);
+    open_.push_back({a, count_});
+  }
+  void end() {
+    const auto [a, at] = open_.back();
+    open_.pop_back();
+    if (a > 0) {
+      if (sizes_.size() <= a) sizes_.resize(a + 1, 1);
+      sizes_[a] = count_ - at + 1;
+    }
+  }
+  std::string file_;
+  std::uint64_t count_ = 0;
+  std::vector<std::uint64_t> sizes_;  // by anchor id: values in the anchored node
+  std::vector<std::pair<YAML::anchor_t, std::uint64_t>> open_;
+};
+
+// A second document ("---" then more) was ignored by YAML::Load: refused here.
+class SecondDocument : public YAML::EventHandler {
+ public:
+  int line = 0;
+  void OnDocumentStart(const YAML::Mark& m) override {
+    if (line == 0) line = m.line + 1;
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+// yaml-cpp's messages in the job writer's words, with the cause when it is a common one.
+std::string plain_yaml_error(const std::string& text, int line, const std::string& msg) {
+  std::string row;
+  {
+    std::istringstream in(text);
+    for (int i = 0; i <= line && std::getline(in, row);) ++i;
+  }
+  if (row.find('\t') != std::string::npos) {
+    return "a tab character; YAML indents with spaces only (replace the tab by spaces)";
+  }
+  if (row.size() > 1024) {
+    return "a line of " + std::to_string(row.size()) +
+           " characters, too long for a key (a key is a short name, at most 1024 characters)";
+  }
+  return "YAML syntax error (" + msg + "); check the indentation, colons and brackets";
 }
 
 }  // namespace
@@ -101,17 +213,28 @@ ConfigNode::ConfigNode(YAML::Node node, std::string file, std::string path)
 }
 
 ConfigNode ConfigNode::load_file(const std::filesystem::path& file) {
-  const std::string text = read_text_file(file);
+  const std::string text = read_input_file(file, kJobFileCap, "a job file (YAML)");
   return load_string(text, file.string());
 }
 
 ConfigNode ConfigNode::load_string(const std::string& text, const std::string& file) {
   YAML::Node root;
   try {
+    // First the events: one document, no tags, aliases bounded; then the tree.
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    ShapeCheck shape(file);
+    parser.HandleNextDocument(shape);
+    SecondDocument second;
+    if (parser.HandleNextDocument(second)) {
+      throw ConfigError(file + ":" + std::to_string(second.line) +
+                        ": a second YAML document ('---' starts one); a job file is one "
+                        "document: remove the '---' and what follows, or put it in its own file");
+    }
     root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
-    throw ConfigError(file + ":" + std::to_string(e.mark.line + 1) +
-                      ": YAML syntax error: " + e.msg);
+    throw ConfigError(file + ":" + std::to_string(e.mark.line + 1) + ": " +
+                      plain_yaml_error(text, e.mark.line, e.msg));
   }
   if (!root.IsDefined() || root.IsNull()) throw ConfigError(file + ": the job file is empty");
   if (!root.IsMap()) throw ConfigError(file + ": the job file must be a YAML map of sections");

@@ -67,5 +67,70 @@ TEST(ConfigNode, KeysThatAreNumbersOrQuotedStringsAreStillNames) {
   EXPECT_NE(e.find("unknown key '3'"), std::string::npos) << e;
 }
 
+// ---- issue 28: YAML that hung or was silently misread ----
+
+std::string load_error(const std::string& text) {
+  try {
+    ConfigNode::load_string(text, "j.yaml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A 1 KB "billion laughs": nine levels of nine aliases, 10^9 values once expanded. The key
+// check walked every expansion (hung); the aliases are now counted from the parser's events.
+TEST(ConfigNode, AliasBombIsRefusedWithoutExpandingIt) {
+  std::string text = "a0: &a0 [x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i < 10; ++i) {
+    text += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
+    for (int k = 0; k < 9; ++k) text += (k ? ", *a" : "*a") + std::to_string(i - 1);
+    text += "]\n";
+  }
+  EXPECT_LT(text.size(), 1100u);
+  const std::string e = load_error(text);
+  EXPECT_NE(e.find("more than 1000000 values once its aliases (*name) are expanded"),
+            std::string::npos)
+      << e;
+  // An alias or two, as a user may write them, still read.
+  const ConfigNode ok =
+      ConfigNode::load_string("a: &r 50\nb: *r\nc: &m {x: 1, y: [1, 2]}\nd: *m\n", "j.yaml");
+  EXPECT_TRUE(ok.present());
+}
+
+// 100K distinct keys took 32 s (a quadratic duplicate check); the last one repeats the first.
+TEST(ConfigNode, ManyKeysAreCheckedLinearly) {
+  std::string text;
+  for (int i = 0; i < 100000; ++i) text += "k" + std::to_string(i) + ": 1\n";
+  text += "k0: 2\n";
+  const std::string e = load_error(text);
+  EXPECT_NE(e.find("j.yaml:100001: duplicate key 'k0' (first given on line 1)"), std::string::npos)
+      << e;
+}
+
+TEST(ConfigNode, ASecondDocumentIsRefused) {
+  // YAML::Load read the first document and ignored the rest without a word.
+  const std::string e = load_error(kPipe + "---\nwinding: {turns: 3}\n");
+  EXPECT_NE(e.find("j.yaml:2: a second YAML document"), std::string::npos) << e;
+  EXPECT_EQ(load_error("---\n" + kPipe), "");  // one document with its marker is fine
+}
+
+TEST(ConfigNode, TagsAreRefusedNamedAsWritten) {
+  const std::string e = load_error("name: !!binary aGVsbG8=\n" + kPipe);
+  EXPECT_NE(e.find("j.yaml:1: a YAML tag ('!!binary') is not used in a job file"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(load_error("x: !custom {a: 1}\n").find("a YAML tag ('!custom')"), std::string::npos);
+}
+
+TEST(ConfigNode, TabsAndHugeKeysAreExplainedWithoutParserJargon) {
+  std::string e = load_error("mandrel:\n\tsource: pipe\n");
+  EXPECT_NE(e.find("j.yaml:2: a tab character; YAML indents with spaces only"), std::string::npos)
+      << e;
+  e = load_error("name: m\n" + std::string(1000000, 'k') + ": 1\n");
+  EXPECT_NE(e.find("j.yaml:2: a line of 1000003 characters, too long for a key"), std::string::npos)
+      << e;
+}
+
 }  // namespace
 }  // namespace windplan
