@@ -12,6 +12,9 @@ namespace windplan {
 
 namespace {
 
+constexpr double kMaxWordValue = 1e9;     // any word's value (LinuxCNC refuses such numbers too)
+constexpr double kMaxLinearTravel = 1e5;  // mm: a linear axis beyond 100 m is no winder's
+
 struct Word {
   char letter;
   double value;
@@ -26,7 +29,9 @@ struct Line {
 std::string code_of(const Word& w) {
   std::string s(1, w.letter);
   const double v = w.value;
-  if (v == std::floor(v)) return s + std::to_string(static_cast<long long>(v));
+  // (A cast of X1e10 to long long was undefined behaviour: only small whole numbers are codes.)
+  if (v == std::floor(v) && std::fabs(v) < 1e6)
+    return s + std::to_string(static_cast<long long>(v));
   return s + w.text;
 }
 
@@ -66,6 +71,12 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
   while (std::getline(in, raw)) {
     ++number;
     if (!raw.empty() && raw.back() == '\r') raw.pop_back();
+    if (raw.find('\r') != std::string::npos) {
+      // Read as one line, a CR-only program was replayed as one block.
+      fail(number,
+           "a carriage return (CR) inside the line: the program has CR-only line ends "
+           "(old Mac style); convert them to LF or CR LF");
+    }
     std::string s;
     int depth = 0;
     for (char c : raw) {
@@ -114,6 +125,11 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
       if (num.empty() || end != num.c_str() + num.size() || !std::isfinite(v)) {
         fail(number, std::string("word ") + letter + " without a valid number");
       }
+      if (std::fabs(v) > kMaxWordValue) {
+        fail(number, std::string("word ") + letter + num +
+                         ": the number is out of range (|value| > " +
+                         "1e9, which no controller reads)");
+      }
       ln.words.push_back({letter, v, num});
     }
     if (ln.words.empty()) continue;
@@ -145,6 +161,8 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
     double newv[4] = {value[0], value[1], value[2], value[3]};
     bool set[4] = {false, false, false, false};
     bool end = false, ret = false;
+    bool f_word = false;
+    int motion_words = 0;
     for (const Word& w : ln.words) {
       const std::string code = code_of(w);
       if (w.letter == 'N') {
@@ -154,8 +172,10 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
       if (w.letter == 'G') {
         if (code == "G0" || code == "G00") {
           motion = 0;
+          if (++motion_words > 1) fail(ln.number, "two motion codes (G0, G1) on one line");
         } else if (code == "G1" || code == "G01") {
           motion = 1;
+          if (++motion_words > 1) fail(ln.number, "two motion codes (G0, G1) on one line");
         } else if (code == "G21" || code == "G90") {
         } else if (code == "G94") {
           inverse = false;
@@ -205,6 +225,8 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
       }
       if (w.letter == 'F') {
         if (!(w.value > 0.0)) fail(ln.number, "F must be > 0 (got " + w.text + ")");
+        if (f_word) fail(ln.number, "two F words on one line");
+        f_word = true;
         feed = w.value;
         have_feed = true;
         continue;
@@ -219,6 +241,16 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
                             ")");
       }
       const AxisRef& ax = it->second;
+      if (set[ax.index]) {
+        fail(ln.number, "two " + ax.o->letter + " words on one line (LinuxCNC refuses it too)");
+      }
+      if (ax.index == 1 || ax.index == 2) {
+        if (std::fabs(w.value) > kMaxLinearTravel) {
+          fail(ln.number, "axis " + ax.o->letter + " moves to " + w.text +
+                              " mm, beyond 100 m: no winder's travel (a value in microns, or a "
+                              "typo?)");
+        }
+      }
       if (g92) {
         if (ax.index != 0 || !marlin) fail(ln.number, "G92 re-zeroes the spindle axis only");
         // The machine's A becomes w.value here: shift = planner A - sign * word.
@@ -260,6 +292,11 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
         }
       }
       if (motion == 1 && !have_feed) fail(ln.number, "G1 without a feed (F)");
+      if (motion == 1 && inverse && !f_word) {
+        fail(ln.number,
+             "G1 without an F word in inverse time mode (G93): each move gives its "
+             "own F = 1 / minutes (LinuxCNC refuses it too)");
+      }
       GcodeBlock b;
       b.line = ln.number;
       b.rapid = motion == 0;
@@ -280,6 +317,16 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
     }
     if (end) {
       prog.ended = true;
+      // Anything after the end code is never run: a forgotten M2 in the middle is an error
+      // (fanuc: subprograms, each after its O label, follow M30).
+      bool label_next = false;
+      for (const auto& kv : labels) label_next = label_next || kv.second == pc;
+      if (pc < lines.size() && stack.empty() && !(fanuc && label_next)) {
+        fail(ln.number, "the end code here stops the program, but " +
+                            std::to_string(lines.size() - pc) + " more line(s) follow (from line " +
+                            std::to_string(lines[pc].number) +
+                            ") that would never run; remove the end code or the lines");
+      }
       break;
     }
   }

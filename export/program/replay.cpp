@@ -16,6 +16,15 @@ namespace windplan {
 
 namespace {
 
+constexpr double kMaxBlockTravel = 1e5;    // mm of eye travel in one block (100 m)
+constexpr double kMaxBlockSubsteps = 1e6;  // sub-steps in one block
+
+std::string format_travel(double mm) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", mm);
+  return buf;
+}
+
 constexpr double kPi = 3.14159265358979323846;
 
 // The mandrel surface for the walk: closest points with normals interpolated from the face-corner
@@ -331,6 +340,14 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
           P.p = planned[ptr];
           P.n = planned_n[ptr];
         }
+      }
+      // Bounded before any sub-stepping (issue 28: a 1e9 mm jump was cut into 2e9 sub-steps):
+      // one block's eye travel beyond 100 m, or beyond 1e6 sub-steps, is no winder's move.
+      if (!b.rapid && !(travel <= kMaxBlockTravel && travel / options.step <= kMaxBlockSubsteps)) {
+        throw InputError("program line " + std::to_string(b.line) + ": the eye travels " +
+                         format_travel(travel) + " mm in one move (from line " +
+                         std::to_string(prev->line) + "), beyond 100 m or 1e6 sub-steps of " +
+                         "replay.step; no winder moves so far in one block");
       }
       const int n = b.rapid ? 0 : std::max(1, static_cast<int>(std::ceil(travel / options.step)));
       for (int k = 1; k <= n; ++k) {

@@ -74,5 +74,33 @@ TEST(GcodeReader, BadProgramsNameTheLine) {
                "edit.ngc:3: axis X moves to 150, outside its travel");
 }
 
+// Issue 28: programs LinuxCNC would refuse were replayed, each now refused with its line.
+TEST(GcodeReader, AsStrictAsLinuxCnc) {
+  const MachineOptions lc = machine("lathe2", "linuxcnc");
+  const std::string head = "G21 G90 G93\nG0 X0 A0\n";
+  // X1e10: the code cast overflowed long long (undefined behaviour), the replay passed it.
+  expect_error(head + "G1 X10000000000 A1 F10\nM2\n", lc,
+               "edit.ngc:3: word X10000000000: the number is out of range");
+  expect_error(head + "G1 X1000000 A1 F10\nM2\n", lc,
+               "edit.ngc:3: axis X moves to 1000000 mm, beyond 100 m");
+  expect_error(head + "G99999999999 X1 A1 F10\nM2\n", lc, "edit.ngc:3: word G99999999999");
+  // CR-only line ends: the whole program was one line, one block.
+  expect_error("G21 G90 G93\rG0 X0 A0\rG1 X1 A1 F10\rM2\r", lc,
+               "edit.ngc:1: a carriage return (CR) inside the line");
+  EXPECT_EQ(read_gcode(head + "G1 X1 A1 F10\r\nM2\r\n", lc, "crlf").blocks.size(), 2u);
+  // G93: every G1 gives its own F (the modal F was reused).
+  expect_error(head + "G1 X1 A1 F10\nG1 X2 A2\nM2\n", lc,
+               "edit.ngc:4: G1 without an F word in inverse time mode (G93)");
+  EXPECT_EQ(read_gcode("G21 G90 G94\nG0 X0 A0\nG1 X1 A1 F10\nG1 X2 A2\nM2\n", lc).blocks.size(),
+            3u);  // G94: F is modal
+  expect_error(head + "G1 X1 X2 A1 F10\nM2\n", lc, "edit.ngc:3: two X words on one line");
+  expect_error(head + "G1 X1 A1 F10 F20\nM2\n", lc, "edit.ngc:3: two F words on one line");
+  expect_error(head + "G0 G1 X1 A1 F10\nM2\n", lc, "edit.ngc:3: two motion codes");
+  // An M2 after 1 of 3 moves: the rest was silently never replayed.
+  expect_error(head + "G1 X1 A1 F10\nM2\nG1 X2 A2 F10\nG1 X3 A3 F10\nM2\n", lc,
+               "edit.ngc:4: the end code here stops the program, but 3 more line(s) follow "
+               "(from line 5)");
+}
+
 }  // namespace
 }  // namespace windplan

@@ -72,5 +72,28 @@ TEST(Replay, OneMillimetreCarriageFaultIsCaught) {
   EXPECT_GT(r.max_deviation_line, 500);
 }
 
+// Issue 28: a spindle jump of 1e9 deg was cut into fixed 0.5 mm sub-steps (hours); bounded by
+// the eye's travel before any sub-stepping, with the line named.
+TEST(Replay, AnAbsurdJumpIsRefusedBeforeSubStepping) {
+  const double R = 50, Re = 70, alpha = 60, turns = 2;
+  const WindingPlan plan = test::helix_plan(R, alpha, turns, 2000);
+  const double c = R / std::tan(alpha * M_PI / 180);
+  const Mesh mesh(test::open_cylinder(R, c * turns * 2 * M_PI + 100, 512, 200));
+  const MachineOptions m = lathe2(Re);
+  std::string text = helix_program(R, Re, c, turns, 100);
+  const std::size_t at = text.find("G1 ", text.find("G1 ") + 1);  // the second move: line 5
+  text.insert(at, "G1 X40 A-1000000000 F600\n");
+  const GcodeProgram p = read_gcode(text, m, "jump.ngc");
+  try {
+    replay_program(p, plan, mesh, m);
+    FAIL() << "a 1e9 deg jump was replayed";
+  } catch (const InputError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("program line 6: the eye travels 1.222e+09 mm in one move"),
+        std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace windplan
