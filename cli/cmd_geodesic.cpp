@@ -1,18 +1,24 @@
 // windplan geodesic / windplan loop: the geodesic core (geometry/geodesic/geodesic.h) on the
 // command line. A geodesic between two surface points, or a closed geodesic loop refined from a
 // curve, under the Euclidean, a density or an anisotropic metric; the result as text, JSON or CSV.
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
+#include <mutex>
 #include <set>
 #include <sstream>
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/progress.h"
 #include "export/files/csv.h"
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
@@ -430,6 +436,9 @@ int report(const Args& args, const Setup& s, const GeodesicResult& r, double ini
   return 0;
 }
 
+/// Batches of at least this many pairs show their progress on stderr.
+constexpr int kProgressFromPairs = 1000;
+
 /// One pair of `--pairs`, as given and as parsed.
 struct BatchPair {
   int line = 0;
@@ -452,6 +461,18 @@ std::vector<BatchLine> batch_lines(const std::filesystem::path& file) {
   int no = 0;
   while (std::getline(in, line)) {
     ++no;
+    // A NUL or another control character inside a token was cut by the number parser and
+    // copied whole into the CSV (issue 28): a batch file is plain text.
+    for (const char c : line) {
+      const unsigned char u = static_cast<unsigned char>(c);
+      if ((u < 0x20 && c != '\t' && c != '\r') || u == 0x7f) {
+        char code[8];
+        std::snprintf(code, sizeof code, "%02X", u);
+        throw InputError(file.string() + ":" + std::to_string(no) + ": a control character (" +
+                         (u == 0 ? std::string("NUL") : "byte 0x" + std::string(code)) +
+                         ") in the line; a batch file is plain text");
+      }
+    }
     std::string clean = line;
     for (char& c : clean)
       if (c == '\t' || c == '\r' || c == ';') c = ' ';
@@ -572,6 +593,17 @@ int run_geodesic_batch(const Args& args, Setup& s) {
   std::vector<OpenGeodesicResult> results(n);
   std::vector<double> times(n, 0.0);
   const auto t2 = Clock::now();
+  // Progress for long batches (1e6 pairs took minutes without a word): on a terminal the live
+  // line of cli/progress.h, in a log a line every 10 %.
+  const bool show = n >= kProgressFromPairs;
+  const bool tty = ::isatty(STDERR_FILENO) == 1;
+  std::unique_ptr<StageProgress> progress;
+  if (show) {
+    progress = std::make_unique<StageProgress>(std::cerr, tty, "windplan geodesic");
+    progress->start("pairs");
+  }
+  std::atomic<int> done{0};
+  std::mutex log;
   parallel_for_index(n, [&](int i) {
     const auto t = Clock::now();
     try {
@@ -580,8 +612,18 @@ int run_geodesic_batch(const Args& args, Setup& s) {
       throw InputError(file.string() + ":" + std::to_string(pairs[i].line) + ": " + e.what());
     }
     times[i] = ms_since(t);
+    if (!show) return;
+    const int d = ++done;
+    if (tty && (d % std::max(1, n / 1000) == 0 || d == n)) progress->count(d, n, "");
+    if (!tty && (d % std::max(1, n / 10) == 0) && d < n) {
+      const std::lock_guard<std::mutex> lock(log);
+      std::cerr << "windplan geodesic: " << d << " of " << n << " pairs ("
+                << static_cast<long long>(100.0 * d / n) << " %), " << ms_since(t2) / 1000.0
+                << " s\n";
+    }
   });
   const double solve_ms = ms_since(t2);
+  if (progress) progress->finish("pairs", solve_ms / 1000.0, " (" + std::to_string(n) + " pairs)");
   std::vector<BatchRow> rows(n);
   for (int i = 0; i < n; ++i) {
     rows[i] = {pairs[i].line,

@@ -12,7 +12,7 @@ namespace windplan {
 
 namespace {
 
-constexpr double kMaxWordValue = 1e9;     // any word's value (LinuxCNC refuses such numbers too)
+constexpr double kMaxWordValue = 1e9;     // any word's value but F's
 constexpr double kMaxLinearTravel = 1e5;  // mm: a linear axis beyond 100 m is no winder's
 
 struct Word {
@@ -125,10 +125,10 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
       if (num.empty() || end != num.c_str() + num.size() || !std::isfinite(v)) {
         fail(number, std::string("word ") + letter + " without a valid number");
       }
-      if (std::fabs(v) > kMaxWordValue) {
+      if (letter != 'F' && std::fabs(v) > kMaxWordValue) {
+        // (F is exempt: in inverse time a tiny move's F = 1 / minutes is legitimately huge.)
         fail(number, std::string("word ") + letter + num +
-                         ": the number is out of range (|value| > " +
-                         "1e9, which no controller reads)");
+                         ": the number is out of range (|value| > 1e9, which no controller reads)");
       }
       ln.words.push_back({letter, v, num});
     }

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include <sys/stat.h>
+
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -488,6 +490,40 @@ TEST_F(CliGeodesic, PairsBadLineIsExitOneWithTheLineAndNoOutput) {
   const RunResult threads =
       run({"geodesic", plane_, "--pairs", write("p.txt", "0 1\n"), "--threads", "0"});
   EXPECT_EQ(threads.code, 2);
+}
+
+// Issue 28: a NUL inside a token was cut by the number parser and copied whole into the CSV;
+// a FIFO or /dev/zero as the pairs file blocked or grew without bound.
+TEST_F(CliGeodesic, PairsFileIsPlainTextInARegularFile) {
+  const std::string nul = write("nul.txt", std::string("0 120\n5\0junk 6\n", 16));
+  RunResult r = run({"geodesic", plane_, "--pairs", nul});
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(has(r.err, "nul.txt:2: a control character (NUL) in the line"), "") << r.err;
+  EXPECT_EQ(r.out, "");
+  r = run({"geodesic", plane_, "--pairs", "/dev/zero"});
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(has(r.err, "/dev/zero: is a character device"), "") << r.err;
+  const fs::path fifo = dir_ / "pairs.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  r = run({"geodesic", plane_, "--pairs", fifo.string()});
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(has(r.err, "pairs.fifo: is a FIFO (named pipe)"), "") << r.err;
+}
+
+// A long batch says how far it is (1e6 pairs ran for minutes without a word): in a log, a line
+// every 10 % and one at the end; a short batch prints nothing.
+TEST_F(CliGeodesic, LongPairsBatchesShowProgress) {
+  std::string text;
+  for (int i = 0; i < 1000; ++i)
+    text += std::to_string(i % 121) + " " + std::to_string(120 - i % 121) + "\n";
+  const RunResult r = run(
+      {"geodesic", plane_, "--pairs", write("many.txt", text), "-o", (dir_ / "many.csv").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(has(r.err, "windplan geodesic: 100 of 1000 pairs (10 %)"), "") << r.err;
+  EXPECT_EQ(has(r.err, "windplan geodesic: 900 of 1000 pairs (90 %)"), "") << r.err;
+  EXPECT_EQ(has(r.err, "(1000 pairs)"), "") << r.err;
+  const RunResult few = run({"geodesic", plane_, "--pairs", write("few.txt", "0 120\n")});
+  EXPECT_EQ(few.err.find("pairs ("), std::string::npos) << few.err;
 }
 
 // Loops in a batch: each row equals the single run of the same curve, whatever the thread count;
