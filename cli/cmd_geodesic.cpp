@@ -18,6 +18,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "cli/pairs_reader.h"
 #include "cli/progress.h"
 #include "export/files/csv.h"
 #include "geometry/base/atomic_file.h"
@@ -144,14 +145,6 @@ Mesh load_geodesic_mesh(const std::filesystem::path& input) {
   return build_mesh(read_mesh(input), false);
 }
 
-/// Strict number parsing; false when `s` is not entirely one finite-or-not double.
-bool parse_double(const std::string& s, double* out) {
-  const char* b = s.c_str();
-  char* end = nullptr;
-  *out = std::strtod(b, &end);
-  return end != b && *end == '\0';
-}
-
 /// Whitespace-separated numbers of a file, each with its 1-based line number.
 struct NumberToken {
   double value;
@@ -233,48 +226,6 @@ PathMetric load_anisotropic(const Mesh& mesh, const std::filesystem::path& file)
     abc[f] = {a, b, c};
   }
   return PathMetric::anisotropic(mesh, abc);
-}
-
-/// --from / --to: a vertex index or x,y,z projected to the surface.
-SurfacePoint parse_point(const Mesh& mesh, const ClosestPointQuery& query, double tolerance,
-                         const std::string& option, const std::string& text) {
-  if (text.find(',') == std::string::npos) {
-    char* end = nullptr;
-    const long v = std::strtol(text.c_str(), &end, 10);
-    if (end == text.c_str() || *end != '\0') {
-      throw UsageError(option + " expects a vertex index or x,y,z, got '" + text + "'");
-    }
-    if (v < 0 || v >= mesh.num_vertices()) {
-      throw InputError(option + " " + text + ": vertex index out of range (the mesh has " +
-                       std::to_string(mesh.num_vertices()) + " vertices, 0 to " +
-                       std::to_string(mesh.num_vertices() - 1) + ")");
-    }
-    if (mesh.vertex_halfedge(static_cast<int>(v)) < 0) {
-      throw InputError(option + " " + text + ": vertex " + text +
-                       " is not used by any face of the mesh");
-    }
-    return SurfacePoint::at_vertex(static_cast<int>(v));
-  }
-  Vec3 p;
-  std::istringstream in(text);
-  std::string part;
-  int n = 0;
-  while (std::getline(in, part, ',')) {
-    double d = 0.0;
-    if (n >= 3 || !parse_double(part, &d) || !std::isfinite(d)) {
-      throw UsageError(option + " expects a vertex index or x,y,z, got '" + text + "'");
-    }
-    p[n++] = d;
-  }
-  if (n != 3) throw UsageError(option + " expects a vertex index or x,y,z, got '" + text + "'");
-  const ClosestPointQuery::Hit hit = query.closest(p);
-  if (!(hit.distance <= tolerance)) {
-    std::ostringstream s;
-    s << option << " " << text << ": the point is " << hit.distance
-      << " mm from the mesh (more than the snap tolerance " << tolerance << " mm)";
-    throw InputError(s.str());
-  }
-  return hit.point;
 }
 
 /// The curve of `loop --init`: x,y,z per line.
@@ -439,80 +390,13 @@ int report(const Args& args, const Setup& s, const GeodesicResult& r, double ini
 /// Batches of at least this many pairs show their progress on stderr.
 constexpr int kProgressFromPairs = 1000;
 
-/// One pair of `--pairs`, as given and as parsed.
-struct BatchPair {
-  int line = 0;
-  std::string from, to;
-  SurfacePoint a, b;
-};
-
-/// A line of a batch file that holds data: its 1-based number, its text and its tokens
-/// (separated by spaces, tabs or ';'). Blank lines and lines starting with '#' are skipped.
-struct BatchLine {
-  int number = 0;
-  std::string text;
-  std::vector<std::string> tokens;
-};
 std::vector<BatchLine> batch_lines(const std::filesystem::path& file) {
-  const std::string text = read_text_file(file);
-  std::istringstream in(text);
-  std::vector<BatchLine> lines;
-  std::string line;
-  int no = 0;
-  while (std::getline(in, line)) {
-    ++no;
-    // A NUL or another control character inside a token was cut by the number parser and
-    // copied whole into the CSV (issue 28): a batch file is plain text.
-    for (const char c : line) {
-      const unsigned char u = static_cast<unsigned char>(c);
-      if ((u < 0x20 && c != '\t' && c != '\r') || u == 0x7f) {
-        char code[8];
-        std::snprintf(code, sizeof code, "%02X", u);
-        throw InputError(file.string() + ":" + std::to_string(no) + ": a control character (" +
-                         (u == 0 ? std::string("NUL") : "byte 0x" + std::string(code)) +
-                         ") in the line; a batch file is plain text");
-      }
-    }
-    std::string clean = line;
-    for (char& c : clean)
-      if (c == '\t' || c == '\r' || c == ';') c = ' ';
-    std::istringstream ls(clean);
-    BatchLine bl{no, line, {}};
-    for (std::string tok; ls >> tok;) bl.tokens.push_back(tok);
-    if (bl.tokens.empty() || bl.tokens[0][0] == '#') continue;
-    lines.push_back(std::move(bl));
-  }
-  return lines;
+  return batch_lines_of(read_text_file(file), file.string());
 }
 
-/// Reads and checks every line of a pairs file before anything is solved.
-/// \throw InputError "FILE:LINE: ..." for the first bad line.
 std::vector<BatchPair> read_pairs(const std::filesystem::path& file, const Mesh& mesh,
                                   const ClosestPointQuery& query, double tolerance) {
-  std::vector<BatchPair> pairs;
-  for (const BatchLine& bl : batch_lines(file)) {
-    const int no = bl.number;
-    const std::string& line = bl.text;
-    const std::vector<std::string>& toks = bl.tokens;
-    const std::string at = file.string() + ":" + std::to_string(no) + ": ";
-    if (toks.size() != 2) {
-      throw InputError(at + "expected two points 'FROM TO' (a vertex index or x,y,z each), got '" +
-                       line + "'");
-    }
-    BatchPair p;
-    p.line = no;
-    p.from = toks[0];
-    p.to = toks[1];
-    try {
-      p.a = parse_point(mesh, query, tolerance, "from", toks[0]);
-      p.b = parse_point(mesh, query, tolerance, "to", toks[1]);
-    } catch (const Error& e) {
-      throw InputError(at + e.what());
-    }
-    pairs.push_back(std::move(p));
-  }
-  if (pairs.empty()) throw InputError(file.string() + ": no pairs (one 'FROM TO' per line)");
-  return pairs;
+  return read_pairs_of(read_text_file(file), file.string(), mesh, query, tolerance);
 }
 
 /// One row of a batch: the input line, its identifying text columns, the result.
