@@ -6,6 +6,7 @@
 
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
+#include "geometry/base/name_text.h"
 #include "planner/job/config_node.h"
 #include "planner/job/job_limits.h"
 
@@ -29,6 +30,8 @@ bool is_valid_job_name(const std::string& name, std::string* why) {
     }
   }
   if (name[0] == '.') return fail("must not start with '.'");
+  std::string text_why;  // UTF-8, no format characters, not blank (geometry/base/name_text.h)
+  if (!check_name_text(name, &text_why)) return fail(text_why);
   return true;
 }
 

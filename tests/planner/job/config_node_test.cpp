@@ -132,5 +132,19 @@ TEST(ConfigNode, TabsAndHugeKeysAreExplainedWithoutParserJargon) {
       << e;
 }
 
+// The job's name becomes a folder and lands in report.json and manifest.json (issue 28).
+TEST(ConfigNode, JobNamesMustBeShownAsWritten) {
+  std::string e = test::job_load_error("name: \"pipe\xFF\"\n" + kPipe);
+  EXPECT_NE(e.find("key 'name': is not valid UTF-8 (byte 0xFF at byte 5)"), std::string::npos) << e;
+  e = test::job_load_error(
+      "name: \"a\xE2\x80\xAE"
+      "b\"\n" +
+      kPipe);
+  EXPECT_NE(e.find("key 'name': contains an invisible format character U+202E"), std::string::npos)
+      << e;
+  e = test::job_load_error("name: \"\xC2\xA0\"\n" + kPipe);
+  EXPECT_NE(e.find("key 'name': is blank (only spaces)"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace windplan
