@@ -75,7 +75,8 @@ PlyAllowables ply_allowables(const ElasticConstants& c, double x, double y, doub
 }
 
 FeaCheck check_plies(const CcxResults& res, const CsvTable& plies,
-                     const std::vector<std::string>& names, const PlyAllowables& al) {
+                     const std::vector<std::string>& names, const PlyAllowables& al,
+                     const std::set<int>& skip) {
   // Per element: its plies (layer, thickness) in order.
   std::map<int, std::vector<std::pair<int, double>>> layout;
   for (const std::vector<double>& row : plies.rows) {
@@ -91,6 +92,7 @@ FeaCheck check_plies(const CcxResults& res, const CsvTable& plies,
   std::vector<bool> seen(names.size(), false);
   for (std::size_t k = 0; k < names.size(); ++k) out.layers[k].name = names[k];
   for (const auto& [e, ply] : layout) {
+    if (skip.count(e)) continue;
     const auto it = strain.find(e);
     if (it == strain.end()) {
       throw InputError("element " + std::to_string(e) + " has no strains in the results");
@@ -148,6 +150,72 @@ FeaCheck check_plies(const CcxResults& res, const CsvTable& plies,
     if (L.failure_factor > out.failure_factor) {
       out.failure_factor = L.failure_factor;
       out.governing = L.name + ": " + L.mode;
+    }
+  }
+  return out;
+}
+
+InpMesh read_inp_mesh(const std::filesystem::path& inp) {
+  std::ifstream in(inp);
+  if (!in) throw IoError("cannot read " + inp.string());
+  InpMesh m;
+  enum { None, Node, Element } mode = None;
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    if (line.rfind("**", 0) == 0) continue;
+    if (line.rfind("*", 0) == 0) {
+      mode = line.rfind("*NODE,", 0) == 0 || line == "*NODE" ? Node
+             : line.rfind("*ELEMENT", 0) == 0                ? Element
+                                                             : None;
+      continue;
+    }
+    if (mode == None) continue;
+    std::vector<double> v;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) {
+      char* end = nullptr;
+      v.push_back(std::strtod(cell.c_str(), &end));
+      if (end == cell.c_str()) {
+        throw InputError(inp.string() + ":" + std::to_string(n) + ": '" + cell +
+                         "' is not a number");
+      }
+    }
+    if (mode == Node && v.size() >= 4) {
+      m.nodes[static_cast<int>(v[0])] = Vec3(v[1], v[2], v[3]);
+    } else if (mode == Element && v.size() >= 4) {
+      std::vector<int> e;
+      for (std::size_t i = 1; i < v.size(); ++i) e.push_back(static_cast<int>(v[i]));
+      m.elements[static_cast<int>(v[0])] = e;
+    }
+  }
+  return m;
+}
+
+std::set<int> elements_near_free_edges(const InpMesh& m, double distance) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& [id, e] : m.elements) {
+    for (int i = 0; i < 3; ++i) {
+      const int a = e[i], b = e[(i + 1) % 3];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  std::vector<Vec3> edge_nodes;
+  for (const auto& [key, count] : uses) {
+    if (count != 1) continue;
+    edge_nodes.push_back(m.nodes.at(key.first));
+    edge_nodes.push_back(m.nodes.at(key.second));
+  }
+  std::set<int> out;
+  for (const auto& [id, e] : m.elements) {
+    const Vec3 c = (m.nodes.at(e[0]) + m.nodes.at(e[1]) + m.nodes.at(e[2])) / 3.0;
+    for (const Vec3& p : edge_nodes) {
+      if ((p - c).norm() < distance) {
+        out.insert(id);
+        break;
+      }
     }
   }
   return out;

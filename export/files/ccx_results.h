@@ -21,6 +21,7 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -78,8 +79,23 @@ struct FeaCheck {
 /// The check of the plies listed in `plies` (model_plies.csv: element, ply, layer, angle,
 /// thickness) against `results`. \throw InputError when an element's integration points do not
 /// split evenly over its plies, or a listed element has no results.
+/// `skip`: elements left out of the check (e.g. elements_near_free_edges).
 FeaCheck check_plies(const CcxResults& results, const CsvTable& plies,
-                     const std::vector<std::string>& layer_names, const PlyAllowables& allowables);
+                     const std::vector<std::string>& layer_names, const PlyAllowables& allowables,
+                     const std::set<int>& skip = {});
+
+/// The nodes and elements of an input deck (*NODE and *ELEMENT blocks; 1-based ids).
+struct InpMesh {
+  std::map<int, Vec3> nodes;
+  std::map<int, std::vector<int>> elements;
+};
+/// \throw IoError, InputError for a malformed line.
+InpMesh read_inp_mesh(const std::filesystem::path& inp);
+
+/// Elements of a triangle-shell deck (S3/S6: the first three nodes are the corners) whose
+/// centroid lies within `distance` (mm) of a corner node on a free edge (an edge of one element):
+/// the load introduction at the model's open ends, where the bosses are not modelled.
+std::set<int> elements_near_free_edges(const InpMesh& mesh, double distance);
 
 /// Per element (1-based), its membrane strains in the laminate's frame (eps_x along the meridian,
 /// eps_y around, gamma_xy): each ply's (its local 2 axis is n x f = -(-s m + c h), so the shear
