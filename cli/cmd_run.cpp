@@ -12,10 +12,13 @@
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "export/export_plan.h"
+#include "export/files/design_report.h"
 #include "export/files/layup_export.h"
+#include "export/files/layup_report.h"
 #include "export/files/manifest.h"
 #include "export/files/output_set.h"
 #include "export/files/report.h"
+#include "geometry/base/atomic_file.h"
 #include "planner/job/job.h"
 #include "planner/pipeline.h"
 #include "planner/plan_layup.h"
@@ -101,11 +104,22 @@ int run_run(const std::vector<std::string>& argv) {
     progress.count(done, total, file);
   };
   if (layered) {
-    context.also_written = layup_file_names(layup, job.output);
-    write_layup_files(layup, job.output, set.staging());
+    context.also_written = layup_file_names(layup, job.output, job.design);
+    write_layup_files(layup, job.output, set.staging(), job.design);
   }
   ExportResult ex =
       export_plan(plan, mandrel.mesh, job.machine, job.output, set.staging(), context);
+  if (layered && job.design.present) {  // design.md (export/files/design_report.h)
+    const std::vector<double> times = layer_wind_times(plan, ex.motion);
+    double total = 0.0;
+    for (double t : times) total += t;
+    const std::string w = pot_life_warning(job.design, total);
+    if (!w.empty()) std::cerr << "windplan run: warning: " << w << "\n";
+    write_text_atomically(
+        set.staging() / "design.md",
+        design_markdown(job.design, job.sized, job.sizing, layup, times, layup.revolution));
+    ex.files.push_back("design.md");
+  }
   set.commit(manifest, ex.files);
   ex.directory = set.directory();
   ex.files.push_back("manifest.json");

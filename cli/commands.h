@@ -55,4 +55,8 @@ extern const char* const kRunHelp;
 int run_simulate(const std::vector<std::string>& args);
 extern const char* const kSimulateHelp;
 
+/// cmd_check_fea.cpp: solve a design job's structural model with CalculiX and check its plies.
+int run_check_fea(const std::vector<std::string>& args);
+extern const char* const kCheckFeaHelp;
+
 }  // namespace windplan::cli

@@ -5,8 +5,10 @@
 #include <cmath>
 
 #include "geometry/base/errors.h"
+#include "geometry/base/format_number.h"
 #include "geometry/mesh/closest_point.h"
 #include "planner/cutlines/cutlines.h"
+#include "planner/layup/dome_thickness.h"
 #include "planner/layup/hoop.h"
 #include "planner/winding/clairaut.h"
 #include "planner/winding/fibre_metrics.h"
@@ -194,6 +196,12 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
   }
   WindingSurface built;  // off revolution: the current surface when it is not the mandrel's
 
+  // design.turnaround_stagger: helical layer h turns around h x stagger band widths outward.
+  int helical_index = 0;
+  double opening = 0.0;  // the larger polar-opening radius of the mandrel's meridian
+  if (R.revolution) {
+    opening = std::max(R.profiles.mandrel.points.front().y(), R.profiles.mandrel.points.back().y());
+  }
   bool have_metrics = false;
   PlanMetrics metrics;                // the innermost helical layer's
   std::vector<std::string> warnings;  // every layer's
@@ -244,14 +252,34 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
       // The winding stages of a one-layer job (planner/pipeline.h) on the current surface.
       PipelineOptions quiet;
       PipelineResult pr;
+      WindingOptions wopt = L.winding;
+      const double shift = helical_index++ * job.design.turnaround_stagger * wopt.band_width;
+      if (shift > 0.0 && R.revolution) {
+        double rs = 0.0;
+        for (const Vec2& p : surface.points) rs = std::max(rs, p.y());
+        if (std::isfinite(wopt.turnaround)) {
+          wopt.turnaround += shift;
+        } else if (std::isfinite(wopt.angle)) {
+          wopt.turnaround = rs * std::sin(wopt.angle * M_PI / 180.0) + shift;
+          wopt.angle = std::nan("");
+        } else {
+          wopt.turnaround = opening + 0.5 * wopt.band_width + shift;
+        }
+        if (!(wopt.turnaround < rs)) {
+          throw InputError(what + ": design.turnaround_stagger moves the turnaround to r = " +
+                           format_number("%.4g", wopt.turnaround) +
+                           " mm, beyond the largest radius of the surface (" +
+                           format_number("%.4g", rs) + " mm)");
+        }
+      }
       if (k == 0) {
-        pr = plan_winding(md, job, L.winding, quiet);
+        pr = plan_winding(md, job, wopt, quiet);
       } else if (R.revolution) {
         pr = plan_winding(built_mandrel(md, revolve_meridian(surface, axis, edge), true,
                                         forward_profile(surface)),
-                          job, L.winding, quiet);
+                          job, wopt, quiet);
       } else {
-        pr = plan_winding(built_mandrel(md, built.mesh, false, md.profile), job, L.winding, quiet);
+        pr = plan_winding(built_mandrel(md, built.mesh, false, md.profile), job, wopt, quiet);
       }
       struct {
         std::vector<Circuit> circuits;
@@ -287,7 +315,10 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
         have_metrics = true;
       }
       if (R.revolution) {
-        th = helical_layer_thickness(surface, S.clairaut, S.circuits, S.band_width, t_band);
+        th = job.design.dome_thickness == DomeThicknessModel::Spline
+                 ? helical_layer_thickness_spline(surface, S.clairaut, S.circuits, S.band_width,
+                                                  t_band)
+                 : helical_layer_thickness(surface, S.clairaut, S.circuits, S.band_width, t_band);
         double tt = 0.0;
         for (std::size_t i = 0; i < surface.points.size(); ++i) {
           if (std::abs(surface.points[i].y() - S.clairaut) <= S.band_width) {
@@ -380,6 +411,18 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
       plan.circuits.push_back(std::move(c));
     }
     plan.layers.push_back(L.summary);
+  }
+  // design: the netting burst pressure of the wound laminate, layer by layer (cylinder figures).
+  if (job.design.has_pressure() && R.revolution) {
+    std::vector<NettingLayer> nl;
+    for (const LayupLayer& L : R.layers) {
+      nl.push_back({L.summary.name, L.summary.angle, L.summary.thickness_cylinder});
+    }
+    double rc = 0.0;
+    for (const Vec2& p : R.profiles.mandrel.points) rc = std::max(rc, p.y());
+    R.netting_radius = rc;
+    R.netting = netting_burst(nl, rc, job.design.allowable_stress());
+    R.has_netting = true;
   }
   metrics.fibre_length = R.total.band_length;
   metrics.circuits = index;

@@ -14,6 +14,10 @@
 //            thickness is (2) of planner/layup/laminate_thickness.h from its own circuits: K, and
 //            the Clairaut constant c of its pattern (the geodesic core's route: the median of r sin
 //            a measured on its passes).
+// design.dome_thickness: spline replaces (2) by planner/layup/dome_thickness.h; with
+// design.turnaround_stagger f, helical layer h (0 the innermost helical) is wound with its
+// turnaround radius moved outward by h f B (from its `turnaround`, from its `angle` on the
+// surface's largest radius, else from the default: the larger polar opening + B / 2).
 // The current meridian is then offset by the layer's thickness (offset_meridian: a thickness
 // that would close a polar opening is an InputError naming the layer).
 // Other mandrels (helical layers only): a layer's thickness on each face of the current surface
@@ -34,6 +38,7 @@
 #include "planner/job/job.h"
 #include "planner/layup/laminate_thickness.h"
 #include "planner/layup/material.h"
+#include "planner/layup/netting.h"
 #include "planner/mandrel/mandrel_builder.h"
 #include "planner/pipeline.h"
 #include "planner/plan/plan.h"
@@ -55,6 +60,11 @@ struct LayupResult {
   std::vector<LayupLayer> layers;
   MaterialEstimate total;
   WindingPlan plan;
+  /// design: with a pressure: the netting burst pressure of the wound laminate by layer, from
+  /// each layer's measured angle and cylinder thickness on the mandrel's largest radius.
+  bool has_netting = false;
+  double netting_radius = 0.0;  ///< mm
+  NettingBurst netting;
 };
 
 /// A surface of revolution meshed from a meridian: rings about `edge` mm apart along it (the

@@ -1,11 +1,13 @@
 #include "planner/job/job.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <utility>
 
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
+#include "geometry/base/format_number.h"
 #include "geometry/base/name_text.h"
 #include "planner/job/config_node.h"
 #include "planner/job/job_limits.h"
@@ -585,6 +587,76 @@ void decode_material(ConfigNode n, MaterialOptions* m) {
   n.check(*m);
 }
 
+// ---- design: (planner/layup/design.h) ----
+
+void decode_design(ConfigNode& root, Job* job) {
+  ConfigNode n = root.section("design");
+  if (!n.present()) return;
+  DesignOptions& d = job->design;
+  d.present = true;
+  const std::string& src = job->mandrel.source;
+  if (src != "vessel" && src != "pipe") {
+    root.fail("design",
+              "sizing and the structural model need a mandrel of source vessel or pipe "
+              "(this one is '" +
+                  src + "')");
+  }
+  n.get("pressure", &d.pressure);
+  n.get("burst_factor", &d.burst_factor);
+  n.get("fibre_strength", &d.fibre_strength);
+  n.get("fibre_modulus", &d.ply.fibre_modulus);
+  n.get("fibre_transverse_modulus", &d.ply.fibre_transverse_modulus);
+  n.get("fibre_shear_modulus", &d.ply.fibre_shear_modulus);
+  n.get("fibre_poisson", &d.ply.fibre_poisson);
+  n.get("resin_modulus", &d.ply.resin_modulus);
+  n.get("resin_poisson", &d.ply.resin_poisson);
+  d.ply.volume_fraction = job->material.fibre_volume_fraction;
+  n.get("fibre_volume_fraction", &d.ply.volume_fraction);
+  n.get("transverse_strength", &d.transverse_strength);
+  n.get("shear_strength", &d.shear_strength);
+  std::string model;
+  if (n.get_choice("dome_thickness", {"continuity", "spline"}, &model)) {
+    d.dome_thickness =
+        model == "spline" ? DomeThicknessModel::Spline : DomeThicknessModel::Continuity;
+  }
+  n.get("turnaround_stagger", &d.turnaround_stagger);
+  n.get("pot_life", &d.pot_life);
+  n.get("fea_edge", &d.fea_edge);
+  n.finish();
+  std::string why;
+  if (!d.is_valid(&why)) {
+    const std::size_t colon = why.find(": ");
+    n.fail(why.substr(0, colon), why.substr(colon + 2));
+  }
+  if (!d.has_pressure() || !job->layers.empty()) return;
+  // Sizing: the cylinder radius and the helical angle on it.
+  const WindingOptions& w = job->winding;
+  double radius = 0.0, angle = std::nan("");
+  if (src == "vessel") {
+    radius = job->mandrel.vessel.radius;
+    double c = w.turnaround;
+    if (std::isnan(c) && std::isnan(w.angle)) {
+      c = std::max(job->mandrel.vessel.dome_start.polar_opening,
+                   job->mandrel.vessel.dome_end.polar_opening) +
+          0.5 * w.band_width;
+    }
+    angle = std::isnan(w.angle) ? std::asin(std::min(1.0, c / radius)) * 180.0 / M_PI : w.angle;
+  } else {
+    radius = job->mandrel.pipe.radius;
+    angle = w.angle;
+    if (std::isnan(angle)) {
+      n.fail("pressure", "sizing a pipe needs the helical angle: set winding.angle (deg)");
+    }
+  }
+  if (!(angle > 0.0 && angle < 90.0)) {
+    n.fail("pressure", "the helical angle on the cylinder (" + format_number("%g", angle) +
+                           " deg) is outside (0, 90)");
+  }
+  job->sizing = design_layup(d, radius, angle, w, job->material.thickness(w.band_width));
+  job->layers = job->sizing.layers;
+  job->sized = true;
+}
+
 Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   Job job;
   job.path = std::filesystem::absolute(file).lexically_normal();
@@ -605,6 +677,7 @@ Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   decode_cutlines(root, base, &job.cutlines);
   decode_layers(root, job.winding, &job.layers);
   decode_material(root.section("material"), &job.material);
+  decode_design(root, &job);
   root.finish();
   check_job_limits(job, root);
   return job;

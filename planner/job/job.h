@@ -16,6 +16,7 @@
 #include "planner/cutlines/cutlines.h"
 #include "planner/girth/girth.h"
 #include "planner/job/machine_options.h"
+#include "planner/layup/design.h"
 #include "planner/layup/layers.h"
 #include "planner/layup/material.h"
 #include "planner/winding/winding_options.h"
@@ -81,6 +82,12 @@ struct Job {
   /// `winding`.
   std::vector<LayerOptions> layers;
   MaterialOptions material;  ///< `material:` (the tow and the composite, planner/layup/material.h)
+  /// `design:` (planner/layup/design.h): pressure, ply, dome model, stagger, pot life, FEA mesh.
+  DesignOptions design;
+  /// A `design:` with a pressure and no `layers:` is sized: `layers` then holds the sized
+  /// laminate and `sizing` its figures.
+  bool sized = false;
+  DesignLayup sizing;
 };
 
 /// A job name becomes a folder name (out/<name>): it must not be empty, absolute, contain '/',
