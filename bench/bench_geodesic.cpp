@@ -52,6 +52,12 @@ double quantile(std::vector<double> v, double q) {
   return v[i];
 }
 
+double mean_of(const std::vector<double>& v) {
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  return v.empty() ? std::nan("") : sum / static_cast<double>(v.size());
+}
+
 struct Pair {
   int source, target;
 };
@@ -106,7 +112,8 @@ int main(int argc, char** argv) {
   bool steiner_start = GeodesicOptions{}.steiner_start;
   bool exact_windows = GeodesicOptions{}.exact_windows;
   int landmarks = GeodesicContext::kDefaultLandmarks;
-  std::filesystem::path write_pairs, reference;
+  std::filesystem::path write_pairs, reference, write_times;
+  std::vector<std::filesystem::path> best_of;  // earlier rounds' per-pair times (--best-of)
   std::vector<std::filesystem::path> files;
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress shows when redirected to a file
   for (int i = 1; i < argc; ++i) {
@@ -146,6 +153,10 @@ int main(int argc, char** argv) {
       write_pairs = argv[++i];
     else if (a == "--reference" && i + 1 < argc)
       reference = argv[++i];
+    else if (a == "--write-times" && i + 1 < argc)
+      write_times = argv[++i];
+    else if (a == "--best-of" && i + 1 < argc)
+      best_of.emplace_back(argv[++i]);
     else if (a == "--lbfgs")
       lbfgs = true;
     else if (a == "--quick") {
@@ -167,6 +178,11 @@ int main(int argc, char** argv) {
           "--reference DIR: read DIR/<mesh file name>.ref ('source target exact other_length\n"
           "  other_cpu_ms' per pair, e.g. an exact MMP distance and FlipOut's length and time on\n"
           "  the same pairs) instead of running CGAL, and print the side-by-side table\n"
+          "--write-times DIR: write DIR/<mesh file name>.times ('source target length\n"
+          "  thread_cpu_ms' per pair)\n"
+          "--best-of DIR (repeatable): per pair, the smallest thread CPU time of this run and of\n"
+          "  DIR/<mesh file name>.times, an earlier round (rounds interleaved with the reference\n"
+          "  program's, each pair's minimum kept on both sides)\n"
           "--repeat R: each pair is solved R times and its fastest init and refine are kept\n"
           "(the machine is shared: this removes scheduling noise, not work).\n"
           "Pairs are drawn as sources with K targets each; the CGAL exact distance is\n"
@@ -366,6 +382,28 @@ int main(int argc, char** argv) {
         }
       }
       row.pairs = static_cast<int>(pairs.size());
+      for (const std::filesystem::path& dir : best_of) {
+        std::ifstream in(dir / (name + ".times"));
+        for (std::size_t i = 0; i < pairs.size(); ++i) {
+          int s0 = -1, t0 = -1;
+          double len = 0.0, ms = 0.0;
+          if (!(in >> s0 >> t0 >> len >> ms) || s0 != pairs[i].source || t0 != pairs[i].target) {
+            std::fprintf(stderr, "%s: pair %zu does not match\n", (dir / (name + ".times")).c_str(),
+                         i);
+            return 1;
+          }
+          row.run.cpu[i] = std::min(row.run.cpu[i], ms);
+        }
+      }
+      if (!write_times.empty()) {
+        std::ofstream out(write_times / (name + ".times"));
+        char buf[96];
+        for (std::size_t i = 0; i < pairs.size(); ++i) {
+          std::snprintf(buf, sizeof buf, "%d %d %.17g %.6f\n", pairs[i].source, pairs[i].target,
+                        row.run.length[i], row.run.cpu[i]);
+          out << buf;
+        }
+      }
       if (!reference.empty()) {
         std::vector<double> ours_equal_cpu;
         int ours_equal = 0, other_equal = 0;
@@ -374,11 +412,14 @@ int main(int argc, char** argv) {
           if ((other_length[i] - exact[i]) / exact[i] <= 1e-9) ++other_equal;
         }
         const double ours_med = quantile(row.run.cpu, 0.5), other_med = quantile(other_ms, 0.5);
-        side.push_back("| " + name + " | " + std::to_string(mesh.num_faces()) + " | " +
-                       fmt(ours_med) + " ms | " + fmt(other_med) + " ms | " +
-                       fmt(ours_med / other_med, "%.2f") + " | " + std::to_string(ours_equal) +
-                       " / " + std::to_string(pairs.size()) + " | " + std::to_string(other_equal) +
-                       " / " + std::to_string(pairs.size()) + " |");
+        const double ours_mean = mean_of(row.run.cpu), other_mean = mean_of(other_ms);
+        side.push_back(
+            "| " + name + " | " + std::to_string(mesh.num_faces()) + " | " + fmt(ours_med) + " / " +
+            fmt(ours_mean) + " / " + fmt(quantile(row.run.cpu, 0.9)) + " | " + fmt(other_med) +
+            " / " + fmt(other_mean) + " / " + fmt(quantile(other_ms, 0.9)) + " | " +
+            fmt(ours_med / other_med, "%.2f") + " / " + fmt(ours_mean / other_mean, "%.2f") +
+            " | " + std::to_string(ours_equal) + " / " + std::to_string(pairs.size()) + " | " +
+            std::to_string(other_equal) + " / " + std::to_string(pairs.size()) + " |");
       }
       for (const std::string& f : row.run.failures)
         notes.push_back(name + " " + row.solver + " not converged " + f);
@@ -426,9 +467,9 @@ int main(int argc, char** argv) {
   }
   if (!side.empty()) {
     std::printf(
-        "\n| mesh | faces | windplan thread CPU per path (median) | reference (FlipOut) | ratio | "
-        "windplan equal to exact (1e-9) | reference equal to exact |\n|---|---:|---:|---:|---:|"
-        "---:|---:|\n");
+        "\n| mesh | faces | windplan thread CPU ms per path (median / mean / p90) | reference "
+        "(FlipOut) ms (median / mean / p90) | ratio (median / mean) | windplan equal to exact "
+        "(1e-9) | reference equal to exact |\n|---|---:|---:|---:|---:|---:|---:|\n");
     for (const std::string& l : side) std::printf("%s\n", l.c_str());
   }
   if (!notes.empty()) {

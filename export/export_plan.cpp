@@ -16,6 +16,7 @@
 #include "export/program/gcode_reader.h"
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
+#include "geometry/base/parallel.h"
 #include "geometry/mesh/mesh_io.h"
 
 namespace windplan {
@@ -103,22 +104,23 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   r.motion = compute_motion(plan, machine, &mandrel_mesh);
   const bool robot = machine.kind == "robot";
   std::string program;
-  if (!robot) {
-    program = gcode_program(r.motion, plan.job_name, machine);
-    if (mandrel_mesh.num_faces() > 0 && !r.motion.states.empty()) {
-      const std::string name = "toolpath" + gcode_extension(machine.gcode.dialect);
-      r.replay = replay_program(read_gcode(program, machine, name), plan, mandrel_mesh, machine);
-      r.has_replay = true;
-      if (machine.replay_tolerance > 0.0 && r.replay.max_deviation > machine.replay_tolerance) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "%.3f mm from the plan at line %d, more than %.3f mm",
-                      r.replay.max_deviation, r.replay.max_deviation_line,
-                      machine.replay_tolerance);
-        throw InputError("machine.replay_tolerance: the replay of " + name + " lays the fibre " +
-                         buf + "; no program written");
-      }
+  if (!robot) program = gcode_program(r.motion, plan.job_name, machine);
+  // The replay (long, serial) runs beside the writing of the files that do not need it; the
+  // reports, which do, are written after both. When both fail, the replay's error is the one
+  // thrown (parallel_for_index: the lowest index), as when the replay ran first.
+  const bool replay = !robot && mandrel_mesh.num_faces() > 0 && !r.motion.states.empty();
+  auto run_replay = [&] {
+    const std::string name = "toolpath" + gcode_extension(machine.gcode.dialect);
+    r.replay = replay_program(read_gcode(program, machine, name), plan, mandrel_mesh, machine);
+    r.has_replay = true;
+    if (machine.replay_tolerance > 0.0 && r.replay.max_deviation > machine.replay_tolerance) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "%.3f mm from the plan at line %d, more than %.3f mm",
+                    r.replay.max_deviation, r.replay.max_deviation_line, machine.replay_tolerance);
+      throw InputError("machine.replay_tolerance: the replay of " + name + " lays the fibre " +
+                       buf + "; no program written");
     }
-  }
+  };
 
   // The list first, so that the reports can name every file (themselves included).
   const bool cutlines = output.csv && !plan.cutlines.empty();
@@ -142,48 +144,54 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     if (context.on_file) context.on_file(name, done, total);
     output_test_pause(name);  // (a test hook: export/files/output_set.h)
   };
-  if (output.csv) {
-    write_csv_file(dir / "fibre_path.csv", fibre_path_table(plan));
-    wrote("fibre_path.csv");
-    write_csv_file(dir / "payout.csv", payout_table(r.motion));
-    wrote("payout.csv");
-    write_csv_file(dir / "axes.csv", axes_table(r.motion));
-    wrote("axes.csv");
-    if (robot) {
-      write_csv_file(dir / "eye_pose.csv", eye_pose_table(r.motion));
-      wrote("eye_pose.csv");
+  auto write_files = [&] {
+    if (output.csv) {
+      write_csv_file(dir / "fibre_path.csv", fibre_path_table(plan));
+      wrote("fibre_path.csv");
+      write_csv_file(dir / "payout.csv", payout_table(r.motion));
+      wrote("payout.csv");
+      write_csv_file(dir / "axes.csv", axes_table(r.motion));
+      wrote("axes.csv");
+      if (robot) {
+        write_csv_file(dir / "eye_pose.csv", eye_pose_table(r.motion));
+        wrote("eye_pose.csv");
+      }
+      if (cutlines) {
+        write_cutlines_csv(dir / "cutlines.csv", plan.cutlines);
+        wrote("cutlines.csv");
+      }
     }
-    if (cutlines) {
-      write_cutlines_csv(dir / "cutlines.csv", plan.cutlines);
-      wrote("cutlines.csv");
+    if (output.gcode && !robot) {
+      write_text_atomically(dir / gcode_name, program);
+      wrote(gcode_name);
     }
-  }
-  if (output.gcode && !robot) {
-    write_text_atomically(dir / gcode_name, program);
-    wrote(gcode_name);
-  }
-  if (output.ply) {
-    write_mesh(dir / "mesh.ply", mandrel_mesh);
-    wrote("mesh.ply");
-    write_text_atomically(dir / "paths.ply", paths_ply(plan));
-    wrote("paths.ply");
-  }
-  if (output.svg) {
-    const Mesh& region = context.wound_region ? *context.wound_region : mandrel_mesh;
-    write_text_atomically(
-        dir / "development.svg",
-        development_svg(plan,
-                        Unrolling::make(plan, region, context.wound_face_map, context.revolution)));
-    wrote("development.svg");
-    write_text_atomically(dir / "axes.svg", axes_svg(r.motion, plan.job_name));
-    wrote("axes.svg");
-    write_text_atomically(dir / "stability.svg", stability_svg(plan));
-    wrote("stability.svg");
-  }
-  if (output.viewer) {
-    write_text_atomically(dir / "viewer.html", viewer_page(plan, mandrel_mesh, r.motion).html);
-    wrote("viewer.html");
-  }
+    if (output.ply) {
+      write_mesh(dir / "mesh.ply", mandrel_mesh);
+      wrote("mesh.ply");
+      write_text_atomically(dir / "paths.ply", paths_ply(plan));
+      wrote("paths.ply");
+    }
+    if (output.svg) {
+      const Mesh& region = context.wound_region ? *context.wound_region : mandrel_mesh;
+      write_text_atomically(
+          dir / "development.svg",
+          development_svg(
+              plan, Unrolling::make(plan, region, context.wound_face_map, context.revolution)));
+      wrote("development.svg");
+      write_text_atomically(dir / "axes.svg", axes_svg(r.motion, plan.job_name));
+      wrote("axes.svg");
+      write_text_atomically(dir / "stability.svg", stability_svg(plan));
+      wrote("stability.svg");
+    }
+    if (output.viewer) {
+      write_text_atomically(dir / "viewer.html", viewer_page(plan, mandrel_mesh, r.motion).html);
+      wrote("viewer.html");
+    }
+  };
+  parallel_for_index(2, [&](int i) {
+    if (i == 0 && replay) run_replay();
+    if (i == 1) write_files();
+  });
   if (output.report) {
     write_text_atomically(dir / "report.json", report_json(plan, r));
     wrote("report.json");

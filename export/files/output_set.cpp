@@ -19,6 +19,7 @@
 #include "export/files/sha256.h"
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
+#include "geometry/base/parallel.h"
 
 namespace windplan {
 
@@ -369,11 +370,16 @@ void OutputSet::commit(Manifest m, const std::vector<std::string>& order) {
   for (const auto& e : fs::directory_iterator(staging_)) {
     if (e.path().filename() != "manifest.json") present.insert(e.path().filename().string());
   }
-  m.files.clear();
+  std::vector<std::string> names;  // the manifest's order: `order` first, then the rest
   for (const std::string& n : order) {
-    if (present.erase(n)) m.files.push_back(manifest_entry(staging_ / n, n, false));
+    if (present.erase(n)) names.push_back(n);
   }
-  for (const std::string& n : present) m.files.push_back(manifest_entry(staging_ / n, n, false));
+  names.insert(names.end(), present.begin(), present.end());
+  // The files are hashed in parallel (each entry its own slot, the order kept).
+  m.files.assign(names.size(), ManifestEntry{});
+  parallel_for_index(static_cast<int>(names.size()), [&](int i) {
+    m.files[i] = manifest_entry(staging_ / names[i], names[i], false);
+  });
   write_text_atomically(staging_ / "manifest.json", manifest_json(m));
   for (const auto& e : fs::directory_iterator(staging_)) fsync_path(e.path(), false);
   fsync_path(staging_, true);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <limits>
 #include <memory>
 
@@ -11,6 +12,7 @@
 #include "export/machine/resample.h"
 #include "export/machine/tangent_smoothing.h"
 #include "geometry/base/errors.h"
+#include "geometry/base/parallel.h"
 #include "geometry/mesh/closest_point.h"
 
 namespace windplan {
@@ -209,6 +211,93 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
   m.required_clearance = env.fixed_length ? 0.0 : opts.envelope.clearance;
   double min_clearance = std::numeric_limits<double>::infinity();
 
+  // Per circuit, independent of the others: the smoothed tangents, the eye of every dense point,
+  // its clearance and the chord resampling. Run in parallel; every circuit writes its own slot,
+  // and an error is kept with its circuit and rethrown below where the serial loop would meet it
+  // (before any later circuit's results are used), so the message does not depend on threads.
+  struct CircuitMotion {
+    std::vector<Vec3> tangent;
+    std::vector<EyeSolution> sol;
+    ClearanceCheck clearance;
+    ResampleResult resampled;
+    double max_tangent_change = 0.0;  // deg
+    int max_eye_iterations = 0;
+    std::exception_ptr error;
+  };
+  std::vector<CircuitMotion> per_circuit(plan.circuits.size());
+  parallel_for_index(static_cast<int>(plan.circuits.size()), [&](int ordinal) {
+    const Circuit& c = plan.circuits[ordinal];
+    const int n = static_cast<int>(c.points.size());
+    if (n == 0) return;
+    CircuitMotion& cm = per_circuit[ordinal];
+    try {
+      std::vector<Vec3> fibre(n), eyes(n), raw_t(n);
+      std::vector<double> s(n), kappa(n);
+      for (int i = 0; i < n; ++i) {
+        const FibrePoint& fp = c.points[i];
+        fibre[i] = fp.position;
+        raw_t[i] = fp.tangent;
+        s[i] = fp.s;
+        kappa[i] = std::hypot(fp.k_n, fp.k_g);
+      }
+      // Pieces: a dwell arc (Turnaround) is its own piece, consecutive passes form one (they meet
+      // tangentially); the smoothing window does not cross a corner between pieces.
+      std::vector<int> piece(n, 0);
+      {
+        int id = 0;
+        bool prev_turn = false;
+        for (std::size_t g = 0; g < c.segments.size(); ++g) {
+          const bool turn = c.segments[g].kind == CircuitSegment::Kind::Turnaround;
+          if (g > 0 && (turn || prev_turn)) ++id;
+          for (int i = std::max(0, c.segments[g].first); i <= c.segments[g].last && i < n; ++i) {
+            piece[i] = id;
+          }
+          prev_turn = turn;
+        }
+      }
+      cm.tangent = smooth_tangents(fibre, s, kappa, raw_t, opts.tangent_window, 2.0, piece);
+      const std::vector<Vec3>& tangent = cm.tangent;
+      std::vector<EyeSolution>& sol = cm.sol;
+      sol.resize(n);
+      for (int i = 0; i < n; ++i) {
+        const double tn = raw_t[i].norm();
+        if (tn > 0.0) {
+          const double cosang = std::clamp(tangent[i].dot(raw_t[i]) / tn, -1.0, 1.0);
+          cm.max_tangent_change = std::max(cm.max_tangent_change, std::acos(cosang) * kDeg);
+        }
+        try {
+          sol[i] = solve_payout_eye(frame, env, fibre[i], tangent[i]);
+        } catch (const InputError& e) {
+          // The point is named only on failure (no string per point on the hot path).
+          throw InputError("circuit " + std::to_string(c.index) + ", point " + std::to_string(i) +
+                           ": " + e.what());
+        }
+        eyes[i] = sol[i].eye;
+        cm.max_eye_iterations = std::max(cm.max_eye_iterations, sol[i].iterations);
+      }
+      if (query) {
+        cm.clearance = check_clearance(*query, eyes);
+        if (cm.clearance.min_distance < m.required_clearance - opts.chord_tolerance) {
+          const Vec3& e = cm.clearance.worst_eye;
+          throw InputError("machine.envelope: circuit " + std::to_string(c.index) + ", point " +
+                           std::to_string(cm.clearance.worst) + ": the eye at (" + num(e.x()) +
+                           ", " + num(e.y()) + ", " + num(e.z()) + ") mm is " +
+                           num(cm.clearance.min_distance) +
+                           " mm from the mandrel, less than the clearance " +
+                           num(m.required_clearance) + " mm (" + env.description + ")");
+        }
+      }
+      std::vector<int> forced;
+      for (const CircuitSegment& seg : c.segments) {
+        forced.push_back(seg.first);
+        forced.push_back(seg.last);
+      }
+      cm.resampled = resample_by_chord({&fibre, &eyes}, opts.chord_tolerance, forced);
+    } catch (...) {
+      cm.error = std::current_exception();
+    }
+  });
+
   double laid_before = 0.0;
   bool first = true;
   MachineState prev;
@@ -218,71 +307,18 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     const int n = static_cast<int>(c.points.size());
     if (n == 0) continue;
     m.dense_points += n;
-    std::vector<Vec3> fibre(n), eyes(n), raw_t(n);
-    std::vector<double> s(n), kappa(n);
-    for (int i = 0; i < n; ++i) {
-      const FibrePoint& fp = c.points[i];
-      fibre[i] = fp.position;
-      raw_t[i] = fp.tangent;
-      s[i] = fp.s;
-      kappa[i] = std::hypot(fp.k_n, fp.k_g);
+    CircuitMotion& cm = per_circuit[ordinal];
+    if (cm.error) std::rethrow_exception(cm.error);
+    m.max_tangent_change = std::max(m.max_tangent_change, cm.max_tangent_change);
+    m.max_eye_iterations = std::max(m.max_eye_iterations, cm.max_eye_iterations);
+    const std::vector<Vec3>& tangent = cm.tangent;
+    const std::vector<EyeSolution>& sol = cm.sol;
+    if (query && cm.clearance.min_distance < min_clearance) {
+      min_clearance = cm.clearance.min_distance;
+      m.min_clearance_circuit = c.index;
+      m.min_clearance_index = cm.clearance.worst;
     }
-    // Pieces: a dwell arc (Turnaround) is its own piece, consecutive passes form one (they meet
-    // tangentially); the smoothing window does not cross a corner between pieces.
-    std::vector<int> piece(n, 0);
-    {
-      int id = 0;
-      bool prev_turn = false;
-      for (std::size_t g = 0; g < c.segments.size(); ++g) {
-        const bool turn = c.segments[g].kind == CircuitSegment::Kind::Turnaround;
-        if (g > 0 && (turn || prev_turn)) ++id;
-        for (int i = std::max(0, c.segments[g].first); i <= c.segments[g].last && i < n; ++i) {
-          piece[i] = id;
-        }
-        prev_turn = turn;
-      }
-    }
-    const std::vector<Vec3> tangent =
-        smooth_tangents(fibre, s, kappa, raw_t, opts.tangent_window, 2.0, piece);
-    std::vector<EyeSolution> sol(n);
-    for (int i = 0; i < n; ++i) {
-      const double tn = raw_t[i].norm();
-      if (tn > 0.0) {
-        const double cosang = std::clamp(tangent[i].dot(raw_t[i]) / tn, -1.0, 1.0);
-        m.max_tangent_change = std::max(m.max_tangent_change, std::acos(cosang) * kDeg);
-      }
-      try {
-        sol[i] = solve_payout_eye(frame, env, fibre[i], tangent[i]);
-      } catch (const InputError& e) {
-        // The point is named only on failure (no string per point on the hot path).
-        throw InputError("circuit " + std::to_string(c.index) + ", point " + std::to_string(i) +
-                         ": " + e.what());
-      }
-      eyes[i] = sol[i].eye;
-      m.max_eye_iterations = std::max(m.max_eye_iterations, sol[i].iterations);
-    }
-    if (query) {
-      const ClearanceCheck cc = check_clearance(*query, eyes);
-      if (cc.min_distance < min_clearance) {
-        min_clearance = cc.min_distance;
-        m.min_clearance_circuit = c.index;
-        m.min_clearance_index = cc.worst;
-      }
-      if (cc.min_distance < m.required_clearance - opts.chord_tolerance) {
-        const Vec3& e = cc.worst_eye;
-        throw InputError("machine.envelope: circuit " + std::to_string(c.index) + ", point " +
-                         std::to_string(cc.worst) + ": the eye at (" + num(e.x()) + ", " +
-                         num(e.y()) + ", " + num(e.z()) + ") mm is " + num(cc.min_distance) +
-                         " mm from the mandrel, less than the clearance " +
-                         num(m.required_clearance) + " mm (" + env.description + ")");
-      }
-    }
-    std::vector<int> forced;
-    for (const CircuitSegment& seg : c.segments) {
-      forced.push_back(seg.first);
-      forced.push_back(seg.last);
-    }
-    const ResampleResult rs = resample_by_chord({&fibre, &eyes}, opts.chord_tolerance, forced);
+    const ResampleResult& rs = cm.resampled;
     m.max_chord_deviation = std::max(m.max_chord_deviation, rs.max_deviation);
     const double s0 = c.points.front().s;
     circuit_begin.push_back(static_cast<int>(m.states.size()));
@@ -365,6 +401,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     count_circuit_reversals(c, m.states, circuit_begin.back(), static_cast<int>(m.states.size()),
                             &m);
     laid_before += c.points.back().s - s0;
+    cm = CircuitMotion{};  // its dense arrays are no longer needed
   }
   if (query && std::isfinite(min_clearance)) m.min_clearance = min_clearance;
 

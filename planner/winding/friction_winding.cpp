@@ -11,6 +11,7 @@
 
 #include "geometry/base/errors.h"
 #include "geometry/base/format_number.h"
+#include "geometry/base/parallel.h"
 #include "planner/winding/revolution_winding.h"
 
 namespace windplan {
@@ -207,11 +208,14 @@ struct Family {
   std::vector<Trial> trial;  // not ok(): a hole, no bracket across it
 };
 
+// The grid's trials are independent (each a pure function of u): evaluated in parallel, each
+// into its own slot, so the family does not depend on the thread count.
 template <typename Eval>
 Family family(const std::vector<double>& u, Eval eval) {
   Family f;
   f.u = u;
-  for (double x : u) f.trial.push_back(eval(x));
+  f.trial.resize(u.size());
+  parallel_for_index(static_cast<int>(u.size()), [&](int i) { f.trial[i] = eval(u[i]); });
   return f;
 }
 

@@ -79,9 +79,11 @@ int MeridianLine::segment(double s) const {
   return i;
 }
 
-Vec2 MeridianLine::point(double s) const {
+Vec2 MeridianLine::point(double s, Vec2* tangent) const {
   const int i = segment(s);
-  return pts_[i] + (s - cum_[i]) * tangent(s);
+  const Vec2 t = (pts_[i + 1] - pts_[i]) / (cum_[i + 1] - cum_[i]);  // tangent(s), found once
+  if (tangent) *tangent = t;
+  return pts_[i] + (s - cum_[i]) * t;
 }
 
 Vec2 MeridianLine::tangent(double s) const {
@@ -111,8 +113,10 @@ double MeridianLine::at_radius(double r, int end) const {
 
 std::array<double, 3> semi_geodesic_rate(const MeridianLine& m, const MeridianState& y,
                                          double lambda, int side) {
-  const Vec2 t = m.tangent(y.s);
-  const double r = m.point(y.s).y();
+  // point(s) and tangent(s) with one segment search (the rate is the friction planner's
+  // innermost call; the same arithmetic as the two calls, so the same bits).
+  Vec2 t;
+  const double r = m.point(y.s, &t).y();
   if (!(r > 0.0)) {
     std::ostringstream s;
     s << "semi_geodesic: the path reached the axis (radius " << r << " mm) at meridian length "

@@ -96,8 +96,9 @@ class MeridianLine {
   /// k_m at meridian length s (1/mm): > 0 where the meridian bends towards the axis (a dome,
   /// for a meridian running from the smaller axial position to the larger); 0 beyond the ends.
   double curvature(double s) const;
-  /// Point (x, r) at meridian length s (extrapolated beyond [0, length()]).
-  Vec2 point(double s) const;
+  /// Point (x, r) at meridian length s (extrapolated beyond [0, length()]); with `tangent`, also
+  /// tangent(s) there (one segment search for both).
+  Vec2 point(double s, Vec2* tangent = nullptr) const;
   /// Unit tangent (dx/ds, dr/ds) of the segment holding s (the end segments beyond the ends).
   Vec2 tangent(double s) const;
   /// The meridian length at the first point whose axial position is x (NaN: none).
