@@ -84,7 +84,8 @@ int run_run(const std::vector<std::string>& argv) {
   // A job with `layers:` is a layup (planner/plan_layup.h): every layer in order, one program.
   PipelineResult r;
   LayupResult layup;
-  const bool layered = !job.layers.empty();
+  // A design: job is a layup too (one helical layer of `winding:` when it gives no layers).
+  const bool layered = !job.layers.empty() || job.design.present;
   if (layered) {
     layup = plan_layup(job, po);
   } else {
