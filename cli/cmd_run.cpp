@@ -37,6 +37,9 @@ const char* const kRunHelp =
     "summary to stdout. Two runs of the same job write byte-identical files.\n"
     "A job with layers: winds every layer in order on the surface built by the ones under it\n"
     "into one program, and writes laminate.csv/.vtu and layer_profiles.csv/.svg besides.\n"
+    "A job with design: (a vessel or pipe) is sized from its pressure by netting theory when it\n"
+    "gives no layers:, and writes design.md (netting burst pressure by layer, time and cost per\n"
+    "layer, pot life) and model.inp/model_plies.csv (the structural model; windplan check-fea).\n"
     "The output folder always holds one job's complete set: the files are written into a\n"
     "staging folder beside it and swapped in whole, with manifest.json (job, input hashes,\n"
     "version, every file's size and SHA-256). A second run into a folder that a running job\n"
@@ -82,7 +85,8 @@ int run_run(const std::vector<std::string>& argv) {
   // A job with `layers:` is a layup (planner/plan_layup.h): every layer in order, one program.
   PipelineResult r;
   LayupResult layup;
-  const bool layered = !job.layers.empty();
+  // A design: job is a layup too (one helical layer of `winding:` when it gives no layers).
+  const bool layered = !job.layers.empty() || job.design.present;
   if (layered) {
     layup = plan_layup(job, po);
   } else {

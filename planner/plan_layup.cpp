@@ -357,6 +357,13 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
       MeridianPolyline next = offset_meridian(surface, th, what);
       R.profiles.names.push_back(L.name);
       R.profiles.thickness.push_back(th);
+      if (job.design.dome_thickness == DomeThicknessModel::Spline) {
+        R.profiles.alternative_name = "continuity";
+        R.profiles.alternative.push_back(
+            L.kind == LayerKind::Helical
+                ? helical_layer_thickness(surface, S.clairaut, S.circuits, S.band_width, t_band)
+                : th);
+      }
       R.profiles.surfaces.push_back(next);
       surface = std::move(next);
     } else {

@@ -40,10 +40,13 @@ CsvTable laminate_profiles_table(const LaminateProfiles& p) {
   t.header = {"surface",     "index",          "s [mm]",    "axial [mm]",
               "radius [mm]", "thickness [mm]", "total [mm]"};
   const std::size_t n = p.mandrel.points.size();
+  const bool alt = p.alternative.size() == p.surfaces.size() && !p.alternative.empty();
+  if (alt) t.header.push_back("thickness " + p.alternative_name + " [mm]");
   std::vector<double> total(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2& q = p.mandrel.points[i];
     t.rows.push_back({0.0, static_cast<double>(i), p.mandrel.s[i], q.x(), q.y(), 0.0, 0.0});
+    if (alt) t.rows.back().push_back(0.0);
   }
   for (std::size_t k = 0; k < p.surfaces.size(); ++k) {
     for (std::size_t i = 0; i < n; ++i) {
@@ -52,6 +55,7 @@ CsvTable laminate_profiles_table(const LaminateProfiles& p) {
       total[i] += th;
       t.rows.push_back({static_cast<double>(k + 1), static_cast<double>(i), p.mandrel.s[i], q.x(),
                         q.y(), th, total[i]});
+      if (alt) t.rows.back().push_back(p.alternative[k].thickness[i]);
     }
   }
   return t;
@@ -81,13 +85,19 @@ std::string laminate_profiles_svg(const LaminateProfiles& p, int width, int heig
   auto top = [&](const Vec2& q) {
     return Vec2(margin + (q.x() - x0) * scale, margin + top_h - q.y() * scale);
   };
-  std::vector<double> total(n, 0.0);
-  std::vector<std::vector<double>> cumulative;
+  std::vector<double> total(n, 0.0), total_alt(n, 0.0);
+  std::vector<std::vector<double>> cumulative, cumulative_alt;
+  const bool alt = p.alternative.size() == p.surfaces.size() && !p.alternative.empty();
   double tmax = 0.0;
   for (std::size_t k = 0; k < p.surfaces.size(); ++k) {
     for (std::size_t i = 0; i < n; ++i) total[i] += p.thickness[k].thickness[i];
     cumulative.push_back(total);
     tmax = std::max(tmax, *std::max_element(total.begin(), total.end()));
+    if (alt) {
+      for (std::size_t i = 0; i < n; ++i) total_alt[i] += p.alternative[k].thickness[i];
+      cumulative_alt.push_back(total_alt);
+      tmax = std::max(tmax, *std::max_element(total_alt.begin(), total_alt.end()));
+    }
   }
   if (!(tmax > 0.0)) tmax = 1.0;
   const double bot_y0 = margin + top_h + gap;
@@ -102,9 +112,15 @@ std::string laminate_profiles_svg(const LaminateProfiles& p, int width, int heig
     << "\">Meridian profiles (axial position x against radius r, true scale, mm)</text>\n"
     << "<text x=\"" << margin << "\" y=\"" << bot_y0 - 10 << "\">Cumulative thickness (mm, 0 to "
     << format_fixed(tmax, 3) << ") against the mandrel's axial position</text>\n";
-  auto polyline = [&](const std::vector<Vec2>& pts, const std::string& stroke, double w) {
+  if (alt) {
+    o << "<text x=\"" << margin << "\" y=\"" << format_fixed(bot_y0 + 6.0, 2)
+      << "\" font-size=\"11\">solid: the job's dome model; dashed: " << p.alternative_name
+      << "</text>\n";
+  }
+  auto polyline = [&](const std::vector<Vec2>& pts, const std::string& stroke, double w,
+                      bool dashed = false) {
     o << "<polyline fill=\"none\" stroke=\"" << stroke << "\" stroke-width=\"" << format_fixed(w, 1)
-      << "\" points=\"";
+      << (dashed ? "\" stroke-dasharray=\"5,3" : "") << "\" points=\"";
     for (std::size_t i = 0; i < pts.size(); ++i) {
       o << (i ? " " : "") << format_fixed(pts[i].x(), 2) << "," << format_fixed(pts[i].y(), 2);
     }
@@ -122,6 +138,13 @@ std::string laminate_profiles_svg(const LaminateProfiles& p, int width, int heig
       pts.push_back(bottom(p.mandrel.points[i].x(), cumulative[k][i]));
     }
     polyline(pts, colour(k + 1), 1.5);
+    if (alt) {
+      pts.clear();
+      for (std::size_t i = 0; i < n; ++i) {
+        pts.push_back(bottom(p.mandrel.points[i].x(), cumulative_alt[k][i]));
+      }
+      polyline(pts, colour(k + 1), 1.0, true);
+    }
     o << "<text x=\"" << format_fixed(width - margin - 150.0, 2) << "\" y=\""
       << format_fixed(bot_y0 + 16.0 * static_cast<double>(k + 1), 2) << "\" fill=\""
       << colour(k + 1) << "\">" << k + 1 << ": " << p.names[k] << "</text>\n";

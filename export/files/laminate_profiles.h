@@ -6,11 +6,13 @@
 // layer_profiles.csv: surface (0 = the mandrel, k = the outer surface after layer k), index,
 //   s [mm] (arc length of the mandrel's meridian at the point the surface point was offset from),
 //   axial [mm], radius [mm], thickness [mm] (of layer k there; 0 for the mandrel),
-//   total [mm] (of layers 1..k).
+//   total [mm] (of layers 1..k); with LaminateProfiles::alternative (design.dome_thickness:
+//   spline) also "thickness <alternative_name> [mm]", the other model's thickness of layer k.
 // layer_profiles.svg: top, the profiles (axial position against radius, true scale, the mandrel
 //   grey, each outer surface in its layer's colour); bottom, the cumulative thickness (total of
 //   layers 1..k) against the axial position of the mandrel's meridian, thickness exaggerated to
-//   fill the panel, with the scale labelled. Deterministic text (fixed decimals).
+//   fill the panel, with the scale labelled; with an alternative model, its cumulative thickness
+//   dashed in the same colours. Deterministic text (fixed decimals).
 #include <string>
 #include <vector>
 

@@ -82,6 +82,11 @@ struct LaminateProfiles {
   std::vector<std::string> names;          ///< per layer, innermost first
   std::vector<LayerThickness> thickness;   ///< per layer, at the points of the surface under it
   std::vector<MeridianPolyline> surfaces;  ///< per layer: the outer surface after it
+  /// With design.dome_thickness: spline, per layer the other model's thickness (helical: fibre
+  /// continuity averaged over a band; hoop: the same as `thickness`) for the profiles to show
+  /// both; empty otherwise.
+  std::vector<LayerThickness> alternative;
+  std::string alternative_name;  ///< e.g. "continuity"
 };
 
 /// Equation (1) at radius r: 2 K B t / (2 pi sqrt(r^2 - c^2)); 0 for r <= c.

@@ -178,5 +178,36 @@ TEST(Layup, HoopOffRevolutionIsRejected) {
   }
 }
 
+// design: on the shipped vessel's mandrel: the stagger moves the second helical layer's
+// turnaround one band outward (the pattern may move each by a quarter band), the spline model
+// keeps the layer finite at it, and the netting burst is the closed form of the measured layers.
+TEST(Layup, DesignStaggerSplineAndNettingBurst) {
+  const Job job = load_job_from_string(
+      "mandrel:\n  source: vessel\n  remesh: 6\n  vessel: {radius: 100, length: 300, dome: "
+      "{type: isotensoid, polar_opening: 30}}\n"
+      "material: {tows: 4}\nwinding: {pattern: auto, band_width: 16, beta: 0, mu: 0.2}\n"
+      "layers:\n  - kind: helical\n  - kind: helical\n"
+      "design: {pressure: 5, fibre_strength: 4900, dome_thickness: spline, "
+      "turnaround_stagger: 1}\n",
+      "/jobs/vessel_design.yaml");
+  EXPECT_FALSE(job.sized);
+  const LayupResult r = plan_layup(job);
+  ASSERT_EQ(r.plan.layers.size(), 2u);
+  const double c1 = r.plan.layers[0].clairaut, c2 = r.plan.layers[1].clairaut;
+  EXPECT_GE(c2 - c1, 0.75 * 16.0) << c1 << " " << c2;
+  EXPECT_LE(c2 - c1, 1.25 * 16.0) << c1 << " " << c2;
+  for (const LayerThickness& t : r.profiles.thickness) EXPECT_TRUE(std::isfinite(t.max()));
+  ASSERT_EQ(r.profiles.alternative.size(), 2u);
+  ASSERT_TRUE(r.has_netting);
+  EXPECT_NEAR(r.netting_radius, 100.0, 0.05);  // the mandrel's largest radius, tessellated
+  double ax = 0.0, hp = 0.0;
+  for (const LayerSummary& L : r.plan.layers) {
+    const double a = L.angle * M_PI / 180.0;
+    ax += 2.0 * 4900.0 * 0.6 * L.thickness_cylinder * std::cos(a) * std::cos(a) / r.netting_radius;
+    hp += 4900.0 * 0.6 * L.thickness_cylinder * std::sin(a) * std::sin(a) / r.netting_radius;
+  }
+  EXPECT_NEAR(r.netting.pressure, std::min(ax, hp), 1e-9 * ax);
+}
+
 }  // namespace
 }  // namespace windplan

@@ -60,5 +60,27 @@ TEST(LaminateProfiles, SvgPlotsEverySurfaceAndTheStack) {
   EXPECT_EQ(svg.rfind("</svg>\n"), svg.size() - 7);
 }
 
+// With the spline dome model the profiles carry the other model too: a column, dashed lines.
+TEST(LaminateProfiles, ShowsTheAlternativeModel) {
+  LaminateProfiles p = two_layers();
+  EXPECT_EQ(laminate_profiles_table(p).header.size(), 7u);  // none: the columns as before
+  EXPECT_EQ(laminate_profiles_svg(p).find("stroke-dasharray"), std::string::npos);
+  p.alternative_name = "continuity";
+  for (const LayerThickness& t : p.thickness) {
+    LayerThickness a = t;
+    for (double& v : a.thickness) v *= 2.0;
+    p.alternative.push_back(a);
+  }
+  const CsvTable t = laminate_profiles_table(p);
+  ASSERT_EQ(t.header.size(), 8u);
+  EXPECT_EQ(t.header[7], "thickness continuity [mm]");
+  const std::size_t n = p.mandrel.points.size();
+  EXPECT_DOUBLE_EQ(t.rows[0][7], 0.0);                         // the mandrel
+  EXPECT_DOUBLE_EQ(t.rows[2 * n][7], 2.0 * t.rows[2 * n][5]);  // layer 2
+  const std::string svg = laminate_profiles_svg(p);
+  EXPECT_NE(svg.find("dashed: continuity"), std::string::npos);
+  EXPECT_NE(svg.find("stroke-dasharray"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace windplan
