@@ -12,7 +12,8 @@
 // `toward` in (u, v): P_s = h t with the stretch h = 1 - kappa r cos(theta - toward) (1 on a
 // straight piece), P_theta = r (-sin theta u + cos theta v). The coordinates are orthogonal lines
 // of curvature (metric h^2 ds^2 + r^2 dtheta^2), so for a curve at angle a from the centre-line
-// direction t (towards +theta), Liouville's formula gives
+// direction t (towards +theta), Liouville's formula gives (k_g > 0 towards t x n, the side a
+// grows to)
 //   k_g = da/dl - h_theta cos(a) / (h r),   h_theta = kappa r sin(theta - toward),
 // and Euler's (principal curvatures -kappa cos(theta - toward) / h along t, 1 / r around)
 //   k_n = -kappa cos(theta - toward) cos^2(a) / h + sin^2(a) / r.

@@ -1,0 +1,140 @@
+// Friction layers on a bent tube (planner/winding/tube_friction.h), run through the pipeline on
+// the tessellated parametric elbow and checked on the laid points by code that did not plan
+// them: the angle to the centre line (tube_centre_line's frame at each point's nearest station),
+// the measured |k_g/k_n| (fibre_metrics' finite differences on the mesh) against mu, the apexes
+// inside the region, the straight leg's turnaround against the cylinder's closed form
+// r (1 / sin a0 - 1) / lambda, the chain's continuity and even starts; and the refusals: a 3r
+// elbow needs about 0.33, an angle without slippage, turnarounds that do not fit.
+#include "planner/winding/tube_friction.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "geometry/base/errors.h"
+#include "planner/job/job.h"
+#include "planner/pipeline.h"
+
+namespace windplan {
+namespace {
+
+std::string elbow(double bend_radius, const std::string& winding,
+                  const std::string& segments = "[100, 100]",
+                  const std::string& bend_angle = "90") {
+  return "name: elbow\n"
+         "mandrel:\n"
+         "  source: bent_tube\n"
+         "  linear_deflection: 0.25\n"
+         "  angular_deflection: 5\n"
+         "  bent_tube:\n"
+         "    radius: 50\n"
+         "    segments: " +
+         segments +
+         "\n"
+         "    bends:\n"
+         "      - {angle: " +
+         bend_angle + ", radius: " + std::to_string(bend_radius) +
+         ", plane_angle: 0}\n"
+         "winding:\n" +
+         winding;
+}
+
+const char* kLayer =
+    "  angle: 55\n"
+    "  slippage: 0.19\n"
+    "  mu: 0.2\n"
+    "  band_width: 12\n";
+
+TEST(TubeFriction, ElbowLayerHoldsItsAngleWithinMu) {
+  const Job job = load_job_from_string(elbow(250, kLayer), "/tmp/elbow.yaml");
+  const PipelineResult r = plan_job(job);
+  ASSERT_TRUE(r.tube_friction);
+  const TubeFrictionWinding& w = r.tube;
+  EXPECT_NEAR(w.required, 0.179, 5e-4);
+  EXPECT_EQ(w.K, 16);  // ceil(2 pi 50 cos 55 / 12) = ceil(15.02)
+  EXPECT_TRUE(w.summary.closed) << w.summary.brief_report();
+  EXPECT_LT(w.spread_deg, 1e-6);
+  const std::vector<Circuit>& cs = r.plan.circuits;
+  ASSERT_EQ(cs.size(), 16u);
+  const TubeCentreLine line(50, {100, 100}, {{90, 250, 0}});
+  const double a0 = 55.0 * M_PI / 180.0;
+  double worst_angle = 0.0, worst_slip = 0.0;
+  int pass_points = 0;
+  for (std::size_t k = 0; k < cs.size(); ++k) {
+    const Circuit& c = cs[k];
+    if (k + 1 < cs.size()) {  // one continuous fibre
+      EXPECT_LT((c.points.back().position - cs[k + 1].points.front().position).norm(), 1e-9);
+    }
+    for (const FibrePoint& q : c.points) {
+      worst_slip = std::max(worst_slip, q.slippage);
+      double s = 0, th = 0, d = 0;
+      line.locate(q.position, &s, &th, &d);
+      EXPECT_NEAR(d, 50.0, 0.3);  // on the tessellated tube
+      // Inside the region, half a band from the tube ends (the apexes).
+      EXPECT_GE(s, 6.0 - 0.05);
+      EXPECT_LE(s, line.length() - 6.0 + 0.05);
+      // Between the turnarounds (the start one ends by ~64 mm on the leg, the far one begins
+      // at most ~100 mm from the far end) the fibre runs at a0 to the centre line.
+      if (s > 70 && s < line.length() - 110) {
+        const double ang = std::acos(std::min(1.0, std::abs(q.tangent.dot(line.frame(s).t))));
+        worst_angle = std::max(worst_angle, std::abs(ang - a0));
+        ++pass_points;
+      }
+    }
+  }
+  EXPECT_GT(pass_points, 5000);
+  EXPECT_LT(worst_angle * 180.0 / M_PI, 0.5);
+  EXPECT_LE(worst_slip, 0.2);  // measured on the laid points, every one within mu
+  EXPECT_GT(worst_slip, 0.17);
+  EXPECT_LE(r.plan.metrics.max_slippage, 0.2);
+  // The start turnaround lies on the straight leg: both halves span
+  // 2 r (1 / sin a0 - 1) / lambda of centre line.
+  EXPECT_NEAR(w.turnaround_span[0], 2 * 50 * (1 / std::sin(a0) - 1) / 0.19, 1e-4);
+}
+
+TEST(TubeFriction, ThreeRadiusElbowIsRefusedWithTheSlippageItNeeds) {
+  const Job job = load_job_from_string(elbow(150, kLayer), "/tmp/elbow.yaml");
+  try {
+    plan_job(job);
+    FAIL() << "a 3r elbow at 55 deg was planned within slippage 0.19";
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("winding.angle 55 deg needs |k_g/k_n| up to 0.328"), std::string::npos) << m;
+  }
+}
+
+TEST(TubeFriction, RefusesWhatItCannotHonour) {
+  // An angle with no slippage: a geodesic cannot hold it.
+  EXPECT_THROW(
+      plan_job(load_job_from_string(elbow(250, "  angle: 55\n  band_width: 12\n"), "/tmp/e.yaml")),
+      ConfigError);
+  // Turns instead of the angle are not used by the friction layer.
+  EXPECT_THROW(plan_job(load_job_from_string(
+                   elbow(250, "  angle: 55\n  turns: 3\n  slippage: 0.19\n  band_width: 12\n"),
+                   "/tmp/e.yaml")),
+               ConfigError);
+  // Turnarounds that do not fit: 147 mm of tube, each half needs 58 mm at 0.19.
+  try {
+    plan_job(load_job_from_string(elbow(500, kLayer, "[30, 30]", "10"), "/tmp/e.yaml"));
+    FAIL() << "turnarounds longer than the region were planned";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("do not fit"), std::string::npos) << e.what();
+  }
+  // Slippage off revolution on a mandrel with no known centre line.
+  const std::string oval =
+      "name: oval\n"
+      "mandrel:\n"
+      "  source: section\n"
+      "  section:\n"
+      "    shape: ellipse\n"
+      "    semi_axes: [60, 40]\n"
+      "    length: 300\n"
+      "winding:\n"
+      "  slippage: 0.1\n"
+      "  band_width: 10\n";
+  EXPECT_THROW(plan_job(load_job_from_string(oval, "/tmp/o.yaml")), ConfigError);
+}
+
+}  // namespace
+}  // namespace windplan
