@@ -82,10 +82,6 @@ TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const Win
     throw ConfigError("winding.beta: a friction layer holds a constant angle on a bent tube; " +
                       std::string("beta must be 0 with winding.slippage"));
   }
-  if (wo.turns_given) {
-    throw ConfigError("winding.turns: on a bent tube the friction layer is set by winding.angle " +
-                      std::string("(its turns per pass follow from it); remove winding.turns"));
-  }
   if (wo.has_start_station() || wo.has_end_station()) {
     throw ConfigError("winding.start_station/end_station: stations along the spindle axis are " +
                       std::string("no sections of a bent tube; bound the region with its ends"));
@@ -272,9 +268,10 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     plan.metrics.circuits_for_coverage = tw.K;
     plan.metrics.pattern =
         "K=" + std::to_string(tw.K) + ", skip p=" + std::to_string(tw.p) + ": a friction layer " +
-        "at " + format_fixed(tw.angle_deg, 2) + " deg to the centre line, held on the bend at " +
-        "|k_g/k_n| up to " + format_fixed(tw.required, 4) + " (winding.slippage " +
-        format_fixed(wo.slippage, 3) +
+        "at " + format_fixed(tw.angle_deg, 2) + " deg to the centre line" +
+        (std::isnan(wo.angle) ? " (for winding.turns " + format_turns(wo.turns) + ")" : "") +
+        ", held on the bend at " + "|k_g/k_n| up to " + format_fixed(tw.required, 4) +
+        " (winding.slippage " + format_fixed(wo.slippage, 3) +
         "); friction turnarounds at |k_g/k_n| = " + format_fixed(tw.slippage, 4) +
         " with their apexes on the stations " + format_fixed(tw.apex_s[0], 1) + " and " +
         format_fixed(tw.apex_s[1], 1) + " mm of the centre line (the far one moved in by " +

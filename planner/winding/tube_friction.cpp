@@ -189,6 +189,71 @@ class Planner {
 
 }  // namespace
 
+double tube_turns_per_pass(const TubeCentreLine& line, double s0, double s1, double a0,
+                           double lambda, double band_width) {
+  const Planner planner(line, a0, lambda, {s0 + 0.5 * band_width, s1 - 0.5 * band_width});
+  double sum = 0.0;
+  const int n = 8;
+  for (int j = 0; j < n; ++j) {
+    const double th = 2.0 * M_PI * j / n;
+    sum += planner.circuit(th, 0.0, false).end.th - th;
+  }
+  return sum / n / (4.0 * M_PI);
+}
+
+double tube_angle_for_turns(const TubeCentreLine& line, double s0, double s1,
+                            const WindingOptions& o) {
+  // Turns grow with the angle; an angle whose turnarounds do not fit turns too little.
+  auto turns = [&](double a) {
+    try {
+      return tube_turns_per_pass(line, s0, s1, a, o.slippage, o.band_width);
+    } catch (const ConfigError&) {
+      return 0.0;
+    }
+  };
+  // Turns are not monotone in the angle: at low angles the turnarounds wrap more than the
+  // passes lose. The root wanted is the highest angle (the shortest turnarounds): scan down
+  // from 80 deg in 5 deg steps to the first angle that turns less, then refine between.
+  double hi = 80.0 * M_PI / 180.0, f_hi = turns(hi) - o.turns;
+  if (!(f_hi > 0.0)) {
+    throw ConfigError("winding.turns " + format_turns(o.turns) + ": a friction layer on this " +
+                      "tube at winding.slippage " + format_turns(o.slippage) + " makes at " +
+                      "most " + format_fixed(f_hi + o.turns, 2) + " turns per pass (at 80 deg)");
+  }
+  double lo = hi, f_lo = f_hi;
+  while (f_lo > 0.0) {
+    hi = lo;
+    f_hi = f_lo;
+    lo -= 5.0 * M_PI / 180.0;
+    if (lo < 4.0 * M_PI / 180.0) {
+      throw ConfigError("winding.turns " + format_turns(o.turns) + ": a friction layer on " +
+                        "this tube at winding.slippage " + format_turns(o.slippage) +
+                        " makes more turns per pass at every angle from 5 to 80 deg");
+    }
+    f_lo = turns(lo) - o.turns;
+  }
+  // Illinois regula falsi (turns are smooth in the angle where the turnarounds fit).
+  double a = lo;
+  int side = 0;
+  for (int it = 0; it < 100 && hi - lo > 1e-12; ++it) {
+    a = hi - f_hi * (hi - lo) / (f_hi - f_lo);
+    const double f = turns(a) - o.turns;
+    if (std::abs(f) < 1e-10) break;
+    if (f < 0.0) {
+      lo = a;
+      f_lo = f;
+      if (side == -1) f_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = a;
+      f_hi = f;
+      if (side == 1) f_lo *= 0.5;
+      side = 1;
+    }
+  }
+  return a;
+}
+
 std::string TubeFrictionSummary::brief_report() const {
   return std::string(closed ? "closed" : "not closed") + " after " + std::to_string(evaluations) +
          " chains: " + termination;
@@ -198,35 +263,42 @@ TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, do
                                        const Mesh& annulus, const std::vector<int>& face_map,
                                        const SpindleAxis& axis, const WindingOptions& o) {
   TubeFrictionWinding w;
-  if (std::isnan(o.angle)) {
+  if (std::isnan(o.angle) && !o.turns_given) {
     throw ConfigError(
         "winding.angle: friction paths off a shape of revolution hold a winding angle to the "
-        "centre line; give winding.angle (deg) with winding.slippage");
+        "centre line; give winding.angle (deg) or winding.turns with winding.slippage");
   }
-  const double a0 = o.angle * M_PI / 180.0;
-  w.angle_deg = o.angle;
+  if (!std::isnan(o.angle) && o.turns_given) {
+    throw ConfigError("winding.turns: give winding.angle or winding.turns, not both");
+  }
+  if (!(o.slippage > 0.0)) {
+    throw ConfigError("winding.slippage must be > 0 for friction turnarounds off revolution");
+  }
+  const double angle_deg =
+      std::isnan(o.angle) ? tube_angle_for_turns(line, s0, s1, o) * 180.0 / M_PI : o.angle;
+  const double a0 = angle_deg * M_PI / 180.0;
+  w.angle_deg = angle_deg;
+  const std::string asked = std::isnan(o.angle) ? "winding.turns " + format_turns(o.turns) + " (" +
+                                                      format_fixed(angle_deg, 2) + " deg)"
+                                                : "winding.angle " + format_turns(o.angle) + " deg";
   w.bound = o.slippage;
   const ConstantAngleDemand d = constant_angle_demand(line, s0, s1, a0);
   w.required = d.slippage;
   w.required_s = d.s;
   w.required_theta_deg = d.theta_outside * 180.0 / M_PI;
   if (!(d.min_k_n > 0.0)) {
-    throw ConfigError("winding.angle " + format_turns(o.angle) +
-                      " deg: on the inside of the bend the fibre would bridge (k_n " +
+    throw ConfigError(asked + ": on the inside of the bend the fibre would bridge (k_n " +
                       format_fixed(d.min_k_n * 1000.0, 3) +
                       " /m <= 0): friction cannot hold it; use a higher angle");
   }
   if (d.slippage > o.slippage) {
     throw ConfigError(
-        "winding.angle " + format_turns(o.angle) + " deg needs |k_g/k_n| up to " +
-        format_fixed(d.slippage, 3) + " to hold it on the bend (at " + format_fixed(d.s, 1) +
-        " mm along the centre line, " + format_fixed(std::abs(w.required_theta_deg), 1) +
+        asked + " needs |k_g/k_n| up to " + format_fixed(d.slippage, 3) +
+        " to hold it on the bend (at " + format_fixed(d.s, 1) + " mm along the centre line, " +
+        format_fixed(std::abs(w.required_theta_deg), 1) +
         " deg from the outside), above winding.slippage " + format_turns(o.slippage) + " (mu " +
         format_turns(o.mu) + "): a slippage of " + format_fixed(d.slippage, 3) +
         (d.slippage <= o.mu ? "" : " with a mu to match") + ", a lower angle or a gentler bend");
-  }
-  if (!(o.slippage > 0.0)) {
-    throw ConfigError("winding.slippage must be > 0 for friction turnarounds off revolution");
   }
   const double B = o.band_width, r = line.tube_radius();
   const std::array<double, 2> apex = {s0 + 0.5 * B, s1 - 0.5 * B};

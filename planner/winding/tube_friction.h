@@ -1,8 +1,9 @@
 #pragma once
 // Friction (semi-geodesic) winding of a circular tube that is no shape of revolution (a bent tube
 // or elbow), in the tube coordinates of planner/winding/tube_centre_line.h: a layer at a constant
-// winding angle a0 to the centre line (winding.angle), held by friction where the bend asks for
-// it, turning around by friction inside the wound region.
+// winding angle a0 to the centre line (winding.angle, or the angle whose passes make
+// winding.turns: tube_angle_for_turns), held by friction where the bend asks for it, turning
+// around by friction inside the wound region.
 //
 // The fibre, state (s, theta, a) integrated in its length l (classical RK4, 1 mm steps, events
 // located by bisection on the last step):
@@ -78,10 +79,25 @@ struct TubeFrictionWinding {
   TubeFrictionSummary summary;
 };
 
+/// Mean turns of the section per pass (apex to apex, both apexes on their unmoved stations) of
+/// circuits at angle a0 (rad) entering at 8 evenly spread angles.
+/// \throw ConfigError when the turnarounds do not fit
+double tube_turns_per_pass(const TubeCentreLine& line, double s0, double s1, double a0,
+                           double lambda, double band_width);
+
+/// The angle a0 (rad) whose passes make winding.turns: the highest such angle in [5, 80] deg
+/// (turns are not monotone: at low angles the turnarounds wrap more), scanned down in 5 deg
+/// steps and refined by regula falsi on tube_turns_per_pass at lambda = winding.slippage. The
+/// closing apex moves then shorten passes a little: the plan reports the turns it made.
+/// \throw ConfigError naming winding.turns with the range that can be made
+double tube_angle_for_turns(const TubeCentreLine& line, double s0, double s1,
+                            const WindingOptions& options);
+
 /// The planned layer (see the header comment) on the stations [s0, s1] of `line`. Points are
 /// placed on `annulus` (closest point; faces through face_map, empty: annulus faces) and
 /// annotated (k_n, k_g, slippage) from their positions by planner/winding/fibre_metrics.h.
-/// \throw ConfigError naming winding.angle when it is missing, when holding it needs more
+/// \throw ConfigError naming winding.angle when it and winding.turns are missing (or both given),
+/// when holding it needs more
 ///        slippage than winding.slippage (with the figure and where) or the fibre would bridge;
 ///        naming winding.slippage when the turnarounds do not fit in [s0, s1] (with the lengths)
 ///        or a circuit would need its far apex more than a quarter of the region inward.

@@ -104,12 +104,33 @@ TEST(TubeFriction, ThreeRadiusElbowIsRefusedWithTheSlippageItNeeds) {
   }
 }
 
+TEST(TubeFriction, TurnsPerPassChooseTheAngle) {
+  // The 55 deg layer's turns per pass, asked as turns, give 55 deg back.
+  const TubeCentreLine line(50, {100, 100}, {{90, 250, 0}});
+  const double n55 = tube_turns_per_pass(line, 0, line.length(), 55.0 * M_PI / 180.0, 0.19, 12);
+  EXPECT_GT(n55, 2.0);
+  WindingOptions o;
+  o.turns = n55;
+  o.turns_given = true;
+  o.slippage = 0.19;
+  o.band_width = 12;
+  EXPECT_NEAR(tube_angle_for_turns(line, 0, line.length(), o) * 180.0 / M_PI, 55.0, 1e-6);
+  const PipelineResult r = plan_job(load_job_from_string(
+      elbow(250, "  turns: 3.2\n  slippage: 0.19\n  mu: 0.2\n  band_width: 12\n"), "/tmp/e.yaml"));
+  ASSERT_TRUE(r.tube_friction);
+  // The closing apex moves shorten some passes: the plan's turns are a little below 2.5.
+  EXPECT_NEAR(r.tube.turns_per_pass, 3.2, 0.15);
+  EXPECT_LE(r.tube.turns_per_pass, 3.2 + 1e-9);
+  o.turns = 40;
+  EXPECT_THROW(tube_angle_for_turns(line, 0, line.length(), o), ConfigError);
+}
+
 TEST(TubeFriction, RefusesWhatItCannotHonour) {
   // An angle with no slippage: a geodesic cannot hold it.
   EXPECT_THROW(
       plan_job(load_job_from_string(elbow(250, "  angle: 55\n  band_width: 12\n"), "/tmp/e.yaml")),
       ConfigError);
-  // Turns instead of the angle are not used by the friction layer.
+  // Turns and the angle: one or the other.
   EXPECT_THROW(plan_job(load_job_from_string(
                    elbow(250, "  angle: 55\n  turns: 3\n  slippage: 0.19\n  band_width: 12\n"),
                    "/tmp/e.yaml")),
