@@ -8,6 +8,7 @@
 #include "planner/cutlines/cutlines.h"
 #include "planner/job/job_limits.h"
 #include "planner/winding/coverage.h"
+#include "planner/winding/tube_coverage.h"
 
 namespace windplan {
 
@@ -64,6 +65,13 @@ std::string turn_limit_warning(const ClairautLimit& lim, const WindingOptions& w
 // constant angle to the centre line (planner/winding/tube_friction.h): planned on a parametric
 // bent tube, whose centre line is known exactly; refused elsewhere, and refused where the keys
 // it does not use are set (they would be silently ignored).
+TubeCentreLine tube_line_of(const Job& job) {
+  const BentTubeParams& bt = job.mandrel.bent_tube;
+  std::vector<TubeBend> bends;
+  for (const BendParams& b : bt.bends) bends.push_back({b.angle, b.radius, b.plane_angle});
+  return TubeCentreLine(bt.radius, bt.segments, bends);
+}
+
 TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const WindingOptions& wo) {
   const std::string keys = wo.slippage > 0.0 ? "winding.slippage" : "winding.angle";
   if (job.mandrel.source != "bent_tube") {
@@ -87,9 +95,7 @@ TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const Win
                       std::string("no sections of a bent tube; bound the region with its ends"));
   }
   const BentTubeParams& bt = job.mandrel.bent_tube;
-  std::vector<TubeBend> bends;
-  for (const BendParams& b : bt.bends) bends.push_back({b.angle, b.radius, b.plane_angle});
-  const TubeCentreLine line(bt.radius, bt.segments, bends);
+  const TubeCentreLine line = tube_line_of(job);
   // The region's ends: each boundary loop must be a section of the tube (one station).
   std::array<double, 2> ends{};
   for (int e = 0; e < 2; ++e) {
@@ -297,7 +303,14 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   co.stations = wo.coverage_stations;
   if (!md.revolution && !r.clairaut && !r.tube_friction) co.height = &r.helices.coords.height;
   PlanMetrics& pm = plan.metrics;
-  pm.coverage = measure_coverage(ws.mesh, md.axis, plan.circuits, co);
+  if (r.tube_friction) {  // on sections normal to the centre line, between the turnarounds
+    const TubeFrictionWinding& tw = r.tube;
+    pm.coverage = measure_tube_coverage(
+        tube_line_of(job), plan.circuits, wo.band_width, tw.apex_s[0] + 0.5 * tw.turnaround_span[0],
+        tw.apex_s[1] - tw.apex_moved[1] - 0.5 * tw.turnaround_span[1], wo.coverage_stations);
+  } else {
+    pm.coverage = measure_coverage(ws.mesh, md.axis, plan.circuits, co);
+  }
   pm.cover_factor = pm.coverage.cover_factor;
   if (r.clairaut) {  // the band spacing on the stations (the core's route has its own, per
                      // meridian)
@@ -316,12 +329,14 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     pm.warnings.push_back(
         "coverage: the laid bands leave " + format_fixed(100.0 * worst->bare_fraction, 2) +
         "% of the circumference bare at " +
-        (co.height ? "height " + format_fixed(worst->station, 3) + " of the wound region"
-                   : format_fixed(worst->station, 1) + " mm along the axis") +
+        (co.height         ? "height " + format_fixed(worst->station, 3) + " of the wound region"
+         : r.tube_friction ? format_fixed(worst->station, 1) + " mm along the centre line"
+                           : format_fixed(worst->station, 1) + " mm along the axis") +
         " (widest gap " + format_fixed(pm.coverage.widest_gap, 1) + " mm over " +
         std::to_string(pm.coverage.stations.size()) + " stations): " +
-        (r.clairaut ? "choose a pattern with more circuits (windplan patterns JOB)"
-                    : "more circuits, a wider band or beta = 0 on a shape of revolution"));
+        (r.clairaut        ? "choose a pattern with more circuits (windplan patterns JOB)"
+         : r.tube_friction ? "more circuits (winding.circuits)"
+                           : "more circuits, a wider band or beta = 0 on a shape of revolution"));
   }
   // The geodesic turn limit (shapes of revolution) between the ends of the passes.
   if (md.revolution) {
