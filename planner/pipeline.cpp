@@ -99,13 +99,22 @@ TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const Win
   // The region's ends: each boundary loop must be a section of the tube (one station).
   std::array<double, 2> ends{};
   for (int e = 0; e < 2; ++e) {
-    double lo = 1e300, hi = -1e300, sum = 0.0;
+    double lo = 1e300, hi = -1e300, sum = 0.0, off = 0.0;
     for (int v : md.winding.loops[e].vertices) {
       double s = 0.0, th = 0.0, d = 0.0;
       line.locate(md.winding.mesh.position(v), &s, &th, &d);
       lo = std::min(lo, s);
       hi = std::max(hi, s);
       sum += s;
+      off = std::max(off, std::abs(d - bt.radius));
+    }
+    // The surface must be the bare tube (a layup's outer layers are wound on a thicker one,
+    // which the centre line's radius does not describe).
+    if (off > 0.02 * bt.radius) {
+      throw ConfigError("winding.slippage: the wound surface lies " + format_fixed(off, 2) +
+                        " mm off the bent tube's radius " + format_fixed(bt.radius, 1) +
+                        " mm: friction layers on a bent tube are planned on the bare mandrel " +
+                        "only (not as an outer layer of a layup)");
     }
     if (hi - lo > 0.05 * bt.radius) {
       throw ConfigError(std::string("mandrel.region: the wound region's ") +

@@ -198,6 +198,16 @@ TEST(TubeFriction, RefusesWhatItCannotHonour) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("do not fit"), std::string::npos) << e.what();
   }
+  // A region cut by planes normal to the (principal) spindle axis: its ends are no sections.
+  std::string cut = elbow(250, kLayer);
+  cut.replace(cut.find("  bent_tube:\n"), 0, "  region: {start: -200, end: 200}\n");
+  try {
+    plan_job(load_job_from_string(cut, "/tmp/e.yaml"));
+    FAIL() << "a region whose ends are no sections of the tube was planned";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("is no section of the tube"), std::string::npos)
+        << e.what();
+  }
   // Slippage off revolution on a mandrel with no known centre line.
   const std::string oval =
       "name: oval\n"
