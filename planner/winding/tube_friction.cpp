@@ -256,7 +256,7 @@ double tube_angle_for_turns(const TubeCentreLine& line, double s0, double s1,
 
 std::string TubeFrictionSummary::brief_report() const {
   return std::string(closed ? "closed" : "not closed") + " after " + std::to_string(evaluations) +
-         " chains: " + termination;
+         " circuit traces: " + termination;
 }
 
 TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, double s1,

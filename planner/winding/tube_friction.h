@@ -50,7 +50,7 @@ namespace windplan {
 
 struct TubeFrictionSummary {
   bool closed = false;      ///< the chain of circuits closes (theta_K - theta_0 = 2 pi n)
-  int evaluations = 0;      ///< chains of K circuits traced to find lambda
+  int evaluations = 0;      ///< circuits traced to choose the advance and the apex moves
   std::string termination;  ///< one line: how lambda was chosen
   std::string brief_report() const;
 };
@@ -61,7 +61,7 @@ struct TubeFrictionWinding {
   double required = 0.0;            ///< max |k_g / k_n| the constant angle needs (closed form)
   double required_s = 0.0;          ///< station of it (mm)
   double required_theta_deg = 0.0;  ///< its angle from the outside of the bend (deg)
-  double slippage = 0.0;            ///< lambda of the turnarounds (<= bound)
+  double slippage = 0.0;            ///< lambda of the turnarounds (= bound)
   double bound = 0.0;               ///< winding.slippage
   int K = 0, p = 0;                 ///< circuits and skip
   int n = 0;                        ///< whole turns of the chain: theta_K - theta_0 = 2 pi n
