@@ -184,6 +184,10 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     r.revolution = plan_revolution_winding(ws.mesh, ws.face_map, md.axis, wo);
     r.clairaut = r.revolution.planned;
   }
+  if (wo.pin_count > 0 && !tube_layer) {
+    throw ConfigError("winding.pins: pins are planned for friction layers on a bent tube only " +
+                      std::string("(winding.slippage and winding.angle or turns on a bent_tube)"));
+  }
   if (tube_layer) {
     r.tube = plan_tube_layer(md, job, wo);
     r.tube_friction = true;
@@ -286,14 +290,22 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
         "at " + format_fixed(tw.angle_deg, 2) + " deg to the centre line" +
         (std::isnan(wo.angle) ? " (for winding.turns " + format_turns(wo.turns) + ")" : "") +
         ", held on the bend at " + "|k_g/k_n| up to " + format_fixed(tw.required, 4) +
-        " (winding.slippage " + format_fixed(wo.slippage, 3) +
-        "); friction turnarounds at |k_g/k_n| = " + format_fixed(tw.slippage, 4) +
-        " with their apexes on the stations " + format_fixed(tw.apex_s[0], 1) + " and " +
-        format_fixed(tw.apex_s[1], 1) + " mm of the centre line (the far one moved in by " +
-        format_fixed(tw.apex_moved[0], 2) + " to " + format_fixed(tw.apex_moved[1], 2) +
-        " mm per circuit to close the pattern), " + "no pins; the chain of circuits turns " +
-        std::to_string(tw.n) + " times and " + (tw.summary.closed ? "closes" : "does not close") +
-        " (starts within " + format_fixed(tw.spread_deg, 3) + " deg of even spacing)";
+        " (winding.slippage " + format_fixed(wo.slippage, 3) + "); " +
+        (tw.pins > 0
+             ? "turnarounds on rings of " + std::to_string(tw.pins) + " pins on the stations " +
+                   format_fixed(tw.apex_s[0], 1) + " and " + format_fixed(tw.apex_s[1], 1) +
+                   " mm of the centre line (far dwells " + format_fixed(tw.dwell_deg[0], 2) +
+                   " to " + format_fixed(tw.dwell_deg[1], 2) +
+                   " deg to close the pattern, start dwells one pitch)"
+             : "friction turnarounds at |k_g/k_n| = " + format_fixed(tw.slippage, 4) +
+                   " with their apexes on the stations " + format_fixed(tw.apex_s[0], 1) + " and " +
+                   format_fixed(tw.apex_s[1], 1) +
+                   " mm of the centre line (the far one moved in by " +
+                   format_fixed(tw.apex_moved[0], 2) + " to " + format_fixed(tw.apex_moved[1], 2) +
+                   " mm per circuit to close the pattern), no pins") +
+        "; the chain of circuits turns " + std::to_string(tw.n) + " times and " +
+        (tw.summary.closed ? "closes" : "does not close") + " (starts within " +
+        format_fixed(tw.spread_deg, 3) + " deg of even spacing)";
     r.passes = circuit_pass_reports(plan.circuits, md.axis, "friction");
   } else {
     plan.circuits = build_circuits(ws.mesh, r.helices, ws.face_map, md.axis, wo);
@@ -314,9 +326,12 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   PlanMetrics& pm = plan.metrics;
   if (r.tube_friction) {  // on sections normal to the centre line, between the turnarounds
     const TubeFrictionWinding& tw = r.tube;
+    // (pins: a band width inside the pin circles, off the dwells)
+    const double in = tw.pins > 0 ? wo.band_width : 0.0;
     pm.coverage = measure_tube_coverage(
-        tube_line_of(job), plan.circuits, wo.band_width, tw.apex_s[0] + 0.5 * tw.turnaround_span[0],
-        tw.apex_s[1] - tw.apex_moved[1] - 0.5 * tw.turnaround_span[1], wo.coverage_stations);
+        tube_line_of(job), plan.circuits, wo.band_width,
+        tw.apex_s[0] + 0.5 * tw.turnaround_span[0] + in,
+        tw.apex_s[1] - tw.apex_moved[1] - 0.5 * tw.turnaround_span[1] - in, wo.coverage_stations);
   } else {
     pm.coverage = measure_coverage(ws.mesh, md.axis, plan.circuits, co);
   }

@@ -41,7 +41,9 @@ CoverageReport measure_tube_coverage(const TubeCentreLine& line,
       const Vec3 p = (1 - w) * pts[j]->position + w * pts[j + 1]->position - f.c;
       const double th = std::atan2(p.dot(f.v), p.dot(f.u));
       const double ca = std::max(1e-6, std::abs(pts[j]->tangent.dot(f.t)));
-      const double width = band_width / (r * ca);  // rad
+      // A segment along the section circle (a dwell on pins lying on the station) would lay a
+      // trace of any length: one turn at most.
+      const double width = std::min(2.0 * M_PI, band_width / (r * ca));  // rad
       const int fam = s[j + 1] > s[j] ? 0 : 1;
       ++st.bands[fam];
       fam_length[fam] += width * r;

@@ -187,6 +187,165 @@ class Planner {
   std::array<double, 2> apex_;
 };
 
+// Ends on rings of pins (winding.pins): the passes run at a0 between the pin circles and dwell
+// along them (Kind::Turnaround segments, held by the pins): the far dwell of circuit k is chosen
+// (regula falsi) so that the circuit advances by exactly A, the start dwell is one pin pitch.
+void plan_pinned(const TubeCentreLine& line, double s0, double s1, double a0, const Mesh& annulus,
+                 const std::vector<int>& face_map, const SpindleAxis& axis, const WindingOptions& o,
+                 TubeFrictionWinding* w) {
+  const double r = line.tube_radius(), B = o.band_width, d = o.pin_diameter;
+  const int N = o.pin_count, K = w->K;
+  const double offset = std::isnan(o.pin_offset) ? 0.5 * B + d : o.pin_offset;
+  const double pitch = 2.0 * M_PI / N;
+  // Pins that do not fit: around the section each needs its own diameter of gap.
+  if (2.0 * N * d > 2.0 * M_PI * r) {
+    throw ConfigError("winding.pins: " + std::to_string(N) + " pins of " + format_fixed(d, 1) +
+                      " mm do not fit around the " + format_fixed(2.0 * M_PI * r, 1) +
+                      " mm section (at most " +
+                      std::to_string(static_cast<int>(std::floor(M_PI * r / d))) +
+                      " with a gap of one diameter between them)");
+  }
+  if (offset < 0.5 * d || 2.0 * offset + 4.0 * B > s1 - s0) {
+    throw ConfigError(
+        "winding.pins: offset " + format_fixed(offset, 1) + " mm puts the pin circles " +
+        (offset < 0.5 * d ? std::string("off the tube's ends (below half a pin diameter)")
+                          : "too near each other (the region is " + format_fixed(s1 - s0, 1) +
+                                " mm, the passes need 4 band widths)"));
+  }
+  const std::array<double, 2> ring = {s0 + offset, s1 - offset};
+  w->apex_s = ring;
+  w->pins = N;
+  const Law hold{true, 1, 0.0};
+  auto to_station = [](double target) {
+    return std::function<double(const State&)>([target](const State& y) { return y.s - target; });
+  };
+  struct Run {
+    std::vector<State> out, back;
+    State end;
+    double len = 0.0;
+  };
+  // The circuit from (ring[0], theta) with the far dwell phi and the start dwell one pitch.
+  auto circuit = [&](double theta, double phi, bool keep) {
+    Run c;
+    State y{ring[0], theta, a0};
+    if (keep) c.out.push_back(y);
+    y = trace(line, y, hold, to_station(ring[1]), keep ? &c.out : nullptr, &c.len);
+    State b{ring[1], y.th + phi, M_PI - a0};
+    if (keep) c.back.push_back(b);
+    b = trace(line, b, hold, to_station(ring[0]), keep ? &c.back : nullptr, &c.len);
+    c.end = State{ring[0], b.th + pitch, a0};
+    return c;
+  };
+  auto advance = [&](double theta, double phi) {
+    ++w->summary.evaluations;
+    return circuit(theta, phi, false).end.th - theta;
+  };
+  double most = -1e300, least = 1e300;
+  for (int j = 0; j < 48; ++j) {
+    const double a = advance(2.0 * M_PI * j / 48.0, pitch);
+    most = std::max(most, a);
+    least = std::min(least, a);
+  }
+  // A: the least 2 pi q / K above every sampled advance with one pitch of far dwell.
+  const double margin = 0.02 * (most - least) + 1e-6;
+  long long q = static_cast<long long>(std::ceil((most + margin) / (2.0 * M_PI) * K));
+  auto fits = [&](long long v) {
+    const int rem = static_cast<int>(((v % K) + K) % K);
+    return o.skip > 0 ? rem == w->p % K : K == 1 || (rem != 0 && std::gcd(rem, K) == 1);
+  };
+  while (!fits(q)) ++q;
+  if (o.skip <= 0) w->p = static_cast<int>(q % K);
+  w->n = static_cast<int>(q);
+  const double A = 2.0 * M_PI * static_cast<double>(q) / K;
+  std::vector<double> phis(K);
+  double theta = 0.0;
+  for (int k = 0; k < K; ++k) {
+    double lo = pitch, f_lo = advance(theta, lo) - A;
+    double hi = lo - f_lo + 0.5, f_hi = advance(theta, hi) - A;
+    while (f_hi < 0.0) {
+      hi += 1.0;
+      f_hi = advance(theta, hi) - A;
+    }
+    double phi = hi;
+    int side = 0;
+    for (int it = 0; it < 80 && hi - lo > 1e-13; ++it) {
+      phi = hi - f_hi * (hi - lo) / (f_hi - f_lo);
+      const double f = advance(theta, phi) - A;
+      if (std::abs(f) < 1e-11) break;
+      if (f < 0.0) {
+        lo = phi;
+        f_lo = f;
+        if (side == -1) f_hi *= 0.5;
+        side = -1;
+      } else {
+        hi = phi;
+        f_hi = f;
+        if (side == 1) f_lo *= 0.5;
+        side = 1;
+      }
+    }
+    phis[k] = phi;
+    theta += A;
+  }
+  const auto [pmin, pmax] = std::minmax_element(phis.begin(), phis.end());
+  w->dwell_deg = {*pmin * 180.0 / M_PI, *pmax * 180.0 / M_PI};
+  // Lay the circuits: each segment annotated on its own (the dwells' corners are held by pins).
+  const std::vector<Vec3> vn = vertex_normals(annulus);
+  const ClosestPointQuery query(annulus);
+  auto place = [&](const State& y) {
+    const ClosestPointQuery::Hit hit = query.closest(line.point(y.s, y.th));
+    w->projection_max = std::max(w->projection_max, hit.distance);
+    FibrePoint pt;
+    pt.position = hit.position;
+    pt.normal = point_normal(annulus, vn, hit.point);
+    const int f = hit.point.element;
+    pt.face = face_map.empty() || f < 0 || f >= static_cast<int>(face_map.size()) ? f : face_map[f];
+    return pt;
+  };
+  auto dwell = [&](double s, double from, double by) {
+    std::vector<FibrePoint> pts;
+    const int n = std::max(2, static_cast<int>(std::ceil(r * by)));  // ~1 mm of arc a sample
+    for (int i = 0; i <= n; ++i) pts.push_back(place(State{s, from + by * i / n, 0.5 * M_PI}));
+    w->turnaround_length += r * by;
+    return pts;
+  };
+  const double window = o.curvature_window > 0.0 ? o.curvature_window : o.band_width;
+  theta = 0.0;
+  for (int k = 0; k < K; ++k) {
+    w->starts_deg.push_back(theta * 180.0 / M_PI);
+    const Run c = circuit(theta, phis[k], true);
+    Circuit circ;
+    circ.index = k;
+    std::vector<FibrePoint> pts;
+    for (const State& y : c.out) pts.push_back(place(y));
+    append_circuit_segment(&circ, std::move(pts), CircuitSegment::Kind::Pass, axis, window);
+    append_circuit_segment(&circ, dwell(ring[1], c.out.back().th, phis[k]),
+                           CircuitSegment::Kind::Turnaround, axis, window);
+    pts.clear();
+    for (const State& y : c.back) pts.push_back(place(y));
+    append_circuit_segment(&circ, std::move(pts), CircuitSegment::Kind::Pass, axis, window);
+    append_circuit_segment(&circ, dwell(ring[0], c.back.back().th, pitch),
+                           CircuitSegment::Kind::Turnaround, axis, window);
+    w->fibre_length += circ.points.back().s;
+    w->circuits.push_back(std::move(circ));
+    theta = c.end.th;
+  }
+  const double miss = theta - 2.0 * M_PI * static_cast<double>(q);
+  w->summary.closed = std::abs(miss) < 1e-6;
+  w->summary.termination = "passes between rings of " + std::to_string(N) + " pins, far dwells " +
+                           format_fixed(w->dwell_deg[0], 2) + " to " +
+                           format_fixed(w->dwell_deg[1], 2) + " deg, start dwells one pitch (" +
+                           format_fixed(pitch * 180.0 / M_PI, 2) + " deg), the chain turns " +
+                           std::to_string(q) + " times (closure " +
+                           format_fixed(miss * 180.0 / M_PI, 6) + " deg)";
+  w->turns_per_pass = theta / (2.0 * M_PI) / (2.0 * K);
+  for (int k = 0; k < K; ++k) {
+    const double even = 2.0 * M_PI * static_cast<double>(static_cast<long long>(k) * w->p % K) / K;
+    const double off = std::remainder(w->starts_deg[k] * M_PI / 180.0 - even, 2.0 * M_PI);
+    w->spread_deg = std::max(w->spread_deg, std::abs(off) * 180.0 / M_PI);
+  }
+}
+
 }  // namespace
 
 double tube_turns_per_pass(const TubeCentreLine& line, double s0, double s1, double a0,
@@ -310,6 +469,10 @@ TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, do
   if (o.skip > 0 && w.K > 1 && std::gcd(w.p, w.K) != 1) {
     throw ConfigError("winding.pattern: skip " + std::to_string(w.p) + " and " +
                       std::to_string(w.K) + " circuits must be coprime");
+  }
+  if (o.pin_count > 0) {
+    plan_pinned(line, s0, s1, a0, annulus, face_map, axis, o, &w);
+    return w;
   }
   const int K = w.K;
   const double lambda = o.slippage;

@@ -33,6 +33,14 @@
 // regula falsi) at which it advances by exactly A: the starts are spread exactly evenly,
 // p k / K of a turn, and the chain closes after K circuits (theta_K = K A = 2 pi (K m + p)).
 // p: winding's skip, or the largest advance's p coprime to K.
+// Pins (winding.pins: {count N, diameter d, offset x}): a ring of N pins on the section circle
+// at x (default B / 2 + d) inside each end instead of friction turnarounds. The passes run at a0
+// between the pin circles and dwell along them (Turnaround segments, held by the pins; the pins'
+// diameter is not in the path, which is laid on the circle through their feet). The start dwell
+// is one pin pitch 2 pi / N (so it wraps at least one pin); the far dwell of circuit k (at least
+// a pitch) is what makes it advance by exactly A, the least 2 pi q / K above every circuit's
+// advance with one pitch of dwell. Pins that do not fit (2 N d > 2 pi r: each needs its own
+// diameter of gap) or pin circles off the tube or past each other are refused.
 // K: winding.circuits, or auto: ceil(2 pi r cos a0 / B), the nominal full cover of a straight
 // tube.
 // Units: mm, radians unless a field says deg.
@@ -76,6 +84,8 @@ struct TubeFrictionWinding {
   double turns_per_pass = 0.0;                    ///< mean theta turns per pass, apex to apex
   double spread_deg = 0.0;  ///< largest offset of a circuit's start from p k / K of a turn (deg)
   double projection_max = 0.0;  ///< largest move of a planned point onto the mesh (mm)
+  int pins = 0;                 ///< pins per end ring (0: friction turnarounds)
+  std::array<double, 2> dwell_deg = {0.0, 0.0};  ///< pins: least and most far dwell (deg)
   TubeFrictionSummary summary;
 };
 

@@ -149,6 +149,48 @@ TEST(TubeFriction, TwentyThreeCircuitsCoverEverySectionOfTheElbow) {
   EXPECT_EQ(r23.plan.metrics.coverage.stations.size(), 12u);
 }
 
+// Rings of pins at the ends: the passes hold the angle between the pin circles, the dwells lie
+// on them (Turnaround segments), each circuit advances by the same amount (even starts, one
+// closed chain), the passes' measured |k_g/k_n| stays within mu; pins that do not fit are
+// refused with the number that would.
+TEST(TubeFriction, PinRingsHoldTheTurnarounds) {
+  const TubeCentreLine line(50, {100, 100}, {{90, 250, 0}});
+  const PipelineResult r = plan_job(load_job_from_string(
+      elbow(250, std::string(kLayer) + "  circuits: 23\n  pins: {count: 24, diameter: 4}\n"),
+      "/tmp/e.yaml"));
+  ASSERT_TRUE(r.tube_friction);
+  const TubeFrictionWinding& w = r.tube;
+  EXPECT_EQ(w.pins, 24);
+  EXPECT_TRUE(w.summary.closed) << w.summary.brief_report();
+  EXPECT_LT(w.spread_deg, 1e-6);
+  EXPECT_NEAR(w.apex_s[0], 6 + 4, 1e-9);   // default offset: B / 2 + d
+  EXPECT_GE(w.dwell_deg[0], 15.0 - 1e-9);  // at least one pitch
+  ASSERT_EQ(r.plan.circuits.size(), 23u);
+  for (const Circuit& c : r.plan.circuits) {
+    ASSERT_EQ(c.segments.size(), 4u);
+    for (int g : {1, 3}) {
+      const CircuitSegment& seg = c.segments[g];
+      EXPECT_EQ(seg.kind, CircuitSegment::Kind::Turnaround);
+      for (int i = seg.first; i <= seg.last; ++i) {
+        double s = 0, th = 0, d = 0;
+        line.locate(c.points[i].position, &s, &th, &d);
+        EXPECT_NEAR(s, w.apex_s[g == 1 ? 1 : 0], 0.3);
+      }
+    }
+  }
+  EXPECT_LE(r.plan.metrics.max_slippage, 0.2);
+  EXPECT_EQ(r.plan.metrics.coverage.bare_fraction, 0.0);
+  try {
+    plan_job(load_job_from_string(
+        elbow(250, std::string(kLayer) + "  pins: {count: 60, diameter: 4}\n"), "/tmp/e.yaml"));
+    FAIL() << "60 pins of 4 mm were fitted round a 314 mm section";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("do not fit around the 314.2 mm section (at most 39"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(TubeFriction, ThreeRadiusElbowIsRefusedWithTheSlippageItNeeds) {
   const Job job = load_job_from_string(elbow(150, kLayer), "/tmp/elbow.yaml");
   try {
@@ -221,6 +263,15 @@ TEST(TubeFriction, RefusesWhatItCannotHonour) {
       "  slippage: 0.1\n"
       "  band_width: 10\n";
   EXPECT_THROW(plan_job(load_job_from_string(oval, "/tmp/o.yaml")), ConfigError);
+  // Pins anywhere but on a friction layer on a bent tube.
+  std::string pinned = oval;
+  pinned.replace(pinned.find("  slippage: 0.1\n"), 16, "  pins: {count: 12}\n");
+  try {
+    plan_job(load_job_from_string(pinned, "/tmp/o.yaml"));
+    FAIL() << "pins on an oval geodesic job were ignored";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("winding.pins"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
