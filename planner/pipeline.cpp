@@ -8,6 +8,7 @@
 #include "planner/cutlines/cutlines.h"
 #include "planner/job/job_limits.h"
 #include "planner/winding/coverage.h"
+#include "planner/winding/tube_coverage.h"
 
 namespace windplan {
 
@@ -60,6 +61,74 @@ std::string turn_limit_warning(const ClairautLimit& lim, const WindingOptions& w
   return w + "beta > 0, or stations (the limit is recomputed between them)";
 }
 
+// Off a shape of revolution, winding.slippage and winding.angle ask for a friction layer at a
+// constant angle to the centre line (planner/winding/tube_friction.h): planned on a parametric
+// bent tube, whose centre line is known exactly; refused elsewhere, and refused where the keys
+// it does not use are set (they would be silently ignored).
+TubeCentreLine tube_line_of(const Job& job) {
+  const BentTubeParams& bt = job.mandrel.bent_tube;
+  std::vector<TubeBend> bends;
+  for (const BendParams& b : bt.bends) bends.push_back({b.angle, b.radius, b.plane_angle});
+  return TubeCentreLine(bt.radius, bt.segments, bends);
+}
+
+TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const WindingOptions& wo) {
+  const std::string keys = wo.slippage > 0.0 ? "winding.slippage" : "winding.angle";
+  if (job.mandrel.source != "bent_tube") {
+    throw ConfigError(keys + ": friction paths off a shape of revolution are planned on a " +
+                      "parametric bent_tube (mandrel.source: bent_tube, its exact centre line) " +
+                      "only, and this mandrel (source " + job.mandrel.source + ") is none; " +
+                      "remove winding.slippage and winding.angle to plan geodesic helices");
+  }
+  if (!(wo.slippage > 0.0)) {
+    throw ConfigError(
+        "winding.angle " + format_turns(wo.angle) + " deg on a bent tube: a geodesic cannot " +
+        "hold a constant angle to the centre line through the bend; give winding.slippage (<= " +
+        "mu) to hold it by friction, or remove winding.angle for geodesic helices");
+  }
+  if (wo.beta > 0.0) {
+    throw ConfigError("winding.beta: a friction layer holds a constant angle on a bent tube; " +
+                      std::string("beta must be 0 with winding.slippage"));
+  }
+  if (wo.has_start_station() || wo.has_end_station()) {
+    throw ConfigError("winding.start_station/end_station: stations along the spindle axis are " +
+                      std::string("no sections of a bent tube; bound the region with its ends"));
+  }
+  const BentTubeParams& bt = job.mandrel.bent_tube;
+  const TubeCentreLine line = tube_line_of(job);
+  // The region's ends: each boundary loop must be a section of the tube (one station).
+  std::array<double, 2> ends{};
+  for (int e = 0; e < 2; ++e) {
+    double lo = 1e300, hi = -1e300, sum = 0.0, off = 0.0;
+    for (int v : md.winding.loops[e].vertices) {
+      double s = 0.0, th = 0.0, d = 0.0;
+      line.locate(md.winding.mesh.position(v), &s, &th, &d);
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+      sum += s;
+      off = std::max(off, std::abs(d - bt.radius));
+    }
+    // The surface must be the bare tube (a layup's outer layers are wound on a thicker one,
+    // which the centre line's radius does not describe).
+    if (off > 0.02 * bt.radius) {
+      throw ConfigError("winding.slippage: the wound surface lies " + format_fixed(off, 2) +
+                        " mm off the bent tube's radius " + format_fixed(bt.radius, 1) +
+                        " mm: friction layers on a bent tube are planned on the bare mandrel " +
+                        "only (not as an outer layer of a layup)");
+    }
+    if (hi - lo > 0.05 * bt.radius) {
+      throw ConfigError(std::string("mandrel.region: the wound region's ") +
+                        (e == 0 ? "start" : "end") + " edge is no section of the tube (it spans " +
+                        format_fixed(hi - lo, 1) + " mm of centre line, " + format_fixed(lo, 1) +
+                        " to " + format_fixed(hi, 1) +
+                        " mm): friction paths need region ends normal to the centre line");
+    }
+    ends[e] = sum / std::max<std::size_t>(1, md.winding.loops[e].vertices.size());
+  }
+  return plan_tube_friction(line, std::min(ends[0], ends[1]), std::max(ends[0], ends[1]),
+                            md.winding.mesh, md.winding.face_map, md.axis, wo);
+}
+
 }  // namespace
 
 PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
@@ -92,7 +161,9 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   // Girth: needed for the density (beta > 0) and, off a shape of revolution, for the spacing
   // normalisation; on a shape of revolution with beta = 0, 2 pi r is the exact girth.
   Stage girth("girth", &timings, options);
-  if (wo.beta > 0.0 || !md.revolution) {
+  // A friction layer on a tube (plan_tube_layer) holds an angle: no girth.
+  const bool tube_layer = !md.revolution && (wo.slippage > 0.0 || !std::isnan(wo.angle));
+  if (wo.beta > 0.0 || (!md.revolution && !tube_layer)) {
     r.girth = compute_girth_field(ws.mesh, loops, job.girth);
     r.face_girth = r.girth.face_girth(ws.mesh);
     r.has_girth = true;
@@ -113,7 +184,14 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     r.revolution = plan_revolution_winding(ws.mesh, ws.face_map, md.axis, wo);
     r.clairaut = r.revolution.planned;
   }
-  if (!r.clairaut) {
+  if (wo.pin_count > 0 && !tube_layer) {
+    throw ConfigError("winding.pins: pins are planned for friction layers on a bent tube only " +
+                      std::string("(winding.slippage and winding.angle or turns on a bent_tube)"));
+  }
+  if (tube_layer) {
+    r.tube = plan_tube_layer(md, job, wo);
+    r.tube_friction = true;
+  } else if (!r.clairaut) {
     std::vector<double> rho;
     if (wo.beta > 0.0) rho = density_from_girth(ws.mesh, r.face_girth, wo.beta);
     r.helices = plan_helices(ws.mesh, loops, rho, md.axis, wo);
@@ -195,6 +273,40 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
       }
     }
     r.passes = circuit_pass_reports(plan.circuits, md.axis, "clairaut");
+  } else if (r.tube_friction) {
+    TubeFrictionWinding& tw = r.tube;
+    plan.circuits = std::move(tw.circuits);
+    tw.circuits.clear();
+    plan.metrics = circuit_plan_metrics(plan.circuits, md.axis, wo);
+    PatternInfo& pi = plan.metrics.pattern_info;
+    pi.geodesic = false;
+    pi.circuits = tw.K;
+    pi.skip = tw.p;
+    pi.angle_deg = tw.angle_deg;
+    plan.metrics.turns_per_pass = tw.turns_per_pass;
+    plan.metrics.circuits_for_coverage = tw.K;
+    plan.metrics.pattern =
+        "K=" + std::to_string(tw.K) + ", skip p=" + std::to_string(tw.p) + ": a friction layer " +
+        "at " + format_fixed(tw.angle_deg, 2) + " deg to the centre line" +
+        (std::isnan(wo.angle) ? " (for winding.turns " + format_turns(wo.turns) + ")" : "") +
+        ", held on the bend at " + "|k_g/k_n| up to " + format_fixed(tw.required, 4) +
+        " (winding.slippage " + format_fixed(wo.slippage, 3) + "); " +
+        (tw.pins > 0
+             ? "turnarounds on rings of " + std::to_string(tw.pins) + " pins on the stations " +
+                   format_fixed(tw.apex_s[0], 1) + " and " + format_fixed(tw.apex_s[1], 1) +
+                   " mm of the centre line (far dwells " + format_fixed(tw.dwell_deg[0], 2) +
+                   " to " + format_fixed(tw.dwell_deg[1], 2) +
+                   " deg to close the pattern, start dwells one pitch)"
+             : "friction turnarounds at |k_g/k_n| = " + format_fixed(tw.slippage, 4) +
+                   " with their apexes on the stations " + format_fixed(tw.apex_s[0], 1) + " and " +
+                   format_fixed(tw.apex_s[1], 1) +
+                   " mm of the centre line (the far one moved in by " +
+                   format_fixed(tw.apex_moved[0], 2) + " to " + format_fixed(tw.apex_moved[1], 2) +
+                   " mm per circuit to close the pattern), no pins") +
+        "; the chain of circuits turns " + std::to_string(tw.n) + " times and " +
+        (tw.summary.closed ? "closes" : "does not close") + " (starts within " +
+        format_fixed(tw.spread_deg, 3) + " deg of even spacing)";
+    r.passes = circuit_pass_reports(plan.circuits, md.axis, "friction");
   } else {
     plan.circuits = build_circuits(ws.mesh, r.helices, ws.face_map, md.axis, wo);
     plan.metrics = compute_plan_metrics(ws.mesh, r.helices, plan.circuits, r.face_girth, md.axis,
@@ -210,9 +322,19 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   CoverageOptions co;
   co.band_width = wo.band_width;
   co.stations = wo.coverage_stations;
-  if (!md.revolution && !r.clairaut) co.height = &r.helices.coords.height;
+  if (!md.revolution && !r.clairaut && !r.tube_friction) co.height = &r.helices.coords.height;
   PlanMetrics& pm = plan.metrics;
-  pm.coverage = measure_coverage(ws.mesh, md.axis, plan.circuits, co);
+  if (r.tube_friction) {  // on sections normal to the centre line, between the turnarounds
+    const TubeFrictionWinding& tw = r.tube;
+    // (pins: a band width inside the pin circles, off the dwells)
+    const double in = tw.pins > 0 ? wo.band_width : 0.0;
+    pm.coverage = measure_tube_coverage(
+        tube_line_of(job), plan.circuits, wo.band_width,
+        tw.apex_s[0] + 0.5 * tw.turnaround_span[0] + in,
+        tw.apex_s[1] - tw.apex_moved[1] - 0.5 * tw.turnaround_span[1] - in, wo.coverage_stations);
+  } else {
+    pm.coverage = measure_coverage(ws.mesh, md.axis, plan.circuits, co);
+  }
   pm.cover_factor = pm.coverage.cover_factor;
   if (r.clairaut) {  // the band spacing on the stations (the core's route has its own, per
                      // meridian)
@@ -231,12 +353,14 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     pm.warnings.push_back(
         "coverage: the laid bands leave " + format_fixed(100.0 * worst->bare_fraction, 2) +
         "% of the circumference bare at " +
-        (co.height ? "height " + format_fixed(worst->station, 3) + " of the wound region"
-                   : format_fixed(worst->station, 1) + " mm along the axis") +
+        (co.height         ? "height " + format_fixed(worst->station, 3) + " of the wound region"
+         : r.tube_friction ? format_fixed(worst->station, 1) + " mm along the centre line"
+                           : format_fixed(worst->station, 1) + " mm along the axis") +
         " (widest gap " + format_fixed(pm.coverage.widest_gap, 1) + " mm over " +
         std::to_string(pm.coverage.stations.size()) + " stations): " +
-        (r.clairaut ? "choose a pattern with more circuits (windplan patterns JOB)"
-                    : "more circuits, a wider band or beta = 0 on a shape of revolution"));
+        (r.clairaut        ? "choose a pattern with more circuits (windplan patterns JOB)"
+         : r.tube_friction ? "more circuits (winding.circuits)"
+                           : "more circuits, a wider band or beta = 0 on a shape of revolution"));
   }
   // The geodesic turn limit (shapes of revolution) between the ends of the passes.
   if (md.revolution) {

@@ -26,6 +26,7 @@
 #include "planner/winding/fibre_metrics.h"
 #include "planner/winding/helix.h"
 #include "planner/winding/revolution_winding.h"
+#include "planner/winding/tube_friction.h"
 
 namespace windplan {
 
@@ -46,6 +47,11 @@ struct PipelineResult {
   /// plan); false: from the geodesic core (`helices`).
   bool clairaut = false;
   RevolutionWinding revolution;
+  /// true: a friction layer at winding.angle on a bent tube (planner/winding/tube_friction.h;
+  /// winding.slippage or winding.angle off a shape of revolution), `tube` holds its figures
+  /// (its circuits moved into the plan).
+  bool tube_friction = false;
+  TubeFrictionWinding tube;
   HelixPlan helices;
   std::vector<PassReport> passes;
   bool has_turn_limit = false;  ///< turn_limit was computed (a shape of revolution)

@@ -514,6 +514,14 @@ void decode_winding(ConfigNode n, WindingOptions* w) {
   n.get("angle", &w->angle);
   n.get("turnaround_window", &w->turnaround_window);
   n.get("coverage_stations", &w->coverage_stations);
+  if (n.has("pins")) {  // pins at the ends of a friction layer on a bent tube
+    if (!n.is_map("pins")) n.fail("pins", "must be {count: N, diameter: mm, offset: mm}");
+    ConfigNode pins = n.section("pins");
+    pins.require("count", &w->pin_count);
+    pins.get("diameter", &w->pin_diameter);
+    pins.get("offset", &w->pin_offset);
+    pins.finish();
+  }
   n.finish();
   n.check(*w);
 }

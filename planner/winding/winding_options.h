@@ -67,6 +67,13 @@ struct WindingOptions {
   bool turns_given = false;
   /// Stations along the wound length where coverage is measured on the laid bands (count, >= 8).
   int coverage_stations = 12;
+  /// `pins: {count, diameter, offset}`: a ring of pins at each end of a friction layer on a bent
+  /// tube (planner/winding/tube_friction.h): pins per end (count, >= 0; 0: friction
+  /// turnarounds), their diameter (mm, > 0) and the pin circle's distance from the region's end
+  /// (mm, >= 0; NaN: half the band width + the diameter).
+  int pin_count = 0;
+  double pin_diameter = 4.0;
+  double pin_offset = std::nan("");
 
   bool has_start_station() const { return std::isfinite(start_station); }
   bool has_end_station() const { return std::isfinite(end_station); }
@@ -126,6 +133,13 @@ struct WindingOptions {
     }
     if (coverage_stations < 8 || coverage_stations > 1000) {
       return fail("coverage_stations must be in [8, 1000]");
+    }
+    if (pin_count < 0) return fail("pins: count must be >= 0");
+    if (!(pin_diameter > 0.0) || !std::isfinite(pin_diameter)) {
+      return fail("pins: diameter must be > 0 mm");
+    }
+    if (!std::isnan(pin_offset) && !(pin_offset >= 0.0 && std::isfinite(pin_offset))) {
+      return fail("pins: offset must be >= 0 mm");
     }
     if (has_start_station() && has_end_station() && !(start_station < end_station)) {
       return fail("start_station must be < end_station");

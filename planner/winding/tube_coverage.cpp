@@ -1,0 +1,87 @@
+#include "planner/winding/tube_coverage.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace windplan {
+
+CoverageReport measure_tube_coverage(const TubeCentreLine& line,
+                                     const std::vector<Circuit>& circuits, double band_width,
+                                     double s0, double s1, int stations) {
+  CoverageReport rep;
+  std::vector<double> s;
+  std::vector<const FibrePoint*> pts;
+  for (const Circuit& c : circuits) {
+    for (const FibrePoint& q : c.points) {
+      double si = 0.0, th = 0.0, d = 0.0;
+      line.locate(q.position, &si, &th, &d);
+      s.push_back(si);
+      pts.push_back(&q);
+    }
+    s.push_back(std::nan(""));  // no segment between circuits' lists (they share a point)
+    pts.push_back(nullptr);
+  }
+  const double r = line.tube_radius(), loop = 2.0 * M_PI * r;
+  const int n = 3600;
+  double plies = 0.0;
+  rep.cover_factor = 1e300;
+  for (int k = 0; k < std::max(2, stations); ++k) {
+    const double sc = s0 + (s1 - s0) * k / (std::max(2, stations) - 1);
+    const TubeFrame f = line.frame(sc);
+    StationCoverage st;
+    st.station = sc;
+    st.loop_length = loop;
+    std::array<std::vector<int>, 2> stack{std::vector<int>(n, 0), std::vector<int>(n, 0)};
+    double band_length = 0.0;
+    std::array<double, 2> fam_length = {0.0, 0.0};
+    for (std::size_t j = 0; j + 1 < s.size(); ++j) {
+      // Half-open, so that a point exactly on the station counts once.
+      if (!pts[j] || !pts[j + 1] || (s[j] < sc) == (s[j + 1] < sc)) continue;
+      const double w = (sc - s[j]) / (s[j + 1] - s[j]);
+      const Vec3 p = (1 - w) * pts[j]->position + w * pts[j + 1]->position - f.c;
+      const double th = std::atan2(p.dot(f.v), p.dot(f.u));
+      const double ca = std::max(1e-6, std::abs(pts[j]->tangent.dot(f.t)));
+      // A segment along the section circle (a dwell on pins lying on the station) would lay a
+      // trace of any length: one turn at most.
+      const double width = std::min(2.0 * M_PI, band_width / (r * ca));  // rad
+      const int fam = s[j + 1] > s[j] ? 0 : 1;
+      ++st.bands[fam];
+      fam_length[fam] += width * r;
+      band_length += width * r;
+      const int a = static_cast<int>(std::floor((th - 0.5 * width) / (2 * M_PI) * n));
+      const int m = static_cast<int>(std::lround(width / (2 * M_PI) * n));
+      for (int i = 0; i < m; ++i) ++stack[fam][((a + i) % n + n) % n];
+    }
+    for (int fam = 0; fam < 2; ++fam) {
+      int bare = 0, run = 0, widest = 0, first_run = -1;
+      for (int i = 0; i < n; ++i) {
+        st.max_stack = std::max(st.max_stack, stack[fam][i]);
+        if (stack[fam][i] == 0) {
+          ++bare;
+          ++run;
+        } else {
+          if (first_run < 0) first_run = run;
+          widest = std::max(widest, run);
+          run = 0;
+        }
+      }
+      // The gap that wraps round the seam joins the last run to the first.
+      widest = std::max(widest, first_run < 0 ? n : run + first_run);
+      st.family_bare[fam] = static_cast<double>(bare) / n;
+      st.widest_gap = std::max(st.widest_gap, loop * widest / n);
+    }
+    st.bare_fraction = std::max(st.family_bare[0], st.family_bare[1]);
+    st.mean_plies = band_length / loop;
+    st.cover_factor = std::min(fam_length[0], fam_length[1]) / loop;
+    rep.bare_fraction = std::max(rep.bare_fraction, st.bare_fraction);
+    rep.widest_gap = std::max(rep.widest_gap, st.widest_gap);
+    rep.max_stack = std::max(rep.max_stack, st.max_stack);
+    rep.cover_factor = std::min(rep.cover_factor, st.cover_factor);
+    plies += st.mean_plies;
+    rep.stations.push_back(st);
+  }
+  rep.mean_plies = plies / rep.stations.size();
+  return rep;
+}
+
+}  // namespace windplan
