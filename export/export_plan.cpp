@@ -5,6 +5,7 @@
 #include "export/plots/stability_svg.h"
 
 #include <cstdio>
+#include <map>
 
 #include "export/files/output_set.h"
 #include "export/files/ply_polylines.h"
@@ -14,6 +15,9 @@
 #include "export/plots/viewer.h"
 #include "export/program/gcode.h"
 #include "export/program/gcode_reader.h"
+#include "export/robot/robot_program.h"
+#include "export/robot/robot_program_reader.h"
+#include "export/robot/robot_replay.h"
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
 #include "geometry/mesh/mesh_io.h"
@@ -80,6 +84,21 @@ CsvTable axes_table(const Motion& motion) {
   return t;
 }
 
+/// The joint-space CSV of a robot cell: E1 and A1..A6 at every target, Status and Turn.
+CsvTable joints_table(const Motion& motion, const RobotMotion& robot) {
+  CsvTable t;
+  t.header = {"circuit",  "index",    "t_s [s]",  "E1 [deg]", "A1 [deg]", "A2 [deg]",
+              "A3 [deg]", "A4 [deg]", "A5 [deg]", "A6 [deg]", "S",        "T"};
+  double time = 0.0;
+  for (const RobotTarget& g : robot.targets) {
+    const MachineState& s = motion.states[g.state];
+    time += g.duration;
+    t.rows.push_back({double(s.circuit), double(s.index), time, g.e1, g.q[0], g.q[1], g.q[2],
+                      g.q[3], g.q[4], g.q[5], double(g.status), double(g.turn)});
+  }
+  return t;
+}
+
 CsvTable eye_pose_table(const Motion& motion) {
   CsvTable t;
   t.header = {"circuit",    "index",      "t_s [s]", "A_deg [deg]", "eye_x [mm]",
@@ -103,6 +122,33 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   r.motion = compute_motion(plan, machine, &mandrel_mesh);
   const bool robot = machine.kind == "robot";
   std::string program;
+  std::vector<ProgramFile> robot_files;
+  if (robot && machine.robot.has_arm()) {
+    // A robot cell: the arm's targets and joints, its KRL or RAPID program, read back and replayed.
+    r.robot = compute_robot_motion(r.motion, plan, machine);
+    r.has_robot = true;
+    robot_files = robot_program(r.robot, plan.job_name, machine);
+    r.robot_main = robot_files.front().name;
+    if (mandrel_mesh.num_faces() > 0 && !r.motion.states.empty()) {
+      std::map<std::string, std::string> texts;
+      for (const ProgramFile& f : robot_files) texts[f.name] = f.text;
+      r.robot_replay =
+          replay_robot_program(read_robot_program(texts, r.robot_main, machine.robot.dialect), plan,
+                               mandrel_mesh, machine);
+      r.has_robot_replay = true;
+      r.replay = r.robot_replay.fibre;
+      r.has_replay = true;
+      if (machine.replay_tolerance > 0.0 &&
+          r.robot_replay.fibre.max_deviation > machine.replay_tolerance) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%.3f mm from the plan at %s, more than %.3f mm",
+                      r.robot_replay.fibre.max_deviation, r.robot_replay.max_deviation_at.c_str(),
+                      machine.replay_tolerance);
+        throw InputError("machine.replay_tolerance: the replay of " + r.robot_main +
+                         " lays the fibre " + buf + "; no program written");
+      }
+    }
+  }
   if (!robot) {
     program = gcode_program(r.motion, plan.job_name, machine);
     if (mandrel_mesh.num_faces() > 0 && !r.motion.states.empty()) {
@@ -125,10 +171,14 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   if (output.csv) {
     r.files.insert(r.files.end(), {"fibre_path.csv", "payout.csv", "axes.csv"});
     if (robot) r.files.push_back("eye_pose.csv");
+    if (r.has_robot) r.files.push_back("joints.csv");
     if (cutlines) r.files.push_back("cutlines.csv");
   }
   const std::string gcode_name = "toolpath" + gcode_extension(machine.gcode.dialect);
   if (output.gcode && !robot) r.files.push_back(gcode_name);
+  if (output.gcode) {
+    for (const ProgramFile& f : robot_files) r.files.push_back(f.name);
+  }
   if (output.ply) r.files.insert(r.files.end(), {"mesh.ply", "paths.ply"});
   if (output.svg) r.files.insert(r.files.end(), {"development.svg", "axes.svg", "stability.svg"});
   if (output.viewer) r.files.push_back("viewer.html");
@@ -153,6 +203,10 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
       write_csv_file(dir / "eye_pose.csv", eye_pose_table(r.motion));
       wrote("eye_pose.csv");
     }
+    if (r.has_robot) {
+      write_csv_file(dir / "joints.csv", joints_table(r.motion, r.robot));
+      wrote("joints.csv");
+    }
     if (cutlines) {
       write_cutlines_csv(dir / "cutlines.csv", plan.cutlines);
       wrote("cutlines.csv");
@@ -161,6 +215,12 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   if (output.gcode && !robot) {
     write_text_atomically(dir / gcode_name, program);
     wrote(gcode_name);
+  }
+  if (output.gcode) {
+    for (const ProgramFile& f : robot_files) {
+      write_text_atomically(dir / f.name, f.text);
+      wrote(f.name);
+    }
   }
   if (output.ply) {
     write_mesh(dir / "mesh.ply", mandrel_mesh);

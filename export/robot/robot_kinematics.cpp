@@ -169,6 +169,38 @@ bool RobotArm::inverse(const Eigen::Isometry3d& target, const Joints& seed, Join
   return accept(out);
 }
 
+bool RobotArm::inverse_near(const Eigen::Isometry3d& target, const Joints& home, double margin,
+                            double wrist, Joints* q) const {
+  const Vec3 p = target.translation();
+  const Vec3 ax(robot_.joints[0].axis[0], robot_.joints[0].axis[1], robot_.joints[0].axis[2]);
+  const double a1 = std::atan2(p.y(), p.x()) * kDeg * (ax.z() < 0.0 ? -1.0 : 1.0);
+  bool found = false;
+  double best = 0.0;
+  for (double a2 : {-90.0, -60.0, -30.0, -120.0}) {
+    for (double a3 : {90.0, 60.0, 120.0, 30.0}) {
+      for (double a5 : {45.0, -45.0, 90.0, -90.0}) {
+        for (double a4 : {0.0, 90.0, -90.0, 180.0}) {
+          const Joints seed{a1, a2, a3, a4, a5, home[5]};
+          Joints got;
+          if (!inverse(target, seed, &got)) continue;
+          // The turn of A4 and A6 nearest home.
+          for (int i : {3, 5}) got[i] -= 360.0 * std::round((got[i] - home[i]) / 360.0);
+          if (!joint_limit_violation(robot_, got, margin).empty()) continue;
+          if (std::fabs(got[4]) < wrist) continue;
+          double d = 0.0;
+          for (int i = 0; i < 6; ++i) d += (got[i] - home[i]) * (got[i] - home[i]);
+          if (!found || d < best) {
+            found = true;
+            best = d;
+            *q = got;
+          }
+        }
+      }
+    }
+  }
+  return found;
+}
+
 int RobotArm::status(const Joints& q) const {
   int st = 0;
   const Vec3 w = wrist_centre(q);

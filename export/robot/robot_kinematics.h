@@ -44,6 +44,11 @@ class RobotArm {
   /// (the target is out of reach or the seed too far). Joint limits are not imposed here:
   /// check_joint_limits does.
   bool inverse(const Eigen::Isometry3d& target, const Joints& seed, Joints* q) const;
+  /// Solves a target with no previous joints: Newton-Raphson from a grid of seeds (A1 towards the
+  /// target; A2, A3, A5 over their usual ranges); of the solutions inside the limits less
+  /// `margin` and with |A5| >= `wrist`, the one nearest `home` (sum of squared deg). False: none.
+  bool inverse_near(const Eigen::Isometry3d& target, const Joints& home, double margin,
+                    double wrist, Joints* q) const;
   /// Status and Turn (see the header comment).
   int status(const Joints& q) const;
   static int turn(const Joints& q);

@@ -33,8 +33,8 @@ bool inside_pass(const WindingPlan& plan, const MachineState& s) {
 
 }  // namespace
 
-Eigen::Isometry3d eye_in_base(const MachineState& s, double offset) {
-  const double b = s.b_deg / kDeg;
+Eigen::Isometry3d eye_in_base(const MachineState& s, double offset, bool roller) {
+  const double b = (roller ? s.b_deg : 90.0) / kDeg;
   const Vec3 x(0.0, -1.0, 0.0);
   const Vec3 z(std::cos(b), 0.0, std::sin(b));
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
@@ -86,10 +86,13 @@ RobotMotion compute_robot_motion(const Motion& motion, const WindingPlan& plan,
     RobotTarget t;
     t.state = static_cast<int>(i);
     t.tie_on = i == 0 || (s.ordinal != motion.states[i - 1].ordinal && layer_start(s.ordinal));
-    t.eye = eye_in_base(s, ro.offset);
+    t.eye = eye_in_base(s, ro.offset, ro.eye == "roller");
     t.e1 = s.a_deg;
     const Eigen::Isometry3d cell_eye = m.base * t.eye;
-    if (!arm.inverse(cell_eye * tool_inv, seed, &t.q)) {
+    const bool solved = i == 0 ? arm.inverse_near(cell_eye * tool_inv, ro.home, ro.joint_margin,
+                                                  ro.wrist_margin, &t.q)
+                               : arm.inverse(cell_eye * tool_inv, seed, &t.q);
+    if (!solved) {
       throw InputError("machine.robot: the eye pose of " + point_name(s, cell_eye.translation()) +
                        " is out of reach of the " + ro.arm_name +
                        " (no inverse kinematics from the previous joints; move the "

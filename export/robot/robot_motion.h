@@ -7,11 +7,14 @@
 // angle of the lathe model, so that the turned eye lies in the half-plane of the axis d and u);
 // in the positioner frame the eye is at (X + offset, Y, 0) (X, Y the carriage and cross-feed of
 // the lathe model) and its pose is: x towards the mandrel axis (-u), z the fibre direction
-// resolved in the d-v plane (cos B, 0, sin B) with B the eye rotation of lathe4, y = z x x. The
-// flange target is BASE * eye * TOOL^-1 (BASE the positioner frame in the cell).
+// resolved in the d-v plane (cos B, 0, sin B) with B the eye rotation of lathe4 for a roller eye
+// (machine.robot.eye: roller), or B = 90 deg (z along the mandrel's turning direction) for a ring
+// eye (eye: ring, the default), whose orifice lays the fibre the same at any rotation, y = z x x.
+// The flange target is BASE * eye * TOOL^-1 (BASE the positioner frame in the cell).
 //
-// IK: the first target of the plan is seeded from the arm's home joints, every other from the
-// previous solution (one continuous configuration). Errors (InputError, naming the circuit and
+// IK: the first target of the plan takes the solution nearest the arm's home joints
+// (RobotArm::inverse_near), every other is seeded from the previous solution (one continuous
+// configuration). Errors (InputError, naming the circuit and
 // point and the pose in the cell): a target out of reach; a joint past its limit less
 // joint_margin; |A5| below wrist_margin (the wrist singularity); a change of configuration
 // (Status) inside a pass of the plan (CircuitSegment::Kind::Pass).
@@ -55,7 +58,8 @@ struct RobotMotion {
 RobotMotion compute_robot_motion(const Motion& motion, const WindingPlan& plan,
                                  const MachineOptions& machine);
 
-/// The eye pose in the positioner frame for a lathe-model state (see the header comment).
-Eigen::Isometry3d eye_in_base(const MachineState& s, double offset);
+/// The eye pose in the positioner frame for a lathe-model state (see the header comment); a ring
+/// eye (roller false) keeps B = 90 deg.
+Eigen::Isometry3d eye_in_base(const MachineState& s, double offset, bool roller);
 
 }  // namespace windplan

@@ -89,6 +89,7 @@ void decode_robot(ConfigNode n, const std::filesystem::path& base, RobotOptions*
     decode_positioner(p, r);
   }
   n.get("offset", &r->offset);
+  n.get_choice("eye", {"ring", "roller"}, &r->eye);
   decode_frame(n.section("tool"), &r->tool);
   n.get("joint_margin", &r->joint_margin);
   n.get("wrist_margin", &r->wrist_margin);

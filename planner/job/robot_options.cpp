@@ -17,6 +17,7 @@ bool RobotOptions::is_valid(std::string* why) const {
   if (dialect != "krl" && dialect != "rapid") {
     return fail(why, "dialect must be krl or rapid (got '" + dialect + "')");
   }
+  if (eye != "ring" && eye != "roller") return fail(why, "eye must be ring or roller");
   if (!joints.empty() && joints.size() != 6) {
     return fail(why, "the arm must have 6 joints (got " + std::to_string(joints.size()) + ")");
   }

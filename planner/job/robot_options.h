@@ -48,8 +48,11 @@ struct RobotOptions {
   std::string positioner_name;
   Frame6 positioner;               ///< the positioner's frame in the cell (x = the E1 axis)
   double e1_max_velocity = 180.0;  ///< deg/s of E1, > 0
-  double offset = 0.0;        ///< mm along E1 from the positioner frame to the mandrel axis origin
-  Frame6 tool;                ///< the eye in the flange frame (x: towards the mandrel axis)
+  double offset = 0.0;  ///< mm along E1 from the positioner frame to the mandrel axis origin
+  Frame6 tool;          ///< the eye in the flange frame (x: towards the mandrel axis)
+  /// "ring" (a round orifice: the eye's rotation about its axis is held) or "roller" (a roller or
+  /// slot eye turned to the fibre direction, lathe4's B; export/robot/robot_motion.h).
+  std::string eye = "ring";
   double joint_margin = 5.0;  ///< deg: required distance of every joint to its limits, >= 0
   double wrist_margin = 5.0;  ///< deg: required |A5| (distance to the wrist singularity), >= 0
   int max_points = 3000;      ///< targets per program file (longer programs split), >= 10
