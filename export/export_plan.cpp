@@ -4,6 +4,7 @@
 #include "export/plots/axes_svg.h"
 #include "export/plots/stability_svg.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 
@@ -138,14 +139,18 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
       r.has_robot_replay = true;
       r.replay = r.robot_replay.fibre;
       r.has_replay = true;
+      const RobotReplayResult& rr = r.robot_replay;
+      const bool eye = rr.max_eye_deviation > rr.fibre.max_deviation;
       if (machine.replay_tolerance > 0.0 &&
-          r.robot_replay.fibre.max_deviation > machine.replay_tolerance) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "%.3f mm from the plan at %s, more than %.3f mm",
-                      r.robot_replay.fibre.max_deviation, r.robot_replay.max_deviation_at.c_str(),
+          std::max(rr.fibre.max_deviation, rr.max_eye_deviation) > machine.replay_tolerance) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "%s %.3f mm from the plan at %s, more than %.3f mm",
+                      eye ? "puts the eye" : "lays the fibre",
+                      eye ? rr.max_eye_deviation : rr.fibre.max_deviation,
+                      (eye ? rr.max_eye_deviation_at : rr.max_deviation_at).c_str(),
                       machine.replay_tolerance);
-        throw InputError("machine.replay_tolerance: the replay of " + r.robot_main +
-                         " lays the fibre " + buf + "; no program written");
+        throw InputError("machine.replay_tolerance: the replay of " + r.robot_main + " " + buf +
+                         "; no program written");
       }
     }
   }

@@ -36,6 +36,8 @@ void robot_json(JsonWriter& j, const ExportResult& r) {
     j.field("max_deviation_mm", rp.fibre.max_deviation);
     j.field("max_deviation_at", rp.max_deviation_at);
     j.field("mean_deviation_mm", rp.fibre.mean_deviation);
+    j.field("max_eye_deviation_mm", rp.max_eye_deviation);
+    j.field("max_eye_deviation_at", rp.max_eye_deviation_at);
     j.field("min_eye_clearance_mm", rp.fibre.min_clearance);
     j.field("min_link_clearance_mm", rp.min_link_clearance);
     j.field("min_link_clearance_at", rp.min_link_clearance_at);
@@ -68,7 +70,8 @@ std::string robot_markdown(const ExportResult& r) {
     << " changes between passes |\n";
   if (r.has_robot_replay) {
     o << "| replay deviation | " << fmt("%.4f", rp.fibre.max_deviation) << " mm max ("
-      << rp.max_deviation_at << "), mean " << fmt("%.4f", rp.fibre.mean_deviation) << " mm |\n";
+      << rp.max_deviation_at << "), mean " << fmt("%.4f", rp.fibre.mean_deviation)
+      << " mm; eye path " << fmt("%.4f", rp.max_eye_deviation) << " mm max |\n";
     o << "| replay clearance | eye " << fmt("%.2f", rp.fibre.min_clearance)
       << " mm, flange and last link " << fmt("%.1f", rp.min_link_clearance) << " mm |\n";
     o << "| replay joints | margin " << fmt("%.1f", rp.min_joint_margin) << " deg, speed ratio "

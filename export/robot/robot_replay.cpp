@@ -1,5 +1,6 @@
 #include "export/robot/robot_replay.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -22,7 +23,7 @@ std::string at(const RobotProgramTarget& t) { return t.file + ":" + std::to_stri
 
 RobotReplayResult replay_robot_program(const RobotProgram& program, const WindingPlan& plan,
                                        const Mesh& mandrel, const MachineOptions& machine,
-                                       const ReplayOptions& options) {
+                                       const Motion* planned, const ReplayOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const RobotOptions& ro = machine.robot;
   if (!ro.has_arm()) throw ConfigError("machine.robot.arm: replaying a robot program needs an arm");
@@ -50,6 +51,36 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
                 rad * (std::cos(th) * frame.u + std::sin(th) * frame.v));
   };
 
+  // The planned eye path and a window that moves along it.
+  std::vector<Vec3> path;
+  if (planned) {
+    for (const MachineState& st : planned->states) path.push_back(st.eye);
+  }
+  std::size_t near = 0;
+  auto eye_deviation = [&](const Vec3& e) {
+    auto seg_dist = [&](std::size_t k) {
+      if (k + 1 >= path.size()) return (e - path[k]).norm();
+      const Vec3 d = path[k + 1] - path[k];
+      const double l2 = d.squaredNorm();
+      const double s = l2 > 0.0 ? std::clamp((e - path[k]).dot(d) / l2, 0.0, 1.0) : 0.0;
+      return (e - (path[k] + s * d)).norm();
+    };
+    auto search = [&](std::size_t lo, std::size_t hi) {
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t k = lo; k < hi; ++k) {
+        const double d = seg_dist(k);
+        if (d < best) {
+          best = d;
+          near = k;
+        }
+      }
+      return best;
+    };
+    const std::size_t lo = near > 20 ? near - 20 : 0;
+    double d = search(lo, std::min(path.size(), near + 200));
+    if (d > 5.0) d = search(0, path.size());  // lost (a link, an edited program): everywhere
+    return d;
+  };
   GcodeProgram lathe;
   lathe.inverse_time = true;
   Joints seed = ro.home, prev_q{};
@@ -94,6 +125,13 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
     r.min_wrist_angle = std::min(r.min_wrist_angle, std::fabs(q[4]));
     // The eye in the positioner frame, in the lathe model's axes.
     const Vec3 c = positioner_inv * eye_cell;
+    if (!path.empty()) {
+      const double d = eye_deviation(to_mandrel(eye_cell, t.e1));
+      if (d > r.max_eye_deviation) {
+        r.max_eye_deviation = d;
+        r.max_eye_deviation_at = at(t);
+      }
+    }
     double duration = 0.0;
     if (i > 0) {
       double joint_time = std::fabs(t.e1 - prev_e1) / ro.e1_max_velocity;
@@ -164,16 +202,18 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
   const int cl = std::min<int>(std::max(1, r.fibre.min_clearance_line), r.targets);
   r.fibre.min_clearance_line = program.targets[cl - 1].line;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  char buf[480];
-  std::snprintf(buf, sizeof buf,
-                "robot replay: %d targets, deviation max %.3f mm (%s) mean %.4f mm, eye clearance "
-                "%.2f mm, flange/last link clearance %.1f mm (%s), joint margin %.1f deg (%s), "
-                "|A5| >= %.1f deg, joint speed ratio %.2f, %d configuration changes, cycle %.1f s",
-                r.targets, r.fibre.max_deviation, r.max_deviation_at.c_str(),
-                r.fibre.mean_deviation, r.fibre.min_clearance, r.min_link_clearance,
-                r.min_link_clearance_at.c_str(), r.min_joint_margin,
-                r.min_joint_margin_joint.c_str(), r.min_wrist_angle, r.max_joint_speed_ratio,
-                r.configuration_changes, r.cycle_time);
+  char buf[600];
+  std::snprintf(
+      buf, sizeof buf,
+      "robot replay: %d targets, deviation max %.3f mm (%s) mean %.4f mm, eye path %.3f mm "
+      "(%s), eye clearance "
+      "%.2f mm, flange/last link clearance %.1f mm (%s), joint margin %.1f deg (%s), "
+      "|A5| >= %.1f deg, joint speed ratio %.2f, %d configuration changes, cycle %.1f s",
+      r.targets, r.fibre.max_deviation, r.max_deviation_at.c_str(), r.fibre.mean_deviation,
+      r.max_eye_deviation, r.max_eye_deviation_at.empty() ? "-" : r.max_eye_deviation_at.c_str(),
+      r.fibre.min_clearance, r.min_link_clearance, r.min_link_clearance_at.c_str(),
+      r.min_joint_margin, r.min_joint_margin_joint.c_str(), r.min_wrist_angle,
+      r.max_joint_speed_ratio, r.configuration_changes, r.cycle_time);
   r.summary = buf;
   return r;
 }

@@ -16,6 +16,7 @@
 // naming the file and line): a target out of reach, a joint past its limit.
 #include <string>
 
+#include "export/machine/kinematics.h"
 #include "export/program/replay.h"
 #include "export/robot/robot_program_reader.h"
 
@@ -24,7 +25,9 @@ namespace windplan {
 struct RobotReplayResult {
   ReplayResult fibre;  ///< the fibre model's result (its lines: lines of the targets' files)
   int targets = 0;
-  std::string max_deviation_at;     ///< "file:line" of the largest deviation
+  std::string max_deviation_at;    ///< "file:line" of the largest deviation
+  double max_eye_deviation = 0.0;  ///< mm, target eye to the planned eye path (0: not measured)
+  std::string max_eye_deviation_at;
   double min_link_clearance = 0.0;  ///< mm, flange and last link to the mandrel mesh
   std::string min_link_clearance_at;
   double min_joint_margin = 0.0;  ///< deg
@@ -39,8 +42,10 @@ struct RobotReplayResult {
 };
 
 /// \throw InputError for an empty program or mesh, a target out of reach or past a joint limit
+/// \param planned the planned motion (nullptr: the eye path is not measured)
 RobotReplayResult replay_robot_program(const RobotProgram& program, const WindingPlan& plan,
                                        const Mesh& mandrel, const MachineOptions& machine,
+                                       const Motion* planned = nullptr,
                                        const ReplayOptions& options = {});
 
 }  // namespace windplan
