@@ -2,6 +2,7 @@
 
 #include "export/files/cutlines_csv.h"
 #include "export/plots/axes_svg.h"
+#include "export/plots/joints_svg.h"
 #include "export/plots/stability_svg.h"
 
 #include <algorithm>
@@ -186,6 +187,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   }
   if (output.ply) r.files.insert(r.files.end(), {"mesh.ply", "paths.ply"});
   if (output.svg) r.files.insert(r.files.end(), {"development.svg", "axes.svg", "stability.svg"});
+  if (output.svg && r.has_robot) r.files.push_back("joints.svg");
   if (output.viewer) r.files.push_back("viewer.html");
   r.files.insert(r.files.end(), context.also_written.begin(), context.also_written.end());
   if (output.report) r.files.insert(r.files.end(), {"report.json", "report.md"});
@@ -244,6 +246,26 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     wrote("axes.svg");
     write_text_atomically(dir / "stability.svg", stability_svg(plan));
     wrote("stability.svg");
+    if (r.has_robot) {
+      // The positioner's E1 and the arm's joints against time (export/plots/joints_svg.h).
+      std::vector<double> t;
+      std::vector<JointSeries> js(7);
+      js[0].name = "E1";
+      for (int j = 0; j < 6; ++j) {
+        js[j + 1].name = machine.robot.joints[j].name;
+        js[j + 1].min = machine.robot.joints[j].min;
+        js[j + 1].max = machine.robot.joints[j].max;
+      }
+      double time = 0.0;
+      for (const RobotTarget& g : r.robot.targets) {
+        time += g.duration;
+        t.push_back(time);
+        js[0].values.push_back(g.e1);
+        for (int j = 0; j < 6; ++j) js[j + 1].values.push_back(g.q[j]);
+      }
+      write_text_atomically(dir / "joints.svg", joints_svg(t, js, plan.job_name));
+      wrote("joints.svg");
+    }
   }
   if (output.viewer) {
     write_text_atomically(dir / "viewer.html", viewer_page(plan, mandrel_mesh, r.motion).html);
