@@ -95,8 +95,9 @@ RobotMotion compute_robot_motion(const Motion& motion, const WindingPlan& plan,
     if (!solved) {
       throw InputError("machine.robot: the eye pose of " + point_name(s, cell_eye.translation()) +
                        " is out of reach of the " + ro.arm_name +
-                       " (no inverse kinematics from the previous joints; move the "
-                       "positioner frame or the mandrel offset)");
+                       (i == 0 ? " (no inverse kinematics inside the joint limits"
+                               : " (no inverse kinematics from the previous joints") +
+                       "; move machine.robot.offset or the positioner's frame)");
     }
     const std::string bad = joint_limit_violation(ro, t.q, ro.joint_margin);
     if (!bad.empty()) {
