@@ -70,6 +70,7 @@ int simulate_robot(const Job& job, const std::filesystem::path& program_file, co
   j.field("min_joint_margin_joint", rp.min_joint_margin_joint);
   j.field("min_wrist_angle_deg", rp.min_wrist_angle);
   j.field("max_joint_speed_ratio", rp.max_joint_speed_ratio);
+  j.field("max_joint_speed_at", rp.max_joint_speed_at);
   j.field("configuration_changes", rp.configuration_changes);
   j.field("cycle_time_s", rp.cycle_time);
   j.field("replay_seconds", rp.seconds);

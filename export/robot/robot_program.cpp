@@ -1,5 +1,6 @@
 #include "export/robot/robot_program.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -88,7 +89,7 @@ std::vector<ProgramFile> krl(const RobotMotion& m, const std::string& job, const
     s += "; targets " + std::to_string(parts[p].first + 1) + " to " +
          std::to_string(parts[p].second) + " of " + std::to_string(m.targets.size()) + "\n";
     std::string d = "&ACCESS RVP\n&REL 1\nDEFDAT " + name + " PUBLIC\n";
-    std::string last_vel;
+    std::string last_vel, last_extax = "100.000000";
     for (int i = parts[p].first; i < parts[p].second; ++i) {
       const RobotTarget& t = m.targets[i];
       const std::string var = "XP" + std::to_string(i + 1);
@@ -106,6 +107,15 @@ std::vector<ProgramFile> krl(const RobotMotion& m, const std::string& job, const
       const std::string v = fmt("%.9f", vel);
       if (v != last_vel) s += "$VEL.CP = " + v + "\n";
       last_vel = v;
+      // E1 at the speed the move's time asks for (% of its max): a move of the positioner with
+      // the eye (nearly) still takes its time from $VEL_EXTAX, not from $VEL.CP.
+      const double de1 = std::fabs(t.e1 - m.targets[i - 1].e1);
+      const double pct =
+          t.duration > 0.0 ? std::clamp(100.0 * de1 / t.duration / ro.e1_max_velocity, 1e-6, 100.0)
+                           : 100.0;
+      const std::string e = fmt("%.6f", pct);
+      if (e != last_extax) s += "$VEL_EXTAX[1] = " + e + "\n";
+      last_extax = e;
       s += "LIN " + var + " C_DIS\n";
     }
     s += "END\n";

@@ -6,7 +6,9 @@
 //    at most machine.robot.max_points targets each; a target is an E6POS (X, Y, Z in mm, A, B, C in
 //    deg in the BASE frame, Status S and Turn T, E1 in deg) declared in the part's .dat; the first
 //    target of the plan and of each layer is reached with PTP (the tow is tied on), every other
-//    with LIN ... C_DIS after $VEL.CP (m/s) = TCP distance / the move's duration;
+//    with LIN ... C_DIS after $VEL.CP (m/s) = TCP distance / the move's duration and
+//    $VEL_EXTAX[1] (% of E1's max_velocity) = |dE1| / the move's duration (each written when it
+//    changes);
 //  - "rapid" (ABB RAPID): a main module <base>.mod (the tool data tEye and the work object
 //    wPositioner, PROC main calling the parts) and parts <base>_pNN.mod whose procedures move with
 //    MoveJ (tie-on) and MoveL to inline robtargets ([pos mm], [quaternion q1..q4], [cf1, cf4, cf6,

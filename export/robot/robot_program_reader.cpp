@@ -139,6 +139,7 @@ struct KrlReader {
   RobotProgram* out = nullptr;
   std::map<std::string, std::pair<Aggregate, std::string>> globals;  // main .dat
   double vel_cp = 2.0;                                               // m/s, KRL's default
+  double vel_extax = 100.0;                                          // % of E1's max_velocity
   bool have_tool = false, have_base = false;
   int depth = 0;
 
@@ -207,7 +208,11 @@ struct KrlReader {
         } else if (var == "$VEL.CP") {
           vel_cp = number(val, t.name, ln, "$VEL.CP");
           if (!(vel_cp > 0.0)) bad(t.name, ln, "$VEL.CP must be > 0 m/s");
-        } else if (var == "$VEL_EXTAX[1]" || var == "$APO.CDIS" || var == "$ACC.CP") {
+        } else if (var == "$VEL_EXTAX[1]") {
+          vel_extax = number(val, t.name, ln, var);
+          if (!(vel_extax > 0.0 && vel_extax <= 100.0))
+            bad(t.name, ln, var + " must be in (0, 100]");
+        } else if (var == "$APO.CDIS" || var == "$ACC.CP") {
           number(val, t.name, ln, var);
         } else {
           bad(t.name, ln, "unsupported system variable " + var);
@@ -234,6 +239,7 @@ struct KrlReader {
         r.e1 = a.at("E1");
         r.status = a.count("S") ? static_cast<int>(a.at("S")) : -1;
         r.vel_cp = vel_cp;
+        r.vel_extax = vel_extax;
         out->targets.push_back(r);
         continue;
       }

@@ -5,16 +5,16 @@
 //
 // KRL: the main .src (its .dat beside it: DECL FRAME ... = {X, Y, Z, A, B, C}) sets $TOOL and $BASE
 // to declared frames, may set $VEL_EXTAX[1] and $APO.CDIS, and calls parts NAME( ) whose NAME.src
-// and NAME.dat are read from the same folder; a part moves with PTP VAR or LIN VAR [C_DIS] to
-// E6POS (or POS/E6AXIS-free) declarations of its .dat ({X, Y, Z, A, B, C[, S, T][, E1..E6]}), and
-// sets $VEL.CP (m/s). Comments start with ';'; '&' lines are ignored.
-// RAPID: the main module declares tooldata and wobjdata (PERS or CONST; the work object's user
-// frame times its object frame is the BASE) and PROC main calls the parts; NAME.mod beside it holds
-// MODULE NAME with PROC NAME() of MoveJ / MoveL to inline robtargets [[x, y, z], [q1..q4], [cf...],
-// [E1, ...]] with speeddata (v<n> or v<n>\T:=seconds), a zone and the tool\WObj. Comments start
-// with '!'.
-// Anything else (an unknown statement, a variable never declared, a malformed aggregate, a missing
-// part file, a tool or work object not declared): InputError naming the file and line.
+// and NAME.dat are read from the same folder ($VEL_EXTAX[1] holds until set again); a part moves
+// with PTP VAR or LIN VAR [C_DIS] to E6POS (or POS/E6AXIS-free) declarations of its .dat ({X, Y, Z,
+// A, B, C[, S, T][, E1..E6]}), and sets $VEL.CP (m/s). Comments start with ';'; '&' lines are
+// ignored. RAPID: the main module declares tooldata and wobjdata (PERS or CONST; the work object's
+// user frame times its object frame is the BASE) and PROC main calls the parts; NAME.mod beside it
+// holds MODULE NAME with PROC NAME() of MoveJ / MoveL to inline robtargets [[x, y, z], [q1..q4],
+// [cf...], [E1, ...]] with speeddata (v<n> or v<n>\T:=seconds), a zone and the tool\WObj. Comments
+// start with '!'. Anything else (an unknown statement, a variable never declared, a malformed
+// aggregate, a missing part file, a tool or work object not declared): InputError naming the file
+// and line.
 #include <filesystem>
 #include <map>
 #include <string>
@@ -31,8 +31,9 @@ struct RobotProgramTarget {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< TCP in the BASE frame (mm)
   double e1 = 0.0;                                         ///< deg
   int status = -1;                                         ///< KRL S / RAPID cfx; -1 not given
-  double vel_cp = -1.0;  ///< KRL $VEL.CP at the move, m/s (-1: RAPID)
-  double time = -1.0;    ///< RAPID \T, s (-1: not given)
+  double vel_cp = -1.0;      ///< KRL $VEL.CP at the move, m/s (-1: RAPID)
+  double vel_extax = 100.0;  ///< KRL $VEL_EXTAX[1] at the move, % of E1's max velocity
+  double time = -1.0;        ///< RAPID \T, s (-1: not given)
 };
 
 struct RobotProgram {

@@ -144,9 +144,11 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
         duration = t.time;
       } else {
         duration = std::max((c - prev_eye).norm() / 1000.0 / t.vel_cp,
-                            std::fabs(t.e1 - prev_e1) / ro.e1_max_velocity);
+                            std::fabs(t.e1 - prev_e1) / (ro.e1_max_velocity * t.vel_extax / 100.0));
       }
-      if (duration > 0.0) {
+      if (joint_time < 1e-9) {
+        // No joint moves (a target repeated, as where a circuit ends and the next begins).
+      } else if (duration > 0.0) {
         const double ratio = joint_time / duration;
         if (ratio > r.max_joint_speed_ratio) {
           r.max_joint_speed_ratio = ratio;

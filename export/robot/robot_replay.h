@@ -11,9 +11,10 @@
 // again (as a G0). Checked and reported: the largest deviation from the plan (and its file and
 // line), the eye's and the flange's and last link's (wrist centre to flange) smallest distance to
 // the mandrel, joint margins and the smallest |A5|, joint and E1 speeds against their limits,
-// configuration changes (Status) and the cycle time: KRL LIN max(TCP distance / $VEL.CP, |dE1| / E1
-// max velocity), RAPID \T, PTP / MoveJ the slowest joint at its max_velocity. Errors (InputError
-// naming the file and line): a target out of reach, a joint past its limit.
+// configuration changes (Status) and the cycle time: KRL LIN max(TCP distance / $VEL.CP, |dE1| /
+// (E1 max velocity x $VEL_EXTAX[1] / 100)), RAPID \T, PTP / MoveJ the slowest joint at its
+// max_velocity. Errors (InputError naming the file and line): a target out of reach, a joint past
+// its limit.
 #include <string>
 
 #include "export/machine/kinematics.h"
