@@ -49,6 +49,24 @@ TEST(RobotKinematics, ForwardMatchesHandComputedPoses) {
   EXPECT_LT((arm.wrist_centre({0, -90, 90, 0, 90, 0}) - Vec3(930, 0, 1320)).norm(), 1e-9);
 }
 
+TEST(RobotKinematics, ShippedAbbArmAtHandComputedPoses) {
+  RobotOptions r;
+  decode_robot(ConfigNode::load_string("arm: abb_irb4600_60_205.yaml\n", "test.yaml"),
+               std::filesystem::path(WINDPLAN_SOURCE_DIR) / "configs" / "machines", &r);
+  const RobotArm arm(r);
+  // Zero (ABB's calibration pose): lower arm up, forearm level.
+  expect_pose(arm.flange({0, 0, 0, 0, 0, 0}), Vec3(175 + 960 + 135, 0, 495 + 900 + 175),
+              Eigen::Matrix3d::Identity());
+  // Axis 3 at -90 (about +y): the forearm points up from 495 + 900, and its 175 mm offset
+  // (+z at zero) turns to -x, back over axis 1's offset.
+  Eigen::Matrix3d up;
+  up << 0, 0, -1, 0, 1, 0, 1, 0, 0;
+  expect_pose(arm.flange({0, 0, -90, 0, 0, 0}), Vec3(175 - 175, 0, 495 + 900 + 960 + 135), up);
+  Joints q;
+  ASSERT_TRUE(arm.inverse(arm.flange({10, 20, -30, 40, 50, 60}), {12, 18, -28, 38, 52, 58}, &q));
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(q[i], (Joints{10, 20, -30, 40, 50, 60})[i], 1e-6);
+}
+
 TEST(RobotKinematics, RoundTripOverTheWorkspace) {
   const RobotOptions r = kr16();
   const RobotArm arm(r);
