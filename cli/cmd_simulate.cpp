@@ -8,8 +8,11 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "export/machine/kinematics.h"
 #include "export/program/gcode_reader.h"
 #include "export/program/replay.h"
+#include "export/robot/robot_program_reader.h"
+#include "export/robot/robot_replay.h"
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
 #include "geometry/base/input_file.h"
@@ -28,14 +31,79 @@ const char* const kSimulateHelp =
     "ranges, reversals, the axis velocity and acceleration against their limits and the wind\n"
     "time, and writes them to a JSON file. Exit 1 for a program with an unknown word, another\n"
     "dialect's words or a move beyond an axis's travel (the line is named), or when the\n"
-    "deviation exceeds machine.replay_tolerance (when that is > 0).\n\n"
+    "deviation exceeds machine.replay_tolerance (when that is > 0).\n"
+    "A robot cell's job (machine.robot.arm) reads a KRL (.src, with its .dat and parts) or\n"
+    "RAPID (.mod) program instead (machine.robot.dialect), solves every target by inverse\n"
+    "kinematics, runs forward kinematics and the positioner E1, and also reports the clearance\n"
+    "of the flange and last link, joint margins and speeds, the wrist angle and the cycle time;\n"
+    "a target out of reach or past a joint limit is an error naming its file and line.\n\n"
     "  --json FILE   the JSON report (default: <program>.simulate.json)\n";
+
+namespace {
+
+/// A robot cell's program (export/robot/robot_replay.h).
+int simulate_robot(const Job& job, const std::filesystem::path& program_file, const Args& args) {
+  const RobotProgram program = read_robot_program(program_file, job.machine.robot.dialect);
+  PipelineOptions po;
+  const PipelineResult r = plan_job(job, po);
+  // The planned motion: the eye path the targets are measured against.
+  const Motion planned = compute_motion(r.plan, job.machine, &r.mandrel.mesh);
+  const RobotReplayResult rp =
+      replay_robot_program(program, r.plan, r.mandrel.mesh, job.machine, &planned);
+  JsonWriter j(2, 10);
+  j.begin_object();
+  j.field("job", r.plan.job_name);
+  j.field("program", program_file.string());
+  j.field("dialect", job.machine.robot.dialect);
+  j.field("kind", job.machine.kind);
+  j.field("arm", job.machine.robot.arm_name);
+  j.field("targets", rp.targets);
+  j.field("substeps", rp.fibre.substeps);
+  j.field("max_deviation_mm", rp.fibre.max_deviation);
+  j.field("max_deviation_at", rp.max_deviation_at);
+  j.field("mean_deviation_mm", rp.fibre.mean_deviation);
+  j.field("max_eye_deviation_mm", rp.max_eye_deviation);
+  j.field("max_eye_deviation_at", rp.max_eye_deviation_at);
+  j.field("min_eye_clearance_mm", rp.fibre.min_clearance);
+  j.field("min_link_clearance_mm", rp.min_link_clearance);
+  j.field("min_link_clearance_at", rp.min_link_clearance_at);
+  j.field("min_joint_margin_deg", rp.min_joint_margin);
+  j.field("min_joint_margin_joint", rp.min_joint_margin_joint);
+  j.field("min_wrist_angle_deg", rp.min_wrist_angle);
+  j.field("max_joint_speed_ratio", rp.max_joint_speed_ratio);
+  j.field("max_joint_speed_at", rp.max_joint_speed_at);
+  j.field("configuration_changes", rp.configuration_changes);
+  j.field("cycle_time_s", rp.cycle_time);
+  j.field("replay_seconds", rp.seconds);
+  j.end_object();
+  const std::filesystem::path out =
+      args.has("--json") ? std::filesystem::path(args.value("--json"))
+                         : std::filesystem::path(program_file.string() + ".simulate.json");
+  write_text_atomically(out, j.str() + "\n");
+  std::cout << rp.summary << "\n  report: " << out.string() << "\n";
+  const bool eye = rp.max_eye_deviation > rp.fibre.max_deviation;
+  const double worst = eye ? rp.max_eye_deviation : rp.fibre.max_deviation;
+  if (job.machine.replay_tolerance > 0.0 && worst > job.machine.replay_tolerance) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  ": the replay %s %.3f mm from the plan, more than machine.replay_tolerance "
+                  "%.3f mm",
+                  eye ? "puts the eye" : "lays the fibre", worst, job.machine.replay_tolerance);
+    throw InputError((eye ? rp.max_eye_deviation_at : rp.max_deviation_at) + buf);
+  }
+  return 0;
+}
+
+}  // namespace
 
 int run_simulate(const std::vector<std::string>& argv) {
   const Args args(argv, {}, {"--json"});
   args.expect_positional(2, "a job file and a G-code program");
   const Job job = load_job(args.positional()[0]);
   const std::filesystem::path program_file = args.positional()[1];
+  if (job.machine.kind == "robot" && job.machine.robot.has_arm()) {
+    return simulate_robot(job, program_file, args);
+  }
   const std::string text = read_input_file(program_file, kProgramFileCap, "a G-code program");
   const GcodeProgram program = read_gcode(text, job.machine, program_file.string());
 

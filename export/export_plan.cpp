@@ -2,9 +2,12 @@
 
 #include "export/files/cutlines_csv.h"
 #include "export/plots/axes_svg.h"
+#include "export/plots/joints_svg.h"
 #include "export/plots/stability_svg.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <map>
 
 #include "export/files/output_set.h"
 #include "export/files/ply_polylines.h"
@@ -14,6 +17,9 @@
 #include "export/plots/viewer.h"
 #include "export/program/gcode.h"
 #include "export/program/gcode_reader.h"
+#include "export/robot/robot_program.h"
+#include "export/robot/robot_program_reader.h"
+#include "export/robot/robot_replay.h"
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
 #include "geometry/base/parallel.h"
@@ -81,6 +87,21 @@ CsvTable axes_table(const Motion& motion) {
   return t;
 }
 
+/// The joint-space CSV of a robot cell: E1 and A1..A6 at every target, Status and Turn.
+CsvTable joints_table(const Motion& motion, const RobotMotion& robot) {
+  CsvTable t;
+  t.header = {"circuit",  "index",    "t_s [s]",  "E1 [deg]", "A1 [deg]", "A2 [deg]",
+              "A3 [deg]", "A4 [deg]", "A5 [deg]", "A6 [deg]", "S",        "T"};
+  double time = 0.0;
+  for (const RobotTarget& g : robot.targets) {
+    const MachineState& s = motion.states[g.state];
+    time += g.duration;
+    t.rows.push_back({double(s.circuit), double(s.index), time, g.e1, g.q[0], g.q[1], g.q[2],
+                      g.q[3], g.q[4], g.q[5], double(g.status), double(g.turn)});
+  }
+  return t;
+}
+
 CsvTable eye_pose_table(const Motion& motion) {
   CsvTable t;
   t.header = {"circuit",    "index",      "t_s [s]", "A_deg [deg]", "eye_x [mm]",
@@ -104,12 +125,46 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   r.motion = compute_motion(plan, machine, &mandrel_mesh);
   const bool robot = machine.kind == "robot";
   std::string program;
+  std::vector<ProgramFile> robot_files;
+  if (robot && machine.robot.has_arm()) {
+    // A robot cell: the arm's targets and joints, its KRL or RAPID program (read back and
+    // replayed by run_replay below).
+    r.robot = compute_robot_motion(r.motion, plan, machine);
+    r.has_robot = true;
+    robot_files = robot_program(r.robot, plan.job_name, machine);
+    r.robot_main = robot_files.front().name;
+  }
   if (!robot) program = gcode_program(r.motion, plan.job_name, machine);
   // The replay (long, serial) runs beside the writing of the files that do not need it; the
   // reports, which do, are written after both. When both fail, the replay's error is the one
   // thrown (parallel_for_index: the lowest index), as when the replay ran first.
-  const bool replay = !robot && mandrel_mesh.num_faces() > 0 && !r.motion.states.empty();
+  const bool replay =
+      (!robot || r.has_robot) && mandrel_mesh.num_faces() > 0 && !r.motion.states.empty();
   auto run_replay = [&] {
+    if (r.has_robot) {
+      std::map<std::string, std::string> texts;
+      for (const ProgramFile& f : robot_files) texts[f.name] = f.text;
+      r.robot_replay =
+          replay_robot_program(read_robot_program(texts, r.robot_main, machine.robot.dialect), plan,
+                               mandrel_mesh, machine);
+      r.has_robot_replay = true;
+      r.replay = r.robot_replay.fibre;
+      r.has_replay = true;
+      const RobotReplayResult& rr = r.robot_replay;
+      const bool eye = rr.max_eye_deviation > rr.fibre.max_deviation;
+      if (machine.replay_tolerance > 0.0 &&
+          std::max(rr.fibre.max_deviation, rr.max_eye_deviation) > machine.replay_tolerance) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "%s %.3f mm from the plan at %s, more than %.3f mm",
+                      eye ? "puts the eye" : "lays the fibre",
+                      eye ? rr.max_eye_deviation : rr.fibre.max_deviation,
+                      (eye ? rr.max_eye_deviation_at : rr.max_deviation_at).c_str(),
+                      machine.replay_tolerance);
+        throw InputError("machine.replay_tolerance: the replay of " + r.robot_main + " " + buf +
+                         "; no program written");
+      }
+      return;
+    }
     const std::string name = "toolpath" + gcode_extension(machine.gcode.dialect);
     r.replay = replay_program(read_gcode(program, machine, name), plan, mandrel_mesh, machine);
     r.has_replay = true;
@@ -127,12 +182,17 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   if (output.csv) {
     r.files.insert(r.files.end(), {"fibre_path.csv", "payout.csv", "axes.csv"});
     if (robot) r.files.push_back("eye_pose.csv");
+    if (r.has_robot) r.files.push_back("joints.csv");
     if (cutlines) r.files.push_back("cutlines.csv");
   }
   const std::string gcode_name = "toolpath" + gcode_extension(machine.gcode.dialect);
   if (output.gcode && !robot) r.files.push_back(gcode_name);
+  if (output.gcode) {
+    for (const ProgramFile& f : robot_files) r.files.push_back(f.name);
+  }
   if (output.ply) r.files.insert(r.files.end(), {"mesh.ply", "paths.ply"});
   if (output.svg) r.files.insert(r.files.end(), {"development.svg", "axes.svg", "stability.svg"});
+  if (output.svg && r.has_robot) r.files.push_back("joints.svg");
   if (output.viewer) r.files.push_back("viewer.html");
   r.files.insert(r.files.end(), context.also_written.begin(), context.also_written.end());
   if (output.report) r.files.insert(r.files.end(), {"report.json", "report.md"});
@@ -156,6 +216,10 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
         write_csv_file(dir / "eye_pose.csv", eye_pose_table(r.motion));
         wrote("eye_pose.csv");
       }
+      if (r.has_robot) {
+        write_csv_file(dir / "joints.csv", joints_table(r.motion, r.robot));
+        wrote("joints.csv");
+      }
       if (cutlines) {
         write_cutlines_csv(dir / "cutlines.csv", plan.cutlines);
         wrote("cutlines.csv");
@@ -164,6 +228,12 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     if (output.gcode && !robot) {
       write_text_atomically(dir / gcode_name, program);
       wrote(gcode_name);
+    }
+    if (output.gcode) {
+      for (const ProgramFile& f : robot_files) {
+        write_text_atomically(dir / f.name, f.text);
+        wrote(f.name);
+      }
     }
     if (output.ply) {
       write_mesh(dir / "mesh.ply", mandrel_mesh);
@@ -182,6 +252,26 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
       wrote("axes.svg");
       write_text_atomically(dir / "stability.svg", stability_svg(plan));
       wrote("stability.svg");
+      if (r.has_robot) {
+        // The positioner's E1 and the arm's joints against time (export/plots/joints_svg.h).
+        std::vector<double> t;
+        std::vector<JointSeries> js(7);
+        js[0].name = "E1";
+        for (int j = 0; j < 6; ++j) {
+          js[j + 1].name = machine.robot.joints[j].name;
+          js[j + 1].min = machine.robot.joints[j].min;
+          js[j + 1].max = machine.robot.joints[j].max;
+        }
+        double time = 0.0;
+        for (const RobotTarget& g : r.robot.targets) {
+          time += g.duration;
+          t.push_back(time);
+          js[0].values.push_back(g.e1);
+          for (int j = 0; j < 6; ++j) js[j + 1].values.push_back(g.q[j]);
+        }
+        write_text_atomically(dir / "joints.svg", joints_svg(t, js, plan.job_name));
+        wrote("joints.svg");
+      }
     }
     if (output.viewer) {
       write_text_atomically(dir / "viewer.html", viewer_page(plan, mandrel_mesh, r.motion).html);

@@ -7,6 +7,8 @@
 
 #include "export/machine/kinematics.h"
 #include "export/program/replay.h"
+#include "export/robot/robot_motion.h"
+#include "export/robot/robot_replay.h"
 #include "planner/job/machine_options.h"
 
 namespace windplan {
@@ -19,6 +21,13 @@ struct ExportResult {
   /// false otherwise.
   bool has_replay = false;
   ReplayResult replay;
+  /// A robot cell with an arm (machine.robot.arm): its motion, the program's main file and the
+  /// replay of the written program (export/robot/); `replay` then holds its fibre part.
+  bool has_robot = false;
+  RobotMotion robot;
+  std::string robot_main;
+  bool has_robot_replay = false;
+  RobotReplayResult robot_replay;
   MachineOptions machine;  ///< as used
   bool timings = false;    ///< output.timings
 };

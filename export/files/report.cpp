@@ -7,6 +7,7 @@
 
 #include "export/files/layup_report.h"
 #include "export/files/motion_report.h"
+#include "export/files/robot_report.h"
 #include "geometry/base/format_number.h"
 #include "geometry/base/json.h"
 #include "planner/winding/winding_options.h"
@@ -251,6 +252,7 @@ std::string report_json(const WindingPlan& plan, const ExportResult& r) {
   range_json(j, "B_deg", mo.b);
   j.end_object();
   motion_json(j, mo, r.has_replay ? &r.replay : nullptr);
+  if (r.has_robot) robot_json(j, r);  // export/files/robot_report.h
   j.key("circuits").begin_array();
   for (const CircuitFigures& f : circuit_figures(plan, mo)) {
     j.begin_object();
@@ -404,7 +406,8 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
     << "| X [mm] | " << fmt("%.4f", mo.x.min) << " | " << fmt("%.4f", mo.x.max) << " |\n"
     << "| Y [mm] | " << fmt("%.4f", mo.y.min) << " | " << fmt("%.4f", mo.y.max) << " |\n"
     << "| B [deg] | " << fmt("%.4f", mo.b.min) << " | " << fmt("%.4f", mo.b.max) << " |\n\n"
-    << motion_markdown(mo, r.has_replay ? &r.replay : nullptr) << "## Circuits\n";
+    << motion_markdown(mo, r.has_replay ? &r.replay : nullptr)
+    << (r.has_robot ? robot_markdown(r) : std::string()) << "## Circuits\n";
   for (const CircuitFigures& f : circuit_figures(plan, mo)) {
     o << "\n### Circuit " << f.index << "\n\n| figure | value |\n|---|---|\n"
       << "| points (dense / machine) | " << f.points << " / " << f.machine_points << " |\n"
@@ -500,6 +503,10 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
     << "  machine points   " << mo.states.size() << " of " << mo.dense_points
     << " (chord deviation " << fmt("%.4f", mo.max_chord_deviation) << " mm)\n"
     << motion_summary(mo, r.has_replay ? &r.replay : nullptr);
+  if (r.has_robot) {
+    o << "  " << r.robot.brief_report() << "\n";
+    if (r.has_robot_replay) o << "  " << r.robot_replay.summary << "\n";
+  }
   o << layers_summary(plan, mo);  // layups only (export/files/layup_report.h)
   for (const StageTiming& t : m.timings) {
     o << "  time " << t.stage << std::string(t.stage.size() < 12 ? 12 - t.stage.size() : 1, ' ')

@@ -11,6 +11,7 @@
 #include "geometry/base/name_text.h"
 #include "planner/job/config_node.h"
 #include "planner/job/job_limits.h"
+#include "planner/job/robot_config.h"
 
 namespace windplan {
 
@@ -385,6 +386,7 @@ void decode_machine(ConfigNode n, const std::filesystem::path& base, MachineOpti
   g.get("program_number", &m->gcode.program_number);
   g.finish();
   g.check(m->gcode);
+  decode_robot(n.section("robot"), base, &m->robot);  // planner/job/robot_config.h
   n.finish();
   n.check(*m);
 }

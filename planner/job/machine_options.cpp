@@ -85,6 +85,7 @@ bool MachineOptions::is_valid(std::string* why) const {
   if (kind != "lathe2" && kind != "lathe4" && kind != "robot") {
     return fail(why, "kind must be lathe2, lathe4 or robot (got '" + kind + "')");
   }
+  if (robot.has_arm() && kind != "robot") return fail(why, "robot.arm is for kind: robot");
   if (!std::isfinite(chord_tolerance) || chord_tolerance <= 0.0) {
     return fail(why, "chord_tolerance must be > 0 mm");
   }

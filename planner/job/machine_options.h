@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "planner/job/robot_options.h"
+
 namespace windplan {
 
 /// The clearance envelope the payout eye moves on: a surface of revolution around the spindle
@@ -111,6 +113,8 @@ struct MachineOptions {
                 360.0,
                 1440.0};
   GcodeOptions gcode;
+  /// The robot cell (kind robot with an arm: KRL or RAPID programs; planner/job/robot_options.h).
+  RobotOptions robot;
 
   bool is_valid(std::string* why) const;
 };

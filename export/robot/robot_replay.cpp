@@ -1,0 +1,223 @@
+#include "export/robot/robot_replay.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "export/machine/kinematics.h"
+#include "export/robot/robot_kinematics.h"
+#include "geometry/base/errors.h"
+#include "geometry/mesh/closest_point.h"
+
+namespace windplan {
+
+namespace {
+
+constexpr double kDeg = 180.0 / M_PI;
+
+std::string at(const RobotProgramTarget& t) { return t.file + ":" + std::to_string(t.line); }
+
+}  // namespace
+
+RobotReplayResult replay_robot_program(const RobotProgram& program, const WindingPlan& plan,
+                                       const Mesh& mandrel, const MachineOptions& machine,
+                                       const Motion* planned, const ReplayOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const RobotOptions& ro = machine.robot;
+  if (!ro.has_arm()) throw ConfigError("machine.robot.arm: replaying a robot program needs an arm");
+  if (program.targets.empty()) throw InputError("the robot program has no moves");
+  if (mandrel.num_faces() == 0) throw InputError("the mandrel mesh is empty");
+  const RobotArm arm(ro);
+  const Eigen::Isometry3d positioner = frame6_transform(ro.positioner);
+  const Eigen::Isometry3d positioner_inv = positioner.inverse();
+  const Eigen::Isometry3d tool_inv = program.tool.inverse();
+  const AxisFrame frame = make_axis_frame(plan.axis);
+  const ClosestPointQuery query(mandrel);
+
+  RobotReplayResult r;
+  r.targets = static_cast<int>(program.targets.size());
+  r.min_link_clearance = std::numeric_limits<double>::infinity();
+  r.min_joint_margin = std::numeric_limits<double>::infinity();
+  r.min_wrist_angle = std::numeric_limits<double>::infinity();
+
+  // A point of the cell in the mandrel frame at E1 (deg).
+  auto to_mandrel = [&](const Vec3& cell, double e1) {
+    const Vec3 c = positioner_inv * cell;
+    const double th = std::atan2(c.z(), c.y()) - e1 / kDeg;
+    const double rad = std::hypot(c.y(), c.z());
+    return Vec3(frame.origin + (c.x() - ro.offset) * frame.d +
+                rad * (std::cos(th) * frame.u + std::sin(th) * frame.v));
+  };
+
+  // The planned eye path and a window that moves along it.
+  std::vector<Vec3> path;
+  if (planned) {
+    for (const MachineState& st : planned->states) path.push_back(st.eye);
+  }
+  std::size_t near = 0;
+  auto eye_deviation = [&](const Vec3& e) {
+    auto seg_dist = [&](std::size_t k) {
+      if (k + 1 >= path.size()) return (e - path[k]).norm();
+      const Vec3 d = path[k + 1] - path[k];
+      const double l2 = d.squaredNorm();
+      const double s = l2 > 0.0 ? std::clamp((e - path[k]).dot(d) / l2, 0.0, 1.0) : 0.0;
+      return (e - (path[k] + s * d)).norm();
+    };
+    auto search = [&](std::size_t lo, std::size_t hi) {
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t k = lo; k < hi; ++k) {
+        const double d = seg_dist(k);
+        if (d < best) {
+          best = d;
+          near = k;
+        }
+      }
+      return best;
+    };
+    const std::size_t lo = near > 20 ? near - 20 : 0;
+    double d = search(lo, std::min(path.size(), near + 200));
+    if (d > 5.0) d = search(0, path.size());  // lost (a link, an edited program): everywhere
+    return d;
+  };
+  GcodeProgram lathe;
+  lathe.inverse_time = true;
+  Joints seed = ro.home, prev_q{};
+  int prev_status = -1;
+  Vec3 prev_eye = Vec3::Zero();
+  double prev_e1 = 0.0;
+  for (std::size_t i = 0; i < program.targets.size(); ++i) {
+    const RobotProgramTarget& t = program.targets[i];
+    const Eigen::Isometry3d cell_eye = program.base * t.pose;
+    Joints q;
+    const bool solved = i == 0 ? arm.inverse_near(cell_eye * tool_inv, ro.home, 0.0, 0.0, &q)
+                               : arm.inverse(cell_eye * tool_inv, seed, &q);
+    if (!solved) {
+      const Vec3 p = cell_eye.translation();
+      char buf[120];
+      std::snprintf(buf, sizeof buf, " (%.1f, %.1f, %.1f mm in the cell)", p.x(), p.y(), p.z());
+      throw InputError(at(t) + ": the target is out of reach of the " + ro.arm_name + buf);
+    }
+    const std::string past = joint_limit_violation(ro, q);
+    if (!past.empty()) throw InputError(at(t) + ": joint " + past);
+    const int status = arm.status(q);
+    if (i > 0 && status != prev_status) ++r.configuration_changes;
+    // FK: where the eye, the flange and the wrist really are.
+    const Eigen::Isometry3d flange = arm.flange(q);
+    const Vec3 eye_cell = (flange * program.tool).translation();
+    const Vec3 wrist = arm.wrist_centre(q);
+    for (int k = 0; k <= 4; ++k) {
+      const Vec3 p = wrist + (flange.translation() - wrist) * (k / 4.0);
+      const double d = query.closest(to_mandrel(p, t.e1)).distance;
+      if (d < r.min_link_clearance) {
+        r.min_link_clearance = d;
+        r.min_link_clearance_at = at(t);
+      }
+    }
+    for (int j = 0; j < 6; ++j) {
+      const double margin = std::min(q[j] - ro.joints[j].min, ro.joints[j].max - q[j]);
+      if (margin < r.min_joint_margin) {
+        r.min_joint_margin = margin;
+        r.min_joint_margin_joint = ro.joints[j].name;
+      }
+    }
+    r.min_wrist_angle = std::min(r.min_wrist_angle, std::fabs(q[4]));
+    // The eye in the positioner frame, in the lathe model's axes.
+    const Vec3 c = positioner_inv * eye_cell;
+    if (!path.empty()) {
+      const double d = eye_deviation(to_mandrel(eye_cell, t.e1));
+      if (d > r.max_eye_deviation) {
+        r.max_eye_deviation = d;
+        r.max_eye_deviation_at = at(t);
+      }
+    }
+    double duration = 0.0;
+    if (i > 0) {
+      double joint_time = std::fabs(t.e1 - prev_e1) / ro.e1_max_velocity;
+      for (int j = 0; j < 6; ++j) {
+        joint_time = std::max(joint_time, std::fabs(q[j] - prev_q[j]) / ro.joints[j].max_velocity);
+      }
+      if (t.joint_move) {
+        duration = joint_time;
+      } else if (t.time >= 0.0) {
+        duration = t.time;
+      } else {
+        duration = std::max((c - prev_eye).norm() / 1000.0 / t.vel_cp,
+                            std::fabs(t.e1 - prev_e1) / (ro.e1_max_velocity * t.vel_extax / 100.0));
+      }
+      if (joint_time < 1e-9) {
+        // No joint moves (a target repeated, as where a circuit ends and the next begins).
+      } else if (duration > 0.0) {
+        const double ratio = joint_time / duration;
+        if (ratio > r.max_joint_speed_ratio) {
+          r.max_joint_speed_ratio = ratio;
+          r.max_joint_speed_at = at(t);
+        }
+      } else if (joint_time > 0.0) {
+        r.max_joint_speed_ratio = std::numeric_limits<double>::infinity();
+        r.max_joint_speed_at = at(t);
+      }
+      r.cycle_time += duration;
+    }
+    // Pieces of at most 2 mm of eye travel, linear in the BASE frame and in E1.
+    const int pieces = (i == 0 || t.joint_move)
+                           ? 1
+                           : std::max(1, static_cast<int>(std::ceil((c - prev_eye).norm() / 2.0)));
+    for (int k = 1; k <= pieces; ++k) {
+      const double s = static_cast<double>(k) / pieces;
+      const Vec3 e = pieces == 1 ? c : Vec3(prev_eye + s * (c - prev_eye));
+      const double e1 = pieces == 1 ? t.e1 : prev_e1 + s * (t.e1 - prev_e1);
+      GcodeBlock b;
+      b.line = static_cast<int>(i) + 1;
+      b.rapid = t.joint_move;
+      b.a = e1 - std::atan2(e.z(), e.y()) * kDeg;
+      b.x = e.x() - ro.offset;
+      b.y = std::hypot(e.y(), e.z());
+      b.inverse_time = true;
+      b.feed = duration > 0.0 ? 60.0 / (duration / pieces) : 1e9;
+      lathe.blocks.push_back(b);
+    }
+    seed = q;
+    prev_q = q;
+    prev_status = status;
+    prev_eye = c;
+    prev_e1 = t.e1;
+  }
+  // The fibre model of the G-code replay, on the equivalent 4-axis blocks; A continuous.
+  for (std::size_t k = 1; k < lathe.blocks.size(); ++k) {
+    GcodeBlock& b = lathe.blocks[k];
+    b.a -= 360.0 * std::round((b.a - lathe.blocks[k - 1].a) / 360.0);
+  }
+  lathe.ended = true;
+  MachineOptions as_lathe = machine;
+  as_lathe.kind = "lathe4";
+  for (AxisOptions* a : {&as_lathe.a, &as_lathe.x, &as_lathe.y, &as_lathe.b}) {
+    a->min = -std::numeric_limits<double>::infinity();
+    a->max = std::numeric_limits<double>::infinity();
+  }
+  r.fibre = replay_program(lathe, plan, mandrel, as_lathe, options);
+  const int worst = std::max(1, r.fibre.max_deviation_line);
+  const RobotProgramTarget& wt = program.targets[std::min<int>(worst, r.targets) - 1];
+  r.max_deviation_at = at(wt);
+  r.fibre.max_deviation_line = wt.line;  // the line in its file (max_deviation_at names the file)
+  const int cl = std::min<int>(std::max(1, r.fibre.min_clearance_line), r.targets);
+  r.fibre.min_clearance_line = program.targets[cl - 1].line;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  char buf[600];
+  std::snprintf(
+      buf, sizeof buf,
+      "robot replay: %d targets, deviation max %.3f mm (%s) mean %.4f mm, eye path %.3f mm "
+      "(%s), eye clearance "
+      "%.2f mm, flange/last link clearance %.1f mm (%s), joint margin %.1f deg (%s), "
+      "|A5| >= %.1f deg, joint speed ratio %.2f, %d configuration changes, cycle %.1f s",
+      r.targets, r.fibre.max_deviation, r.max_deviation_at.c_str(), r.fibre.mean_deviation,
+      r.max_eye_deviation, r.max_eye_deviation_at.empty() ? "-" : r.max_eye_deviation_at.c_str(),
+      r.fibre.min_clearance, r.min_link_clearance, r.min_link_clearance_at.c_str(),
+      r.min_joint_margin, r.min_joint_margin_joint.c_str(), r.min_wrist_angle,
+      r.max_joint_speed_ratio, r.configuration_changes, r.cycle_time);
+  r.summary = buf;
+  return r;
+}
+
+}  // namespace windplan

@@ -1,0 +1,105 @@
+// Robot cells through the command line: run writes a KRL or RAPID program and joints.csv, simulate
+// reads the program back and replays it, an edited target is caught at its line, and bad input
+// (an unknown dialect, a cell whose mandrel is out of reach, a malformed program) is one line,
+// exit 1.
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include "tests/cli/cli_runner.h"
+#include "tests/test_data.h"
+
+namespace windplan::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string job(const std::string& robot_keys, double offset = -100) {
+  return "name: cell\n"
+         "mandrel: {source: pipe, pipe: {radius: 50, length: 200}}\n"
+         "winding: {turns: 1, circuits: 2}\n"
+         "machine:\n  profile: " +
+         (source_dir() / "configs" / "machines" / "robot_cell_kr16.yaml").string() +
+         "\n  robot: {offset: " + std::to_string(offset) + robot_keys + "}\n";
+}
+
+class CliRobot : public CliTest {
+ protected:
+  void write_job(const std::string& keys, double offset = -100) {
+    std::ofstream(dir_ / "job.yaml") << job(keys, offset);
+  }
+};
+
+TEST_F(CliRobot, RunWritesKrlThatSimulateReplays) {
+  write_job("");
+  const fs::path out = dir_ / "out";
+  const RunResult r = run({"run", (dir_ / "job.yaml").string(), "--out", out.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* f : {"wp_cell.src", "wp_cell.dat", "wp_cell_p01.src", "wp_cell_p01.dat",
+                        "joints.csv", "joints.svg"}) {
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  }
+  const YAML::Node robot = YAML::LoadFile((out / "report.json").string())["robot"];
+  ASSERT_TRUE(robot.IsMap());
+  EXPECT_LT(robot["replay"]["max_deviation_mm"].as<double>(), 0.5);
+  EXPECT_EQ(robot["configuration_changes_between_passes"].as<int>(), 0);
+  const fs::path json = dir_ / "sim.json";
+  const RunResult s = run({"simulate", (dir_ / "job.yaml").string(), (out / "wp_cell.src").string(),
+                           "--json", json.string()});
+  ASSERT_EQ(s.code, 0) << s.err;
+  const YAML::Node j = YAML::LoadFile(json.string());
+  EXPECT_EQ(j["dialect"].as<std::string>(), "krl");
+  EXPECT_NEAR(j["max_deviation_mm"].as<double>(), robot["replay"]["max_deviation_mm"].as<double>(),
+              1e-9);
+  EXPECT_LT(j["max_eye_deviation_mm"].as<double>(), 0.001);
+  // One target moved 5 mm along X: simulate names its line, exit 1.
+  std::ifstream in(out / "wp_cell_p01.dat");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t p = text.find("DECL E6POS XP40={X ");
+  ASSERT_NE(p, std::string::npos);
+  const std::size_t a = p + 19, b = text.find(',', a);
+  text.replace(a, b - a, std::to_string(std::stod(text.substr(a, b - a)) + 5.0));
+  fs::create_directories(dir_ / "edited");
+  for (const auto& e : fs::directory_iterator(out)) {
+    fs::copy_file(e.path(), dir_ / "edited" / e.path().filename());
+  }
+  std::ofstream(dir_ / "edited" / "wp_cell_p01.dat", std::ios::trunc) << text;
+  const RunResult bad =
+      run({"simulate", (dir_ / "job.yaml").string(), (dir_ / "edited" / "wp_cell.src").string(),
+           "--json", (dir_ / "bad.json").string()});
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("wp_cell_p01.src:"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("puts the eye"), std::string::npos) << bad.err;
+}
+
+TEST_F(CliRobot, RapidDialect) {
+  write_job(", dialect: rapid");
+  const fs::path out = dir_ / "out";
+  ASSERT_EQ(run({"run", (dir_ / "job.yaml").string(), "--out", out.string()}).code, 0);
+  EXPECT_TRUE(fs::exists(out / "wp_cell.mod"));
+  EXPECT_TRUE(fs::exists(out / "wp_cell_p01.mod"));
+  const RunResult s = run({"simulate", (dir_ / "job.yaml").string(), (out / "wp_cell.mod").string(),
+                           "--json", (dir_ / "s.json").string()});
+  EXPECT_EQ(s.code, 0) << s.err;
+}
+
+TEST_F(CliRobot, BadInputIsOneLineExitOne) {
+  write_job(", dialect: fanuc");
+  RunResult r = run({"run", (dir_ / "job.yaml").string(), "--out", (dir_ / "o").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("machine.robot.dialect"), std::string::npos) << r.err;
+  write_job("", 3000);  // the mandrel 3 m along the positioner axis: out of reach
+  r = run({"run", (dir_ / "job.yaml").string(), "--out", (dir_ / "o").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("out of reach of the KUKA KR 16-2"), std::string::npos) << r.err;
+  write_job("");
+  std::ofstream(dir_ / "p.src") << "DEF p( )\nLIN XP1\nEND\n";
+  r = run({"simulate", (dir_ / "job.yaml").string(), (dir_ / "p.src").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("p.src:2"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace windplan::test

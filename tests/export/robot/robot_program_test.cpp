@@ -1,0 +1,61 @@
+// KRL and RAPID programs of a planned helix read back by the independent reader: every target's
+// pose, E1 and Status as written (to the 4 decimals of mm and deg), split into parts of
+// max_points targets, the same text twice.
+#include "export/robot/robot_program.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "export/robot/robot_program_reader.h"
+#include "planner/job/robot_config.h"
+#include "tests/export/plan_fixtures.h"
+#include "tests/mesh_fixtures.h"
+
+namespace windplan {
+namespace {
+
+TEST(RobotProgram, WrittenProgramsReadBackTargetForTarget) {
+  for (const char* dialect : {"krl", "rapid"}) {
+    MachineOptions m;
+    m.kind = "robot";
+    decode_robot(
+        ConfigNode::load_string("arm: kuka_kr16_2.yaml\npositioner: positioner_1axis.yaml\n"
+                                "tool: {xyz: [250, 0, 0], abc: [0, 0, 0]}\noffset: -180\n"
+                                "max_points: 200\ndialect: " +
+                                    std::string(dialect) + "\n",
+                                "cell.yaml"),
+        std::filesystem::path(WINDPLAN_SOURCE_DIR) / "configs" / "machines", &m.robot);
+    const WindingPlan plan = test::helix_plan(50, 60, 2, 2000);
+    const Mesh mesh(test::open_cylinder(50, 28.87 * 4 * M_PI + 100, 256, 100));
+    const Motion mo = compute_motion(plan, m, &mesh);
+    const RobotMotion rm = compute_robot_motion(mo, plan, m);
+    const std::vector<ProgramFile> files = robot_program(rm, "Helix test", m);
+    const std::size_t parts = (rm.targets.size() + 199) / 200;
+    EXPECT_EQ(files.size(), (std::string(dialect) == "krl" ? 2 : 1) * (parts + 1)) << dialect;
+    EXPECT_EQ(files.front().name, robot_program_main("Helix test", dialect));
+    EXPECT_EQ(files.front().name,
+              std::string(dialect) == "krl" ? "wp_helix_test.src" : "wp_helix_test.mod");
+    std::map<std::string, std::string> texts;
+    for (const ProgramFile& f : files) texts[f.name] = f.text;
+    const RobotProgram p = read_robot_program(texts, files.front().name, dialect);
+    ASSERT_EQ(p.targets.size(), rm.targets.size()) << dialect;
+    EXPECT_LT((p.tool.matrix() - rm.tool.matrix()).norm(), 1e-6);
+    EXPECT_LT((p.base.matrix() - rm.base.matrix()).norm(), 1e-4);
+    for (std::size_t i = 0; i < p.targets.size(); ++i) {
+      const RobotTarget& w = rm.targets[i];
+      const RobotProgramTarget& r = p.targets[i];
+      ASSERT_LT((r.pose.translation() - w.eye.translation()).norm(), 1e-4) << dialect << " " << i;
+      ASSERT_LT((r.pose.linear() - w.eye.linear()).norm(), 1e-6) << dialect << " " << i;
+      ASSERT_NEAR(r.e1, w.e1, 5e-5) << dialect << " " << i;
+      ASSERT_EQ(r.status, w.status);
+      EXPECT_EQ(r.joint_move, i == 0);
+    }
+    // Deterministic.
+    const std::vector<ProgramFile> again = robot_program(rm, "Helix test", m);
+    for (std::size_t k = 0; k < files.size(); ++k) EXPECT_EQ(files[k].text, again[k].text);
+  }
+}
+
+}  // namespace
+}  // namespace windplan

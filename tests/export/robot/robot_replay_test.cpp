@@ -1,0 +1,170 @@
+// Robot programs written by hand (from the closed form of a helix on a cylinder, not by
+// export/robot/robot_program) replayed through the KR 16 cell: the laid helix is the planned one
+// within 0.01 mm, and a 1 mm error in one target is caught (the eye is 1 mm off the planned eye
+// path at its line), in KRL and in RAPID.
+#include "export/robot/robot_replay.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "export/robot/robot_program_reader.h"
+#include "geometry/base/errors.h"
+#include "planner/job/robot_config.h"
+#include "tests/export/plan_fixtures.h"
+#include "tests/mesh_fixtures.h"
+
+namespace windplan {
+namespace {
+
+constexpr double kR = 50, kRe = 70, kAlpha = 60, kTurns = 2, kOffset = -180;
+
+MachineOptions cell() {
+  MachineOptions m;
+  m.kind = "robot";
+  m.tangent_window = 0.0;  // the plan's exact tangents: the planned eye is the closed form's
+  decode_robot(ConfigNode::load_string("arm: kuka_kr16_2.yaml\npositioner: positioner_1axis.yaml\n"
+                                       "tool: {xyz: [250, 0, 0]}\noffset: -180\n",
+                                       "cell.yaml"),
+               std::filesystem::path(WINDPLAN_SOURCE_DIR) / "configs" / "machines", &m.robot);
+  return m;
+}
+
+struct Eye {
+  double x, a;  // mm along the axis in the BASE frame, E1 deg
+};
+
+/// The eye on the cylinder R_e about the axis leads the helix point by beta = acos(R / R_e) and
+/// c tan(beta) along the axis (tests/export/program/replay_test.cpp); E1 turns the mandrel so the
+/// eye is on the BASE frame's +y.
+std::vector<Eye> helix_eyes(int n, int fault_at) {
+  const double c = kR / std::tan(kAlpha * M_PI / 180), beta = std::acos(kR / kRe);
+  std::vector<Eye> e;
+  for (int i = 0; i < n; ++i) {
+    const double phi = kTurns * 2 * M_PI * i / (n - 1);
+    e.push_back({c * phi + c * std::tan(beta) + kOffset + (i == fault_at ? 1.0 : 0.0),
+                 -(phi + beta) * 180 / M_PI});
+  }
+  return e;
+}
+
+std::map<std::string, std::string> krl(const std::vector<Eye>& eyes) {
+  std::string src = "&ACCESS RVP\nDEF helix( )\n; a hand-written helix\n$TOOL = T1\n$BASE = B1\n";
+  src += "$VEL.CP = 0.05\nhelix_pts( )\nEND\n";
+  std::string dat =
+      "DEFDAT helix PUBLIC\nDECL FRAME T1={X 250,Y 0,Z 0,A 0,B 0,C 0}\n"
+      "DECL FRAME B1={X 1300,Y 0,Z 500,A 90,B 0,C 0}\nENDDAT\n";
+  std::string part = "DEF helix_pts( )\n", pdat = "DEFDAT helix_pts\n";
+  for (std::size_t i = 0; i < eyes.size(); ++i) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "DECL E6POS P%zu={X %.4f,Y 70,Z 0,A -90,B 0,C 0,E1 %.4f}\n", i,
+                  eyes[i].x, eyes[i].a);
+    pdat += buf;
+    part += (i == 0 ? "PTP P" : "LIN P") + std::to_string(i) + (i == 0 ? "\n" : " C_DIS\n");
+  }
+  return {{"helix.src", src},
+          {"helix.dat", dat},
+          {"helix_pts.src", part + "END\n"},
+          {"helix_pts.dat", pdat + "ENDDAT\n"}};
+}
+
+std::map<std::string, std::string> rapid(const std::vector<Eye>& eyes) {
+  std::string mod =
+      "MODULE helix\n  ! a hand-written helix\n"
+      "  PERS tooldata t1 := [TRUE,[[250,0,0],[1,0,0,0]],[1,[0,0,1],[1,0,0,0],0,0,0]];\n"
+      "  PERS wobjdata w1 := [FALSE,TRUE,\"\",[[1300,0,500],[0.707106781,0,0,0.707106781]],"
+      "[[0,0,0],[1,0,0,0]]];\n  PROC main()\n    helix_pts;\n  ENDPROC\nENDMODULE\n";
+  std::string part = "MODULE helix_pts\n  PROC helix_pts()\n";
+  for (std::size_t i = 0; i < eyes.size(); ++i) {
+    char buf[240];
+    std::snprintf(buf, sizeof buf,
+                  "    %s [[%.4f,70,0],[0.707106781,0,0,-0.707106781],[0,0,0,6],"
+                  "[%.4f,9E9,9E9,9E9,9E9,9E9]],v100%s,z1,t1\\WObj:=w1;\n",
+                  i == 0 ? "MoveJ" : "MoveL", eyes[i].x, eyes[i].a, i == 0 ? "" : "\\T:=0.05");
+    part += buf;
+  }
+  return {{"helix.mod", mod}, {"helix_pts.mod", part + "  ENDPROC\nENDMODULE\n"}};
+}
+
+RobotReplayResult replay(const std::map<std::string, std::string>& files, const std::string& main,
+                         const std::string& dialect) {
+  const double c = kR / std::tan(kAlpha * M_PI / 180);
+  const WindingPlan plan = test::helix_plan(kR, kAlpha, kTurns, 2000);
+  const Mesh mesh(test::open_cylinder(kR, c * kTurns * 2 * M_PI + 100, 512, 200));
+  MachineOptions m = cell();
+  m.robot.dialect = dialect;
+  const Motion planned = compute_motion(plan, m, &mesh);  // the eye on the cylinder R + 20 mm
+  const RobotReplayResult r =
+      replay_robot_program(read_robot_program(files, main, dialect), plan, mesh, m, &planned);
+  std::printf("%s\n", r.summary.c_str());
+  return r;
+}
+
+TEST(RobotReplay, HandWrittenKrlHelixLaysTheHelix) {
+  const RobotReplayResult r = replay(krl(helix_eyes(1500, -1)), "helix.src", "krl");
+  EXPECT_EQ(r.targets, 1500);
+  EXPECT_LT(r.fibre.max_deviation, 0.01);
+  EXPECT_NEAR(r.fibre.min_clearance, kRe - kR, 0.01);
+  EXPECT_EQ(r.configuration_changes, 0);
+  EXPECT_GT(r.min_link_clearance, 250.0);  // the flange is 250 mm behind the eye
+  // The planned eye polyline is resampled within chord_tolerance (0.05 mm) of the eye's helix.
+  EXPECT_LT(r.max_eye_deviation, 0.05 + 1e-3);
+}
+
+TEST(RobotReplay, HandWrittenRapidHelixLaysTheHelix) {
+  const RobotReplayResult r = replay(rapid(helix_eyes(1500, -1)), "helix.mod", "rapid");
+  EXPECT_EQ(r.targets, 1500);
+  EXPECT_LT(r.fibre.max_deviation, 0.01);
+  EXPECT_NEAR(r.cycle_time, 1499 * 0.05, 1e-9);
+}
+
+TEST(RobotReplay, OneMillimetreErrorInOneTargetIsCaught) {
+  for (const char* d : {"krl", "rapid"}) {
+    const std::string dialect = d;
+    const auto files = dialect == "krl" ? krl(helix_eyes(1500, 700)) : rapid(helix_eyes(1500, 700));
+    const RobotReplayResult r =
+        replay(files, dialect == "krl" ? "helix.src" : "helix.mod", dialect);
+    // The free fibre smooths one misplaced target out of the laid path (a few um), but the eye
+    // is 1 mm off the planned eye path at that target's line.
+    EXPECT_LT(r.fibre.max_deviation, 0.05) << dialect;
+    // An axial shift of 1 mm is 1 mm x sin(67.6 deg) = 0.92 mm across the eye's helix (R_e 70 mm,
+    // pitch c = 28.9 mm per radian).
+    EXPECT_NEAR(r.max_eye_deviation, 0.92, 0.03) << dialect;
+    EXPECT_EQ(r.max_eye_deviation_at, dialect == "krl" ? "helix_pts.src:702" : "helix_pts.mod:703");
+  }
+}
+
+TEST(RobotReplay, TargetOutOfReachNamesItsLine) {
+  auto eyes = helix_eyes(50, -1);
+  eyes[20].x = 3000.0;
+  try {
+    replay(krl(eyes), "helix.src", "krl");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("helix_pts.src:22: the target is out of reach"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(RobotReplay, MalformedProgramsNameTheLine) {
+  auto files = krl(helix_eyes(10, -1));
+  files["helix_pts.src"].replace(files["helix_pts.src"].find("LIN P3"), 6, "LIN Q3");
+  EXPECT_THROW(read_robot_program(files, "helix.src", "krl"), InputError);
+  try {
+    read_robot_program(files, "helix.src", "krl");
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("helix_pts.src:5: 'Q3' is not declared"),
+              std::string::npos)
+        << e.what();
+  }
+  auto r = rapid(helix_eyes(10, -1));
+  r["helix_pts.mod"].replace(r["helix_pts.mod"].find("MoveL"), 5, "MoveX");
+  EXPECT_THROW(read_robot_program(r, "helix.mod", "rapid"), InputError);
+  EXPECT_THROW(read_robot_program(r, "helix.mod", "fanuc"), ConfigError);
+}
+
+}  // namespace
+}  // namespace windplan
