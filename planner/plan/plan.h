@@ -81,7 +81,9 @@ struct TurnaroundStability {
 // Coverage measured on the laid bands (planner/winding/coverage.h says how).
 /// The figures at one station (see the header comment).
 struct StationCoverage {
-  double station = 0.0;                            ///< mm along the spindle axis
+  /// mm along the spindle axis; with CoverageReport::centre_line mm along the tube's centre line
+  /// (geometry/region/spine.h); off revolution without one, a level of the harmonic height
+  double station = 0.0;
   double loop_length = 0.0;                        ///< mm: the section loop's length
   std::array<int, 2> bands = {0, 0};               ///< bands per family (+, -)
   std::array<double, 2> family_bare = {0.0, 0.0};  ///< bare fraction per family
@@ -98,6 +100,10 @@ struct StationCoverage {
 struct CoverageReport {
   std::vector<StationCoverage> stations;
   int skipped = 0;  ///< stations without a section loop around the axis
+  /// The stations are sections normal to a tube's centre line (StationCoverage::station: mm along
+  /// it, of centre_line_length mm).
+  bool centre_line = false;
+  double centre_line_length = 0.0;  ///< mm (centre_line only)
   // Over the measured stations:
   double bare_fraction = 0.0;   ///< the largest
   double widest_gap = 0.0;      ///< the largest (mm)
