@@ -97,6 +97,12 @@ struct StationCoverage {
   double spacing_mean = 0.0;    ///< their mean (mm across the band)
 };
 
+/// The slippage |k_g / k_n| of a point where the fibre does not press on the mandrel (k_n = 0,
+/// k_g != 0): no friction holds it. Stored as this sentinel, written as "unbounded" (JSON null),
+/// never as a measured figure.
+constexpr double kUnboundedSlippage = 1e12;
+inline bool is_unbounded_slippage(double s) { return !(s < kUnboundedSlippage); }
+
 struct CoverageReport {
   std::vector<StationCoverage> stations;
   int skipped = 0;  ///< stations without a section loop around the axis
