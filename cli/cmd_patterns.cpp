@@ -1,7 +1,10 @@
 // windplan patterns <job.yaml> [--json] [--top N]
 // The pattern table of a job on a shape of revolution: the closing patterns near the requested
 // winding, each planned and measured on its laid bands (planner/winding/winding_pattern.h,
-// planner/winding/coverage.h), as the pattern tables of winding software list them.
+// planner/winding/coverage.h), as the pattern tables of winding software list them; on a tube
+// that is not one (a bent tube, a duct), K circuits near what the job winds, each planned as the
+// run plans it and measured on the sections normal to the centre line.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -12,6 +15,7 @@
 #include "geometry/base/json.h"
 #include "planner/job/job.h"
 #include "planner/mandrel/mandrel_builder.h"
+#include "planner/pipeline.h"
 #include "planner/winding/coverage.h"
 #include "planner/winding/revolution_winding.h"
 
@@ -30,9 +34,95 @@ const char* const kPatternsHelp =
     "cylinder, where the bands lie side by side), most bands stacked and plies built (2 for one "
     "full\n"
     "helical layer). The first row is what `winding.pattern: auto` winds; a job picks another\n"
-    "with `winding.pattern: {circuits: K, skip: p}`.\n\n"
+    "with `winding.pattern: {circuits: K, skip: p}`.\n"
+    "On a tube that is not a shape of revolution (a bent tube, a duct) the rows are K circuits\n"
+    "(p = 1) from 3 below to 3 above what the job winds, each planned as `windplan run` plans\n"
+    "it: which passes are laid, coverage on the sections normal to the centre line, the largest\n"
+    "|k_g/k_n|.\n\n"
     "  --json      print the table as JSON\n"
     "  --top N     rows to plan and measure (default 12)\n";
+
+namespace {
+
+// Off a shape of revolution: the patterns are K circuits (p = 1, each 1/K of the conformal angle
+// after the last), each planned as the run plans it (planner/pipeline.h: the passes laid, the
+// coverage on the sections normal to the centre line), K from 3 below to 3 above what the job
+// winds (at most `top` rows).
+int tube_patterns(const Job& job, const Mandrel& md, int top, bool json) {
+  const PipelineResult run = plan_winding(md, job, job.winding);
+  const int k0 = static_cast<int>(run.plan.circuits.size());
+  if (run.tube.spine.empty()) {
+    throw InputError(job.path.string() + ": the mandrel is not a shape of revolution and its " +
+                     "wound region has no centre line (" + run.tube.why +
+                     "): patterns are listed for shapes of revolution and tubes only");
+  }
+  struct Row {
+    int k = 0;
+    std::string laid;
+    PlanMetrics m;
+  };
+  std::vector<Row> rows{{k0, run.laid, run.plan.metrics}};
+  for (int d = 1; d <= 3 && static_cast<int>(rows.size()) < top; ++d) {
+    for (int k : {k0 - d, k0 + d}) {
+      if (k < 1 || k > kMaxCircuits || static_cast<int>(rows.size()) >= top) continue;
+      WindingOptions w = job.winding;
+      w.circuits = k;
+      const PipelineResult r = plan_winding(md, job, w);
+      rows.push_back({k, r.laid, r.plan.metrics});
+    }
+  }
+  std::sort(rows.begin() + 1, rows.end(), [](const Row& a, const Row& b) { return a.k < b.k; });
+  if (json) {
+    JsonWriter j;
+    j.begin_object();
+    j.field("job", job.name);
+    j.field("tube", run.tube.source);
+    j.field("centre_line_mm", run.tube.spine.length());
+    j.key("patterns").begin_array();
+    for (const Row& r : rows) {
+      j.begin_object();
+      j.field("circuits", r.k);
+      j.field("skip", 1);
+      j.field("turns_per_pass", job.winding.turns);
+      j.field("laid", r.laid);
+      j.field("cover_factor", r.m.coverage.cover_factor);
+      j.field("bare_fraction", r.m.coverage.bare_fraction);
+      j.field("widest_gap", r.m.coverage.widest_gap);
+      j.field("max_stack", r.m.coverage.max_stack);
+      j.field("plies", r.m.coverage.mean_plies);
+      j.field("max_slippage", r.m.max_slippage);
+      j.end_object();
+    }
+    j.end_array();
+    j.end_object();
+    std::cout << j.str() << "\n";
+    return 0;
+  }
+  std::ostringstream s;
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "patterns: %s: a tube (%s, centre line %.1f mm), %s turns per pass; coverage on "
+                "%d sections normal to the centre line\n",
+                job.name.c_str(), run.tube.source.c_str(), run.tube.spine.length(),
+                format_turns(job.winding.turns).c_str(), job.winding.coverage_stations);
+  s << buf;
+  s << "     K    p  laid                 cover  bare[%]  gap[mm]  stack  plies  max|kg/kn|\n";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row& r = rows[i];
+    const CoverageReport& c = r.m.coverage;
+    std::snprintf(buf, sizeof buf, "%s %4d %4d  %-19s  %5.3f  %7.2f  %7.2f  %5d  %5.2f  %10.4f\n",
+                  i == 0 ? "*" : " ", r.k, 1, r.laid.c_str(), c.cover_factor,
+                  100.0 * c.bare_fraction, c.widest_gap, c.max_stack, c.mean_plies,
+                  r.m.max_slippage);
+    s << buf;
+  }
+  s << "  * what the run winds (winding.circuits" +
+           std::string(job.winding.circuits == 0 ? ": auto" : "") + ")\n";
+  std::cout << s.str();
+  return 0;
+}
+
+}  // namespace
 
 int run_patterns(const std::vector<std::string>& argv) {
   const Args args(argv, {"--json"}, {"--top"});
@@ -49,11 +139,7 @@ int run_patterns(const std::vector<std::string>& argv) {
     top = static_cast<int>(n);
   }
   const Mandrel md = build_mandrel(job);
-  if (!md.revolution) {
-    throw InputError(job.path.string() + ": the mandrel is not a shape of revolution about " +
-                     "its axis: patterns are listed for shapes of revolution only (the " +
-                     "geodesic core plans the others; windplan helices reports their coverage)");
-  }
+  if (!md.revolution) return tube_patterns(job, md, top, args.flag("--json"));
   const WindingOptions& wo = job.winding;
   const std::vector<Vec2> meridian = wound_meridian(md.winding.mesh, md.axis, wo);
   const PatternProblem pr = pattern_problem(meridian, wo);

@@ -7,6 +7,7 @@
 #include "geometry/base/format_number.h"
 #include "planner/cutlines/cutlines.h"
 #include "planner/job/job_limits.h"
+#include "planner/mandrel/tube_spine.h"
 #include "planner/winding/coverage.h"
 #include "planner/winding/tube_coverage.h"
 
@@ -129,6 +130,47 @@ TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const Win
                             md.winding.mesh, md.winding.face_map, md.axis, wo);
 }
 
+// Off revolution, on a tube: the geodesic core's passes (kept when they cover every section) or
+// the traced level sets of the conformal helices (evenly spread around every section by
+// construction, planner/winding/helix.h), laid instead when they cover more and friction holds
+// them everywhere (max |k_g/k_n| <= mu). Otherwise the geodesics stay and laid_why gives both
+// sets of figures.
+void choose_tube_passes(const WindingSurface& ws, const SpindleAxis& axis, const Spine& spine,
+                        const std::vector<double>& face_girth, const WindingOptions& wo,
+                        PipelineResult* r) {
+  CoverageOptions co;
+  co.band_width = wo.band_width;
+  co.stations = wo.coverage_stations;
+  co.spine = &spine;
+  WindingPlan& plan = r->plan;
+  const CoverageReport geo = measure_coverage(ws.mesh, axis, plan.circuits, co);
+  if (!geo.measured() || geo.bare_fraction == 0.0) return;
+  HelixPlan traced = r->helices;
+  for (HelixPass& p : traced.passes) p.path = p.initial;
+  std::vector<Circuit> circuits = build_circuits(ws.mesh, traced, ws.face_map, axis, wo);
+  const CoverageReport cov = measure_coverage(ws.mesh, axis, circuits, co);
+  PlanMetrics pm = compute_plan_metrics(ws.mesh, traced, circuits, face_girth, axis, false, wo);
+  const std::string figures =
+      "the geodesic passes leave " + format_fixed(100.0 * geo.bare_fraction, 2) +
+      "% of a section bare (up to " + std::to_string(geo.max_stack) +
+      " bands stacked), the evenly spread helices " + format_fixed(100.0 * cov.bare_fraction, 2) +
+      "% with |k_g/k_n| up to " + format_fixed(pm.max_slippage, 3) + " (" +
+      format_fixed(100.0 * pm.slip_fraction, 2) + "% of their length above mu " +
+      format_fixed(wo.mu, 3) + ")";
+  if (cov.bare_fraction < geo.bare_fraction && pm.max_slippage <= wo.mu) {
+    r->helices = std::move(traced);
+    plan.circuits = std::move(circuits);
+    plan.metrics = std::move(pm);
+    r->laid = "evenly spread helix";
+    return;
+  }
+  r->laid_why = figures + ": the geodesics are laid; " +
+                (cov.bare_fraction < geo.bare_fraction
+                     ? std::string("more turns lower the slippage the helices need, or a ") +
+                           "higher winding.mu if the fibre and mandrel hold it"
+                     : std::string("more circuits or a wider band"));
+}
+
 }  // namespace
 
 PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
@@ -188,13 +230,62 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     throw ConfigError("winding.pins: pins are planned for friction layers on a bent tube only " +
                       std::string("(winding.slippage and winding.angle or turns on a bent_tube)"));
   }
+  if (!md.revolution && !tube_layer) r.tube = mandrel_tube_spine(md, job.mandrel);
+  const Spine* spine = r.tube.spine.empty() ? nullptr : &r.tube.spine;
+  int auto_circuits = 0;  // circuits: auto off revolution, from the sections (below)
+  std::vector<double> rho;
   if (tube_layer) {
-    r.tube = plan_tube_layer(md, job, wo);
+    r.tube_layer = plan_tube_layer(md, job, wo);
     r.tube_friction = true;
   } else if (!r.clairaut) {
-    std::vector<double> rho;
     if (wo.beta > 0.0) rho = density_from_girth(ws.mesh, r.face_girth, wo.beta);
-    r.helices = plan_helices(ws.mesh, loops, rho, md.axis, wo);
+    WindingOptions w = wo;
+    if (spine && wo.circuits == 0) {
+      // Coverage-first K off revolution: one circuit's bands measured on the sections normal to
+      // the centre line (the evenly spread helices': the K circuits are its copies turned by
+      // 1/K of the conformal angle); K covers the section where one circuit covers least.
+      WindingOptions w1 = wo;
+      w1.circuits = 1;
+      HelixPlan one = plan_helices(ws.mesh, loops, rho, md.axis, w1);
+      for (HelixPass& p : one.passes) p.path = p.initial;
+      const std::vector<Circuit> c1 = build_circuits(ws.mesh, one, ws.face_map, md.axis, w1);
+      CoverageOptions co;
+      co.band_width = wo.band_width;
+      co.stations = wo.coverage_stations;
+      co.spine = spine;
+      const CoverageReport cov = measure_coverage(ws.mesh, md.axis, c1, co);
+      if (cov.measured() && cov.cover_factor > 0.0) {
+        const double k = std::ceil((1.0 - 1e-9) / cov.cover_factor);
+        if (!(k <= kMaxCircuits)) {
+          throw ConfigError("winding.circuits: auto needs " + general(k) +
+                            " circuits to cover the tube with winding.band_width " +
+                            general(wo.band_width) + " mm, above " + std::to_string(kMaxCircuits) +
+                            "; use a wider band or give winding.circuits");
+        }
+        auto_circuits = std::max(1, static_cast<int>(k));
+        w.circuits = auto_circuits;
+      }
+    }
+    r.helices = plan_helices(ws.mesh, loops, rho, md.axis, w);
+    // The evenly spread helices are only nearly even around a bend's sections (the conformal
+    // angle runs faster on the outside): add circuits until their bands leave no section bare
+    // (at most 6 more, and at most half as many again).
+    const int k_last =
+        std::min(kMaxCircuits, auto_circuits + std::max(1, std::min(6, auto_circuits / 2)));
+    while (auto_circuits > 0 && w.circuits < k_last) {
+      HelixPlan traced = r.helices;
+      for (HelixPass& p : traced.passes) p.path = p.initial;
+      CoverageOptions co;
+      co.band_width = wo.band_width;
+      co.stations = wo.coverage_stations;
+      co.spine = spine;
+      const CoverageReport cov = measure_coverage(
+          ws.mesh, md.axis, build_circuits(ws.mesh, traced, ws.face_map, md.axis, w), co);
+      if (!cov.measured() || cov.bare_fraction == 0.0) break;
+      ++w.circuits;
+      r.helices = plan_helices(ws.mesh, loops, rho, md.axis, w);
+    }
+    if (auto_circuits > 0) r.helices.summary.circuits_auto = true;
   }
   helices.done();
 
@@ -274,7 +365,7 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     }
     r.passes = circuit_pass_reports(plan.circuits, md.axis, "clairaut");
   } else if (r.tube_friction) {
-    TubeFrictionWinding& tw = r.tube;
+    TubeFrictionWinding& tw = r.tube_layer;
     plan.circuits = std::move(tw.circuits);
     tw.circuits.clear();
     plan.metrics = circuit_plan_metrics(plan.circuits, md.axis, wo);
@@ -311,6 +402,7 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     plan.circuits = build_circuits(ws.mesh, r.helices, ws.face_map, md.axis, wo);
     plan.metrics = compute_plan_metrics(ws.mesh, r.helices, plan.circuits, r.face_girth, md.axis,
                                         md.revolution, wo);
+    if (spine) choose_tube_passes(ws, md.axis, *spine, r.face_girth, wo, &r);
     r.passes = pass_reports(r.helices, plan.circuits, md.axis);
     if (md.revolution && wo.beta == 0.0) {
       plan.metrics.warnings.push_back("pattern: " + r.revolution.problem.why +
@@ -323,9 +415,10 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   co.band_width = wo.band_width;
   co.stations = wo.coverage_stations;
   if (!md.revolution && !r.clairaut && !r.tube_friction) co.height = &r.helices.coords.height;
+  co.spine = spine;
   PlanMetrics& pm = plan.metrics;
   if (r.tube_friction) {  // on sections normal to the centre line, between the turnarounds
-    const TubeFrictionWinding& tw = r.tube;
+    const TubeFrictionWinding& tw = r.tube_layer;
     // (pins: a band width inside the pin circles, off the dwells)
     const double in = tw.pins > 0 ? wo.band_width : 0.0;
     pm.coverage = measure_tube_coverage(
@@ -336,6 +429,27 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     pm.coverage = measure_coverage(ws.mesh, md.axis, plan.circuits, co);
   }
   pm.cover_factor = pm.coverage.cover_factor;
+  if (spine && pm.coverage.measured()) {  // what the sections normal to the centre line need
+    const int K = static_cast<int>(plan.circuits.size());
+    pm.circuits_for_coverage =
+        pm.coverage.cover_factor > 0.0
+            ? static_cast<int>(std::ceil(K * (1.0 - 1e-12) / pm.coverage.cover_factor))
+            : 0;
+    // circuits: auto added circuits until the bands covered every section: that many are needed
+    // (the band length alone, above, ignores how evenly the bands are spread).
+    if (auto_circuits > 0 && pm.coverage.bare_fraction == 0.0) pm.circuits_for_coverage = K;
+    pm.pattern = "K=" + std::to_string(K) + ", advance 1/" + std::to_string(K) +
+                 " of the conformal angle per circuit, closes after " + std::to_string(K) +
+                 " circuits (a tube: " + r.tube.source + ", " + r.laid + " passes" +
+                 (auto_circuits > 0 ? ", K auto from the sections normal to the centre line" : "") +
+                 ")";
+    if (!r.laid_why.empty()) pm.warnings.push_back("tube passes: " + r.laid_why);
+  } else if (!md.revolution && !r.clairaut && !r.tube.why.empty()) {
+    pm.warnings.push_back(
+        "coverage: measured on levels of the harmonic height, not on sections "
+        "normal to a centre line: " +
+        r.tube.why);
+  }
   if (r.clairaut) {  // the band spacing on the stations (the core's route has its own, per
                      // meridian)
     pm.spacing_cv = pm.coverage.spacing_cv;
@@ -353,9 +467,9 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     pm.warnings.push_back(
         "coverage: the laid bands leave " + format_fixed(100.0 * worst->bare_fraction, 2) +
         "% of the circumference bare at " +
-        (co.height         ? "height " + format_fixed(worst->station, 3) + " of the wound region"
-         : r.tube_friction ? format_fixed(worst->station, 1) + " mm along the centre line"
-                           : format_fixed(worst->station, 1) + " mm along the axis") +
+        (spine || r.tube_friction ? format_fixed(worst->station, 1) + " mm along the centre line"
+         : co.height              ? "height " + format_fixed(worst->station, 3) + " of the wound region"
+                                  : format_fixed(worst->station, 1) + " mm along the axis") +
         " (widest gap " + format_fixed(pm.coverage.widest_gap, 1) + " mm over " +
         std::to_string(pm.coverage.stations.size()) + " stations): " +
         (r.clairaut        ? "choose a pattern with more circuits (windplan patterns JOB)"

@@ -21,6 +21,7 @@
 #include "planner/girth/girth.h"
 #include "planner/job/job.h"
 #include "planner/mandrel/mandrel_builder.h"
+#include "planner/mandrel/tube_spine.h"
 #include "planner/plan/plan.h"
 #include "planner/winding/clairaut.h"
 #include "planner/winding/fibre_metrics.h"
@@ -48,11 +49,19 @@ struct PipelineResult {
   bool clairaut = false;
   RevolutionWinding revolution;
   /// true: a friction layer at winding.angle on a bent tube (planner/winding/tube_friction.h;
-  /// winding.slippage or winding.angle off a shape of revolution), `tube` holds its figures
+  /// winding.slippage or winding.angle off a shape of revolution), `tube_layer` holds its figures
   /// (its circuits moved into the plan).
   bool tube_friction = false;
-  TubeFrictionWinding tube;
+  TubeFrictionWinding tube_layer;
   HelixPlan helices;
+  /// Off shapes of revolution: the wound region's centre line (planner/mandrel/tube_spine.h);
+  /// coverage is measured on the sections normal to it when there is one.
+  TubeSpine tube;
+  /// Off shapes of revolution with a centre line: the passes laid (docs/config.md, "Which paths
+  /// off revolution"): "geodesic" (the core's refinement) or "helix" (the traced, evenly spread
+  /// level sets, held by friction), and the figures of the one not laid, for the report.
+  std::string laid = "geodesic";
+  std::string laid_why;
   std::vector<PassReport> passes;
   bool has_turn_limit = false;  ///< turn_limit was computed (a shape of revolution)
   ClairautLimit turn_limit;     ///< N_max between the ends of the passes

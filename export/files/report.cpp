@@ -1,5 +1,7 @@
 #include "export/files/report.h"
 
+#include <limits>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +20,15 @@ namespace windplan {
 namespace {
 
 std::string fmt(const char* f, double v) { return format_number(f, v); }
+// A slippage figure: "unbounded" where the fibre does not press on the mandrel (plan.h).
+std::string slip(double v) {
+  return is_unbounded_slippage(v) ? "unbounded (k_n = 0: nothing presses the fibre on)"
+                                  : fmt("%.4f", v);
+}
+// The same in JSON: null when unbounded.
+double slip_json(double v) {
+  return is_unbounded_slippage(v) ? std::numeric_limits<double>::quiet_NaN() : v;
+}
 
 /// Per-circuit figures.
 struct CircuitFigures {
@@ -83,7 +94,7 @@ void turnarounds_json(JsonWriter& j, const PlanMetrics& m, bool mm_keys) {
     j.field("along", t.at_station() ? "station" : "loop");
     if (t.at_station()) j.field("station" + mm, t.station);
     j.field("length" + mm, t.length);
-    j.field("max_slippage", t.max_slippage);
+    j.field("max_slippage", slip_json(t.max_slippage));
     j.field("slip_length" + mm, t.slip_length);
     j.field("slip_fraction", t.slip_fraction);
     j.field("bridging_length" + mm, t.bridging_length);
@@ -207,13 +218,13 @@ std::string report_json(const WindingPlan& plan, const ExportResult& r) {
   j.field("pattern", m.pattern);
   j.field("spacing_cv", m.spacing_cv);
   j.field("spacing_mean_mm", m.spacing_mean);
-  j.field("max_slippage", m.max_slippage);
+  j.field("max_slippage", slip_json(m.max_slippage));
   j.field("friction", m.friction);
   j.field("slip_fraction", m.slip_fraction);
   j.field("bridging_length_mm", m.bridging_length);
   // The turnarounds (dwell arcs), apart from the passes' figures above.
   j.field("turnaround_length_mm", m.turnarounds.length);
-  j.field("turnaround_max_slippage", m.turnarounds.max_slippage);
+  j.field("turnaround_max_slippage", slip_json(m.turnarounds.max_slippage));
   j.field("turnaround_slip_length_mm", m.turnarounds.slip_length);
   j.field("turnaround_slip_fraction", m.turnarounds.slip_fraction);
   j.field("turnaround_bridging_length_mm", m.turnarounds.bridging_length);
@@ -263,7 +274,7 @@ std::string report_json(const WindingPlan& plan, const ExportResult& r) {
     j.field("time_s", f.time);
     j.field("min_winding_angle_deg", f.min_angle);
     j.field("max_winding_angle_deg", f.max_angle);
-    j.field("max_slippage", f.max_slippage);
+    j.field("max_slippage", slip_json(f.max_slippage));
     j.end_object();
   }
   j.end_array();
@@ -313,11 +324,11 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
     << "| pattern | " << m.pattern << " |\n"
     << "| spacing CV | " << fmt("%.4f", m.spacing_cv) << " |\n"
     << "| mean spacing | " << fmt("%.3f", m.spacing_mean) << " mm |\n"
-    << "| max slippage | " << fmt("%.4f", m.max_slippage) << " (friction "
-    << fmt("%.3f", m.friction) << ") |\n"
+    << "| max slippage | " << slip(m.max_slippage) << " (friction " << fmt("%.3f", m.friction)
+    << ") |\n"
     << "| slip fraction | " << fmt("%.4f", m.slip_fraction) << " |\n"
     << "| bridging length | " << fmt("%.3f", m.bridging_length) << " mm |\n"
-    << "| turnaround max slippage | " << fmt("%.4f", m.turnarounds.max_slippage) << " (friction "
+    << "| turnaround max slippage | " << slip(m.turnarounds.max_slippage) << " (friction "
     << fmt("%.3f", m.friction) << ") |\n"
     << "| turnaround above mu | " << fmt("%.3f", m.turnarounds.slip_length) << " mm ("
     << fmt("%.4f", m.turnarounds.slip_fraction) << " of " << fmt("%.3f", m.turnarounds.length)
@@ -415,7 +426,7 @@ std::string report_markdown(const WindingPlan& plan, const ExportResult& r) {
       << "| time | " << fmt("%.3f", f.time) << " s |\n"
       << "| winding angle | " << fmt("%.3f", f.min_angle) << " .. " << fmt("%.3f", f.max_angle)
       << " deg |\n"
-      << "| max slippage | " << fmt("%.4f", f.max_slippage) << " |\n";
+      << "| max slippage | " << slip(f.max_slippage) << " |\n";
   }
   if (!plan.cutlines.empty()) {
     o << "\n## Cut-lines\n\n| name | closed | length [mm] | plane normal | offset [mm] | "
@@ -455,7 +466,7 @@ std::string summary_text(const WindingPlan& plan, const ExportResult& r) {
     << "  coverage         " << m.coverage.brief_report() << "\n"
     << "  pattern          " << m.pattern << "\n"
     << "  spacing CV       " << fmt("%.4f", m.spacing_cv) << "\n"
-    << "  max slippage     " << fmt("%.4f", m.max_slippage) << "\n";
+    << "  max slippage     " << slip(m.max_slippage) << "\n";
   const PatternInfo& pi = m.pattern_info;
   const FrictionFigures& ff = m.friction_turnarounds;
   if (ff.planned && ff.transition) {

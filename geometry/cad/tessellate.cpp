@@ -252,4 +252,10 @@ Tessellation tessellate(const CadShape& cad, const TessellateOptions& options) {
   return out;
 }
 
+double fitted_angular_deflection(double radius, double band_width) {
+  if (!(radius > 0.0) || !(band_width > 0.0)) return 10.0;
+  const double deg = std::min(5.0, band_width / 4.0 / radius * 180.0 / M_PI);
+  return std::clamp(deg, 1.5, 10.0);
+}
+
 }  // namespace windplan

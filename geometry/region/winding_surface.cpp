@@ -188,7 +188,8 @@ AxisInference infer_spindle_axis(const Mesh& mesh, const AxisInferenceOptions& o
   return out;
 }
 
-RadiusProfile compute_radius_profile(const Mesh& mesh, const SpindleAxis& axis, int stations) {
+RadiusProfile compute_radius_profile(const Mesh& mesh, const SpindleAxis& axis, int stations,
+                                     bool bound_between) {
   RadiusProfile prof;
   if (mesh.num_vertices() == 0 || stations < 1) return prof;
   double amin = std::numeric_limits<double>::infinity(), amax = -amin;
@@ -222,6 +223,19 @@ RadiusProfile compute_radius_profile(const Mesh& mesh, const SpindleAxis& axis, 
     for (int i = std::max(i0, 0); i <= std::min(i1, stations); ++i) {
       const double t = (amin + i * h - ap) / (aq - ap);
       best[i] = std::max(best[i], axis.radius(p + t * (q - p)));
+    }
+  }
+  if (bound_between) {
+    // The largest radius over each interval [i, i + 1]: its vertices and its end planes' crossings.
+    std::vector<double> span(stations, 0.0);
+    for (int i = 0; i < stations; ++i) span[i] = std::max(best[i], best[i + 1]);
+    for (const Vec3& p : mesh.points()) {
+      const int i =
+          std::clamp(static_cast<int>(std::floor((axis.axial(p) - amin) / h)), 0, stations - 1);
+      span[i] = std::max(span[i], axis.radius(p));
+    }
+    for (int i = 0; i <= stations; ++i) {
+      best[i] = std::max(i > 0 ? span[i - 1] : 0.0, i < stations ? span[i] : 0.0);
     }
   }
   for (int i = 0; i <= stations; ++i) {

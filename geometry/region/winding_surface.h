@@ -71,6 +71,13 @@ double radius_spread(const Mesh& mesh, const SpindleAxis& axis,
 
 /// The largest radius of the mesh at `stations` + 1 equally spaced axial stations spanning the
 /// mesh (vertices and edge crossings of each station plane). \param stations >= 1
-RadiusProfile compute_radius_profile(const Mesh& mesh, const SpindleAxis& axis, int stations = 200);
+/// \param bound_between false: each station holds the vertices nearest to it and the edges
+///        crossing its plane, so the profile can dip below the mesh between stations (by 0.07 mm
+///        on a bent tube: an eye on the envelope then fell inside the clearance); true: each
+///        station holds the largest radius over the two intervals beside it (vertices in them and
+///        edge crossings of their planes; along an edge the radius is convex, so that is the
+///        largest over each interval), so the linear interpolation is never below the mesh.
+RadiusProfile compute_radius_profile(const Mesh& mesh, const SpindleAxis& axis, int stations = 200,
+                                     bool bound_between = false);
 
 }  // namespace windplan

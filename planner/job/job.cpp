@@ -165,7 +165,7 @@ void decode_mandrel(ConfigNode n, const std::filesystem::path& base, MandrelOpti
   n.get("repair", &m->repair);
   n.get("solid", &m->solid);
   n.get("linear_deflection", &m->tessellation.linear_deflection);
-  n.get("angular_deflection", &m->tessellation.angular_deflection);
+  m->angular_deflection_given = n.get("angular_deflection", &m->tessellation.angular_deflection);
   n.get("remesh", &m->remesh);
   if (ConfigNode a = n.section("axis"); a.present()) {
     std::array<double, 3> origin{0.0, 0.0, 0.0}, direction{0.0, 0.0, 1.0};
@@ -683,6 +683,15 @@ Job decode_job(ConfigNode root, const std::filesystem::path& file) {
   decode_machine(root.section("machine"), base, &job.machine);
   decode_output(root.section("output"), base, &job.output);
   decode_winding(root.section("winding"), &job.winding);
+  // A bent tube's tessellation fitted to its bends and band (issue 25; geometry/cad/tessellate.h).
+  if (job.mandrel.source == "bent_tube" && !job.mandrel.angular_deflection_given) {
+    double rho = job.mandrel.bent_tube.radius;
+    for (const BendParams& b : job.mandrel.bent_tube.bends) {
+      rho = std::min(rho, b.radius - job.mandrel.bent_tube.radius);
+    }
+    job.mandrel.tessellation.angular_deflection =
+        fitted_angular_deflection(rho, job.winding.band_width);
+  }
   decode_girth(root.section("girth"), &job.girth);
   decode_cutlines(root, base, &job.cutlines);
   decode_layers(root, job.winding, &job.layers);

@@ -44,8 +44,11 @@ struct MandrelOptions {
   bool repair = true;
   /// cad: the body to take from a file with several: its name or 1-based index ("" = largest).
   std::string solid;
-  /// cad and parametric: tessellation deflections (linear mm, angular degrees).
+  /// cad and parametric: tessellation deflections (linear mm, angular degrees). A bent_tube
+  /// without `angular_deflection` gets it fitted to its radius and winding.band_width by the job
+  /// loader (fitted_angular_deflection, geometry/cad/tessellate.h).
   TessellateOptions tessellation;
+  bool angular_deflection_given = false;  ///< the job gave mandrel.angular_deflection
   /// Isotropic remeshing target edge length (mm); 0 = off.
   double remesh = 0.0;
   /// The spindle axis, when given (`axis: {origin, direction}`); otherwise it is inferred.

@@ -81,7 +81,9 @@ struct TurnaroundStability {
 // Coverage measured on the laid bands (planner/winding/coverage.h says how).
 /// The figures at one station (see the header comment).
 struct StationCoverage {
-  double station = 0.0;                            ///< mm along the spindle axis
+  /// mm along the spindle axis; with CoverageReport::centre_line mm along the tube's centre line
+  /// (geometry/region/spine.h); off revolution without one, a level of the harmonic height
+  double station = 0.0;
   double loop_length = 0.0;                        ///< mm: the section loop's length
   std::array<int, 2> bands = {0, 0};               ///< bands per family (+, -)
   std::array<double, 2> family_bare = {0.0, 0.0};  ///< bare fraction per family
@@ -95,9 +97,19 @@ struct StationCoverage {
   double spacing_mean = 0.0;    ///< their mean (mm across the band)
 };
 
+/// The slippage |k_g / k_n| of a point where the fibre does not press on the mandrel (k_n = 0,
+/// k_g != 0): no friction holds it. Stored as this sentinel, written as "unbounded" (JSON null),
+/// never as a measured figure.
+constexpr double kUnboundedSlippage = 1e12;
+inline bool is_unbounded_slippage(double s) { return !(s < kUnboundedSlippage); }
+
 struct CoverageReport {
   std::vector<StationCoverage> stations;
   int skipped = 0;  ///< stations without a section loop around the axis
+  /// The stations are sections normal to a tube's centre line (StationCoverage::station: mm along
+  /// it, of centre_line_length mm).
+  bool centre_line = false;
+  double centre_line_length = 0.0;  ///< mm (centre_line only)
   // Over the measured stations:
   double bare_fraction = 0.0;   ///< the largest
   double widest_gap = 0.0;      ///< the largest (mm)

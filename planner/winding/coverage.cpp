@@ -211,14 +211,16 @@ bool CoverageOptions::is_valid(std::string* why) const {
 
 std::string CoverageReport::brief_report() const {
   if (!measured()) {
-    return "not measured (no station plane cuts the mandrel in a loop around the axis)";
+    return centre_line
+               ? "not measured (no section normal to the centre line goes around the tube)"
+               : "not measured (no station plane cuts the mandrel in a loop around the axis)";
   }
   return "bare " + fmt("%.2f", 100.0 * bare_fraction) + "% (widest gap " + fmt("%.1f", widest_gap) +
          " mm), widest overlap " + fmt("%.2f", widest_overlap) + " mm (" +
          fmt("%.2f", widest_overlap_largest) + " on the largest sections), up to " +
          std::to_string(max_stack) + " bands stacked, cover factor " + fmt("%.3f", cover_factor) +
          ", " + fmt("%.2f", mean_plies) + " plies, at " + std::to_string(stations.size()) +
-         " stations";
+         (centre_line ? " sections normal to the centre line" : " stations");
 }
 
 CoverageReport measure_coverage(const Mesh& surface, const SpindleAxis& axis,
@@ -252,7 +254,25 @@ CoverageReport measure_coverage(const Mesh& surface, const SpindleAxis& axis,
   std::unique_ptr<ClosestPointQuery> cpq;
   std::vector<std::vector<double>> coord(passes.size());
   double lo = 0.0, hi = 0.0;
-  if (hf) {
+  const Spine* spine = options.spine && !options.spine->empty() ? options.spine : nullptr;
+  std::unique_ptr<PlaneSectioner> sectioner;
+  if (spine) {  // arc length along the centre line
+    hf = nullptr;
+    sectioner = std::make_unique<PlaneSectioner>(surface, axis);
+    double sa = std::numeric_limits<double>::infinity(), sb = -sa;
+    for (std::size_t k = 0; k < passes.size(); ++k) {
+      for (const Vec3& p : passes[k]) {
+        coord[k].push_back(spine->project(p));
+        sa = std::min(sa, coord[k].back());
+        sb = std::max(sb, coord[k].back());
+      }
+    }
+    const double margin = std::isnan(options.end_margin) ? options.band_width : options.end_margin;
+    lo = sa + margin;
+    hi = sb - margin;
+    rep.centre_line = true;
+    rep.centre_line_length = spine->length();
+  } else if (hf) {
     cpq = std::make_unique<ClosestPointQuery>(surface);
     double ha = std::numeric_limits<double>::infinity(), hb = -ha;
     for (std::size_t k = 0; k < passes.size(); ++k) {
@@ -282,7 +302,19 @@ CoverageReport measure_coverage(const Mesh& surface, const SpindleAxis& axis,
   for (int k = 0; k < options.stations; ++k) {
     const double x = lo + (hi - lo) * (k + 0.5) / options.stations;
     Loop loop;
-    if (hf) {
+    Vec3 c0 = Vec3::Zero(), t0 = Vec3::UnitZ();  // the station's centre point and plane normal
+    double reach = 0.0;  // crossings farther than this from c0 belong to another part of the tube
+    if (spine) {
+      c0 = spine->point(x);
+      t0 = spine->tangent(x);
+      PlaneSection sec;
+      if (!sectioner->around_loop(t0, t0.dot(c0), &c0, &sec)) {
+        ++rep.skipped;
+        continue;
+      }
+      loop = make_loop(sec.points);
+      for (const Vec3& p : sec.points) reach = std::max(reach, 1.5 * (p - c0).norm());
+    } else if (hf) {
       const std::vector<Vec3> pts = level_loop(surface, *hf, x);
       if (pts.empty()) {
         ++rep.skipped;
@@ -307,10 +339,12 @@ CoverageReport measure_coverage(const Mesh& surface, const SpindleAxis& axis,
     for (std::size_t k = 0; k < passes.size(); ++k) {
       const std::vector<Vec3>& p = passes[k];
       for (std::size_t i = 1; i < p.size(); ++i) {
-        const double fa = coord[k][i - 1] - x, fb = coord[k][i] - x;
+        const double fa = spine ? t0.dot(p[i - 1] - c0) : coord[k][i - 1] - x;
+        const double fb = spine ? t0.dot(p[i] - c0) : coord[k][i] - x;
         if (!((fa < 0.0 && fb >= 0.0) || (fa >= 0.0 && fb < 0.0))) continue;
         const double t = fa / (fa - fb);
         const Vec3 q = p[i - 1] + t * (p[i] - p[i - 1]);
+        if (spine && (q - c0).norm() > reach) continue;
         const Vec3 dir = (p[i] - p[i - 1]).normalized();
         Vec3 tau = Vec3::UnitX();
         Band b;

@@ -27,6 +27,13 @@
 // Off a shape of revolution a plane normal to the axis cuts a bent tube obliquely, so there the
 // stations are the level sets of a height field of the wound region (CoverageOptions::height),
 // its natural cross-sections; StationCoverage::station is then the level (dimensionless).
+// Better, for a wound region that is a tube (CoverageOptions::spine, geometry/region/spine.h):
+// the stations are sections by planes NORMAL TO THE CENTRE LINE at arc lengths spread over the
+// passes' range along it (`end_margin` in from each end), the section loop the one around the
+// tube nearest the centre point; a pass crosses a station where it changes side of that plane
+// within reach of the loop (1.5 times the loop's largest distance from the centre point: a plane
+// through a bend also cuts the far leg), and its family is the sign of its direction along the
+// centre line's tangent. StationCoverage::station is then mm along the centre line.
 // Units: mm.
 #include <array>
 #include <string>
@@ -34,6 +41,7 @@
 
 #include "geometry/mesh/mesh.h"
 #include "geometry/region/axis.h"
+#include "geometry/region/spine.h"
 #include "planner/plan/plan.h"
 
 namespace windplan {
@@ -49,6 +57,9 @@ struct CoverageOptions {
   /// of the mandrel, not of the paths); the stations are then its level sets, spread over the range
   /// of h on the passes (5% in from each end), instead of planes normal to the axis. null: planes.
   const std::vector<double>* height = nullptr;
+  /// A tube's centre line (geometry/region/spine.h): stations are sections normal to it (wins
+  /// over `height`). null: none.
+  const Spine* spine = nullptr;
   bool is_valid(std::string* why) const;
 };
 

@@ -256,7 +256,7 @@ void annotate_fibre_points(std::vector<FibrePoint>* points, const SpindleAxis& a
     q.k_n = -dt.dot(nc);  // > 0 where the fibre bends towards the mandrel (convex)
     q.k_g = dt.dot(nc.cross(tc));
     q.slippage = std::fabs(q.k_n) > 1e-12 ? std::fabs(q.k_g / q.k_n)
-                                          : (std::fabs(q.k_g) > 1e-12 ? 1e12 : 0.0);
+                                          : (std::fabs(q.k_g) > 1e-12 ? kUnboundedSlippage : 0.0);
   }
 }
 

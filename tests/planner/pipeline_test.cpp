@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "geometry/base/errors.h"
+#include "geometry/region/spine.h"
+#include "planner/winding/coverage.h"
 #include "tests/test_data.h"
 
 namespace windplan {
@@ -347,6 +349,60 @@ TEST(Pipeline, BentTubeHasNoTurnLimit) {
   EXPECT_FALSE(r.has_turn_limit);
   EXPECT_TRUE(std::isnan(r.plan.metrics.geodesic_turn_limit));
   EXPECT_FALSE(has_turn_warning(r.plan.metrics));
+}
+
+// The shipped bent tube is a full layer (issue 25): no section normal to the centre line bare,
+// every pass point within mu, a closed pattern of the circuits auto chose; re-measured on a
+// centre line extracted from the mesh's section centroids (not the analytic one the plan used).
+TEST(Pipeline, BentTubeIsAFullLayerOnSectionsNormalToTheCentreLine) {
+  Job job = load_job(test::source_dir() / "configs" / "bent_tube.yaml");
+  job.cutlines.clear();
+  const PipelineResult r = plan_job(job);
+  const PlanMetrics& m = r.plan.metrics;
+  EXPECT_EQ(r.tube.source, "bent_tube centre line");
+  EXPECT_NEAR(r.tube.spine.length(), 400 + 100 * M_PI / 2, 0.05);
+  ASSERT_TRUE(m.coverage.centre_line);
+  EXPECT_GE(m.coverage.stations.size(), 12u);
+  EXPECT_EQ(m.coverage.bare_fraction, 0.0) << m.coverage.brief_report();
+  EXPECT_LE(m.max_slippage, job.winding.mu);
+  EXPECT_EQ(m.slip_fraction, 0.0);
+  EXPECT_EQ(r.laid, "evenly spread helix");
+  const int K = static_cast<int>(r.plan.circuits.size());
+  EXPECT_EQ(K, m.circuits_for_coverage);
+  EXPECT_TRUE(r.helices.summary.circuits_auto);
+  const Mandrel& md = r.mandrel;
+  const SpineResult extracted = extract_spine(
+      md.winding.mesh, {md.winding.loops[0].vertices, md.winding.loops[1].vertices}, md.axis);
+  CoverageOptions co;
+  co.band_width = job.winding.band_width;
+  co.stations = 30;
+  co.spine = &extracted.spine;
+  const CoverageReport again = measure_coverage(md.winding.mesh, md.axis, r.plan.circuits, co);
+  EXPECT_EQ(again.bare_fraction, 0.0) << again.brief_report();
+  // One circuit fewer leaves a section bare: auto did not add circuits for nothing.
+  Job fewer = job;
+  fewer.winding.circuits = K - 1;
+  const PipelineResult f = plan_job(fewer);
+  EXPECT_GT(f.plan.metrics.coverage.bare_fraction, 0.0);
+}
+
+// Where the evenly spread helices would need more friction than mu, the geodesics are laid and
+// the warning gives both sets of figures and what to change.
+TEST(Pipeline, BentTubeHelicesAboveMuAreNotLaid) {
+  Job job = load_job(test::source_dir() / "configs" / "bent_tube.yaml");
+  job.cutlines.clear();
+  job.winding.turns = 8;
+  job.winding.circuits = 12;
+  const PipelineResult r = plan_job(job);
+  EXPECT_EQ(r.laid, "geodesic");
+  EXPECT_LE(r.plan.metrics.max_slippage, job.winding.mu);
+  bool named = false;
+  for (const std::string& w : r.plan.metrics.warnings) {
+    named |= w.find("tube passes:") != std::string::npos &&
+             w.find("the geodesics are laid") != std::string::npos &&
+             w.find("more turns") != std::string::npos;
+  }
+  EXPECT_TRUE(named);
 }
 
 TEST(Pipeline, WindingSectionErrorsNameTheKey) {

@@ -6,6 +6,7 @@
 
 #include "geometry/base/errors.h"
 #include "geometry/region/winding_surface.h"
+#include "tests/geometry/region/tube_fixtures.h"
 #include "tests/mesh_fixtures.h"
 
 namespace windplan {
@@ -144,6 +145,33 @@ TEST(RadiusProfile, CylinderAndCone) {
     EXPECT_NEAR(c.radius[i], 60 - 0.4 * c.axial[i], 1e-9);
   }
   EXPECT_NEAR(c.at(25.0), 50.0, 1e-9);
+}
+
+// A bent tube about z: its largest radius varies between the profile's stations in ways the
+// stations do not see; bound_between keeps the interpolated profile above every vertex and edge
+// point (the eye envelope is dilated from it: issue 25's elbows put the eye 0.07 mm inside the
+// clearance).
+TEST(RadiusProfile, BoundBetweenStationsIsNeverBelowTheMesh) {
+  test::BentTube tube;
+  tube.around = 48;
+  const Mesh m = tube.mesh();
+  const SpindleAxis z;
+  auto worst_below = [&](const RadiusProfile& p) {
+    double worst = 0.0;
+    for (int e = 0; e < m.num_edges(); ++e) {
+      const int h = m.edge_halfedge(e);
+      for (int k = 0; k <= 20; ++k) {
+        const Vec3 q =
+            m.position(m.from(h)) + k / 20.0 * (m.position(m.to(h)) - m.position(m.from(h)));
+        worst = std::max(worst, z.radius(q) - p.at(z.axial(q)));
+      }
+    }
+    return worst;
+  };
+  const double plain = worst_below(compute_radius_profile(m, z, 40));
+  const double bounded = worst_below(compute_radius_profile(m, z, 40, true));
+  EXPECT_GT(plain, 0.01);
+  EXPECT_LE(bounded, 1e-9);
 }
 
 }  // namespace

@@ -13,8 +13,11 @@
 #include "geometry/cad/section_mandrel.h"
 #include "geometry/mesh/mesh_io.h"
 #include "geometry/mesh/mesh_validation.h"
+#include "geometry/mesh/surface_path.h"
+#include "geometry/region/spine.h"
 #include "planner/job/job.h"
 #include "planner/mandrel/mandrel_builder.h"
+#include "planner/winding/helix.h"
 #include "tests/test_data.h"
 
 namespace windplan {
@@ -23,6 +26,74 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path config(const std::string& name) { return test::source_dir() / "configs" / name; }
+
+// The spread of Clairaut's invariant (R + r cos theta) cos alpha along the bend of a geodesic pass
+// on a parametric bent tube (theta from the outside of the bend, alpha to the centre line):
+// (max - min) / mean over the pass's points on the bend, directions from chords of +-2 mm.
+double bend_clairaut_spread(const Job& job, int* triangles) {
+  const Mandrel md = build_mandrel(job.mandrel);
+  *triangles = md.winding.mesh.num_faces();
+  const BentTubeParams& bt = job.mandrel.bent_tube;
+  const double r = bt.radius, R = bt.bends[0].radius, leg = bt.segments[0];
+  WindingOptions w = job.winding;
+  w.circuits = 1;
+  const HelixPlan plan =
+      plan_helices(md.winding.mesh, {md.winding.loops[0].vertices, md.winding.loops[1].vertices},
+                   {}, md.axis, w);
+  const Spine sp = spine_from_polyline(bent_tube_centreline(bt, 720));
+  const bool reversed =
+      (sp.points.front() - md.winding.mesh.position(md.winding.loops[0].vertices[0])).norm() >
+      2 * r;
+  double lo = 1e300, hi = -1e300, sum = 0;
+  int n = 0;
+  for (const HelixPass& p : plan.passes) {
+    const std::vector<Vec3> pl = polyline(md.winding.mesh, p.path);
+    for (std::size_t i = 0; i < pl.size(); ++i) {
+      double s = sp.project(pl[i]);
+      (void)reversed;
+      if (s < leg + 2 || s > leg + R * bt.bends[0].angle * M_PI / 180 - 2) continue;
+      std::size_t a = i, b = i;
+      while (a > 0 && (pl[i] - pl[a]).norm() < 2) --a;
+      while (b + 1 < pl.size() && (pl[b] - pl[i]).norm() < 2) ++b;
+      const Vec3 d = (pl[b] - pl[a]).normalized();
+      const Vec3 c = sp.point(s), t = sp.tangent(s);
+      // The bend's centre: c + R * (inward normal); the outside direction is away from it.
+      const Vec3 q = pl[i] - c;
+      const double ds = 1.0;
+      const Vec3 k = (sp.tangent(s + ds) - sp.tangent(s - ds)) / (2 * ds);  // curvature vector
+      const Vec3 inward = k.normalized();
+      const double cos_theta = -q.dot(inward) / q.norm();
+      const double inv = (R + r * cos_theta) * std::fabs(d.dot(t));
+      lo = std::min(lo, inv);
+      hi = std::max(hi, inv);
+      sum += inv;
+      ++n;
+    }
+  }
+  return n > 0 ? (hi - lo) / (sum / n) : -1;
+}
+
+// Tessellation fit for the bend (issue 25): at default settings a geodesic keeps Clairaut's
+// (R + r cos theta) cos alpha within 1% along a 3r bend; the old default 10 deg does not.
+TEST(MandrelBuilder, BentTubeTessellationKeepsClairautOnA3rBend) {
+  const std::string tube =
+      "mandrel:\n  source: bent_tube\n"
+      "  bent_tube: {radius: 25, segments: [100, 100], bends: [{angle: 90, radius: 75}]}\n";
+  const std::string winding = "winding: {turns: 3, band_width: 8}\n";
+  const Job fitted = load_job_from_string(tube + winding, "/tmp/fit.yaml");
+  EXPECT_FALSE(fitted.mandrel.angular_deflection_given);
+  EXPECT_NEAR(fitted.mandrel.tessellation.angular_deflection, 8.0 / 4 / 25 * 180 / M_PI, 1e-9);
+  int tris = 0;
+  const double spread = bend_clairaut_spread(fitted, &tris);
+  EXPECT_GT(spread, 0.0);
+  EXPECT_LT(spread, 0.01) << tris << " triangles";
+  const Job coarse =
+      load_job_from_string(tube + "  angular_deflection: 10\n" + winding, "/tmp/coarse.yaml");
+  EXPECT_TRUE(coarse.mandrel.angular_deflection_given);
+  int coarse_tris = 0;
+  EXPECT_GT(bend_clairaut_spread(coarse, &coarse_tris), 0.02);
+  EXPECT_LT(coarse_tris, tris);
+}
 
 double signed_volume(const Mesh& m) {
   double v = 0.0;

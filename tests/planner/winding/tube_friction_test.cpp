@@ -50,7 +50,7 @@ TEST(TubeFriction, ElbowLayerHoldsItsAngleWithinMu) {
   const Job job = load_job_from_string(elbow(250, kLayer), "/tmp/elbow.yaml");
   const PipelineResult r = plan_job(job);
   ASSERT_TRUE(r.tube_friction);
-  const TubeFrictionWinding& w = r.tube;
+  const TubeFrictionWinding& w = r.tube_layer;
   EXPECT_NEAR(w.required, 0.179, 5e-4);
   EXPECT_EQ(w.K, 16);  // ceil(2 pi 50 cos 55 / 12) = ceil(15.02)
   EXPECT_TRUE(w.summary.closed) << w.summary.brief_report();
@@ -159,7 +159,7 @@ TEST(TubeFriction, PinRingsHoldTheTurnarounds) {
       elbow(250, std::string(kLayer) + "  circuits: 23\n  pins: {count: 24, diameter: 4}\n"),
       "/tmp/e.yaml"));
   ASSERT_TRUE(r.tube_friction);
-  const TubeFrictionWinding& w = r.tube;
+  const TubeFrictionWinding& w = r.tube_layer;
   EXPECT_EQ(w.pins, 24);
   EXPECT_TRUE(w.summary.closed) << w.summary.brief_report();
   EXPECT_LT(w.spread_deg, 1e-6);
@@ -217,8 +217,8 @@ TEST(TubeFriction, TurnsPerPassChooseTheAngle) {
       elbow(250, "  turns: 3.2\n  slippage: 0.19\n  mu: 0.2\n  band_width: 12\n"), "/tmp/e.yaml"));
   ASSERT_TRUE(r.tube_friction);
   // The closing apex moves shorten some passes: the plan's turns are a little below 2.5.
-  EXPECT_NEAR(r.tube.turns_per_pass, 3.2, 0.15);
-  EXPECT_LE(r.tube.turns_per_pass, 3.2 + 1e-9);
+  EXPECT_NEAR(r.tube_layer.turns_per_pass, 3.2, 0.15);
+  EXPECT_LE(r.tube_layer.turns_per_pass, 3.2 + 1e-9);
   o.turns = 40;
   EXPECT_THROW(tube_angle_for_turns(line, 0, line.length(), o), ConfigError);
 }

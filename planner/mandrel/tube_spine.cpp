@@ -1,0 +1,55 @@
+#include "planner/mandrel/tube_spine.h"
+
+#include <algorithm>
+
+#include "geometry/base/errors.h"
+#include "geometry/cad/parametric_mandrel.h"
+
+namespace windplan {
+
+TubeSpine mandrel_tube_spine(const Mandrel& md, const MandrelOptions& options) {
+  TubeSpine t;
+  const WindingSurface& ws = md.winding;
+  const std::array<std::vector<int>, 2> loops{ws.loops[0].vertices, ws.loops[1].vertices};
+  if (options.source == "bent_tube") {
+    std::vector<Vec3> pts = bent_tube_centreline(options.bent_tube, 90);
+    // Drop repeated points (a zero-length segment) before building the spine.
+    std::vector<Vec3> clean;
+    for (const Vec3& p : pts) {
+      if (clean.empty() || (p - clean.back()).norm() > 1e-9) clean.push_back(p);
+    }
+    std::array<Vec3, 2> c;
+    for (int e = 0; e < 2; ++e) {
+      std::vector<Vec3> lp;
+      for (int v : loops[e]) lp.push_back(ws.mesh.position(v));
+      c[e] = loop_centroid(lp);
+    }
+    if (clean.size() >= 2) {
+      if ((clean.front() - c[0]).norm() > (clean.back() - c[0]).norm()) {
+        std::reverse(clean.begin(), clean.end());
+      }
+      Spine sp = spine_from_polyline(clean);
+      double d0 = 0.0, d1 = 0.0;
+      sp.project(c[0], &d0);
+      sp.project(c[1], &d1);
+      if (std::max(d0, d1) <= 0.02 * options.bent_tube.radius) {
+        t.spine = std::move(sp);
+        t.source = "bent_tube centre line";
+        t.summary.sections = static_cast<int>(t.spine.points.size());
+        t.summary.mean_radius = options.bent_tube.radius;
+        return t;
+      }
+    }
+  }
+  try {
+    SpineResult r = extract_spine(ws.mesh, loops, md.axis, {}, "tube centre line");
+    t.spine = std::move(r.spine);
+    t.summary = r.summary;
+    t.source = "section centroids";
+  } catch (const InputError& e) {
+    t.why = e.what();
+  }
+  return t;
+}
+
+}  // namespace windplan

@@ -1,0 +1,29 @@
+#pragma once
+// The centre line of a mandrel whose wound region is a tube (geometry/region/spine.h for the
+// convention: s from the wound region's start loop, loop 0, to its end loop).
+//
+// A parametric bent tube (mandrel.source: bent_tube) has it in closed form: its centre line
+// (geometry/cad/parametric_mandrel.h, bent_tube_centreline) sampled at 90 points per bend,
+// oriented from loop 0. Every other source that is not a shape of revolution gets it from the
+// centroids of its sections (extract_spine). The analytic line is used only when both loops'
+// centroids lie on it (within 2% of the tube radius; a region cut or a remesh can move them);
+// otherwise it is extracted too.
+#include <string>
+
+#include "geometry/region/spine.h"
+#include "planner/mandrel/mandrel_builder.h"
+
+namespace windplan {
+
+struct TubeSpine {
+  Spine spine;         ///< empty when the wound region is not a tube
+  std::string source;  ///< "bent_tube centre line", "section centroids" or "" (none)
+  std::string why;     ///< when empty: why (the extraction's message)
+  SpineSummary summary;
+};
+
+/// The wound region's centre line. Never throws for a region that is not a tube: `spine` is then
+/// empty and `why` says what failed.
+TubeSpine mandrel_tube_spine(const Mandrel& mandrel, const MandrelOptions& options);
+
+}  // namespace windplan
