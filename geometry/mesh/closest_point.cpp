@@ -93,10 +93,14 @@ int ClosestPointQuery::build(int begin, int end) {
 }
 
 ClosestPointQuery::Hit ClosestPointQuery::closest(const Vec3& q) const {
+  return closest_within(q, std::numeric_limits<double>::infinity());
+}
+
+ClosestPointQuery::Hit ClosestPointQuery::closest_within(const Vec3& q, double bound2) const {
   Hit best;
   best.distance = std::numeric_limits<double>::infinity();
   if (nodes_.empty()) return best;
-  double best2 = best.distance;
+  double best2 = bound2;
   auto box_dist2 = [&](const Node& n) {
     const Vec3 d = (n.lo - q).cwiseMax(q - n.hi).cwiseMax(Vec3::Zero());
     return d.squaredNorm();
@@ -132,7 +136,7 @@ ClosestPointQuery::Hit ClosestPointQuery::closest(const Vec3& q) const {
       }
     }
   }
-  best.distance = std::sqrt(best2);
+  if (best.point.element >= 0) best.distance = std::sqrt(best2);
   return best;
 }
 

@@ -1,6 +1,7 @@
 #include "export/machine/eye_envelope.h"
 
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -85,6 +86,46 @@ TEST(EyeEnvelope, ClearanceIsTheTrueDistanceOnSphereAndTorusMeshes) {
     const ClearanceCheck cc = check_clearance(q, eyes);
     EXPECT_NEAR(cc.min_distance, c, 0.02);
   }
+}
+
+TEST(EyeEnvelope, ClearanceIsTheMinimumOfEveryEyesFullQuery) {
+  // check_clearance bounds each query by the nearest eye so far (closest_within); the minimum,
+  // its index and both points must be those of querying every eye in full, bit for bit.
+  const Mesh mesh(test::torus(80, 25, 96, 48));
+  const ClosestPointQuery q(mesh);
+  std::vector<Vec3> eyes;
+  for (int i = 0; i < 400; ++i) {
+    const double v = 2 * M_PI * std::fmod(0.377 * i, 1.0), u = 0.61 * i;
+    const double d = 25 + 5 + 30 * std::fmod(0.7131 * i * i + 0.5, 1.0);  // 5..35 mm off
+    const double rho = 80 + d * std::cos(v);
+    eyes.push_back(Vec3(rho * std::cos(u), rho * std::sin(u), d * std::sin(v)));
+  }
+  double best = std::numeric_limits<double>::infinity();
+  int worst = -1;
+  Vec3 surface = Vec3::Zero();
+  for (int i = 0; i < static_cast<int>(eyes.size()); ++i) {
+    const ClosestPointQuery::Hit h = q.closest(eyes[i]);
+    if (h.distance < best) {
+      best = h.distance;
+      worst = i;
+      surface = h.position;
+    }
+    // Bounded above the distance: the same hit; at or below it: none.
+    const double d2 = (h.position - eyes[i]).squaredNorm();
+    const ClosestPointQuery::Hit above = q.closest_within(eyes[i], d2 * (1 + 1e-12));
+    EXPECT_EQ(above.point.element, h.point.element);
+    EXPECT_EQ(above.distance, h.distance);
+    EXPECT_EQ(q.closest_within(eyes[i], d2).point.element, -1);
+    EXPECT_EQ(q.closest_within(eyes[i], 0.9 * d2).distance,
+              std::numeric_limits<double>::infinity());
+  }
+  const ClearanceCheck cc = check_clearance(q, eyes);
+  EXPECT_EQ(cc.checked, 400);
+  EXPECT_EQ(cc.min_distance, best);
+  EXPECT_EQ(cc.worst, worst);
+  EXPECT_EQ(cc.worst_eye, eyes[worst]);
+  EXPECT_EQ(cc.worst_surface, surface);
+  EXPECT_GT(worst, 0);  // the nearest eye is not the first one (the bound was used)
 }
 
 TEST(EyeEnvelope, Lathe2EyeRunsOnTheCylinderOfTheGivenRadius) {
