@@ -95,8 +95,11 @@ int main(int argc, char** argv) {
       char* end = nullptr;
       const long n = i + 1 < rest.size() ? std::strtol(rest[i + 1].c_str(), &end, 10) : 0;
       if (i + 1 >= rest.size() || end == rest[i + 1].c_str() || *end != '\0' || n < 1 || n > 4096) {
-        std::cerr << "windplan " << c.name << ": --threads expects an integer >= 1"
-                  << (i + 1 < rest.size() ? ", got '" + rest[i + 1] + "'" : std::string()) << "\n"
+        // (100000 was refused as "below 1": the message names both bounds.)
+        std::cerr << "windplan " << c.name << ": --threads expects an integer from 1 to 4096"
+                  << (i + 1 < rest.size() ? ", got '" + printable(rest[i + 1]) + "'"
+                                          : std::string())
+                  << (n > 4096 ? " (more threads than any machine runs at once)" : "") << "\n"
                   << "run 'windplan " << c.name << " --help' for usage\n";
         return 2;
       }

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -117,6 +118,24 @@ bool starts_with(const std::string& s, const std::string& prefix) {
 
 }  // namespace
 
+namespace {
+
+// A robot program of export/robot/robot_program.h: "wp_<job>.src|.dat|.mod" and its parts
+// "wp_<job>_pNN.*" (the job's name as robot_program_base() writes it: letters, digits, '_').
+bool is_robot_program_name(const std::string& name) {
+  const std::size_t dot = name.rfind('.');
+  if (name.rfind("wp_", 0) != 0 || dot == std::string::npos || dot <= 3) return false;
+  const std::string ext = name.substr(dot);
+  if (ext != ".src" && ext != ".dat" && ext != ".mod") return false;
+  for (std::size_t i = 3; i < dot; ++i) {
+    const char c = name[i];
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 bool is_windplan_output_name(const std::string& name) {
   static const std::set<std::string> names = {
       "fibre_path.csv", "payout.csv",    "axes.csv",           "eye_pose.csv",
@@ -124,8 +143,9 @@ bool is_windplan_output_name(const std::string& name) {
       "mesh.ply",       "paths.ply",     "development.svg",    "report.json",
       "report.md",      "manifest.json", "axes.svg",           "viewer.html",
       "laminate.csv",   "laminate.vtu",  "layer_profiles.csv", "layer_profiles.svg",
-      "stability.svg"};
-  if (names.count(name)) return true;
+      "stability.svg",  "joints.csv",    "joints.svg",         "model.inp",
+      "model_plies.csv", "design.md"};
+  if (names.count(name) || is_robot_program_name(name)) return true;
   // "<name>.tmp.<pid>": a temporary of write_file_atomically left by a killed run.
   const std::size_t t = name.rfind(".tmp.");
   if (t == std::string::npos || t + 5 == name.size()) return false;

@@ -12,8 +12,9 @@ namespace windplan {
 
 namespace {
 
-constexpr double kMaxWordValue = 1e9;     // any word's value but F's
-constexpr double kMaxLinearTravel = 1e5;  // mm: a linear axis beyond 100 m is no winder's
+constexpr double kMaxWordValue = 1e9;      // any word's value but F's
+constexpr double kMaxLinearTravel = 1e5;   // mm: a linear axis beyond 100 m is no winder's
+constexpr std::size_t kMaxCallDepth = 10;  // nested M98 calls
 
 struct Word {
   char letter;
@@ -278,6 +279,13 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
       const auto lab = labels.find(call);
       if (lab == labels.end())
         fail(ln.number, "M98 calls O" + std::to_string(call) + ", not in the program");
+      // Fanuc nests subprograms a few levels deep (4 on most controls); a call of itself
+      // recursed until the step bound, gigabytes later (found by fuzz_gcode).
+      if (stack.size() >= kMaxCallDepth) {
+        fail(ln.number, "M98 calls O" + std::to_string(call) + " nested more than " +
+                            std::to_string(kMaxCallDepth) +
+                            " deep (a subprogram that calls itself?)");
+      }
       stack.push_back(pc);
       pc = lab->second;
       continue;

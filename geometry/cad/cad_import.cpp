@@ -122,7 +122,9 @@ bool CadImportOptions::is_valid(std::string* why) const {
 
 bool is_cad_file(const std::filesystem::path& file) { return !format_of(file).empty(); }
 
-CadImport import_cad(const std::filesystem::path& file, const CadImportOptions& options) {
+namespace {
+
+CadImport import_cad_unguarded(const std::filesystem::path& file, const CadImportOptions& options) {
   std::string why;
   if (!options.is_valid(&why)) throw ConfigError("CAD import: " + why);
   const std::string name = file.string();
@@ -327,6 +329,21 @@ CadImport import_cad(const std::filesystem::path& file, const CadImportOptions& 
     out.warnings.push_back(msg);
   }
   return out;
+}
+
+}  // namespace
+
+CadImport import_cad(const std::filesystem::path& file, const CadImportOptions& options) {
+  // The whole import under OCCT's fault handlers, not only the reader and the sewing: a fault in
+  // the topology queries after them (free edges, volumes) is reported with the file too.
+  OcctSignalScope signals;
+  try {
+    OCC_CATCH_SIGNALS
+    return import_cad_unguarded(file, options);
+  } catch (const Standard_Failure& e) {
+    throw IoError(file.string() + ": " +
+                  occt_failure_text(e.GetMessageString() ? e.GetMessageString() : ""));
+  }
 }
 
 }  // namespace windplan

@@ -110,7 +110,9 @@ double signed_volume(const TriangleSoup& s) {
 
 }  // namespace
 
-Tessellation tessellate(const CadShape& cad, const TessellateOptions& options) {
+namespace {
+
+Tessellation tessellate_unguarded(const CadShape& cad, const TessellateOptions& options) {
   std::string why;
   if (!options.is_valid(&why)) throw ConfigError("tessellation: " + why);
   if (cad.empty() || cad.data()->shape.IsNull()) throw InputError("tessellation: empty CAD shape");
@@ -250,6 +252,20 @@ Tessellation tessellate(const CadShape& cad, const TessellateOptions& options) {
   out.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+}  // namespace
+
+Tessellation tessellate(const CadShape& cad, const TessellateOptions& options) {
+  // The whole tessellation under OCCT's fault handlers: the mesher and the triangulation reads.
+  OcctSignalScope signals;
+  try {
+    OCC_CATCH_SIGNALS
+    return tessellate_unguarded(cad, options);
+  } catch (const Standard_Failure& e) {
+    throw InputError(std::string("tessellation: ") +
+                     occt_failure_text(e.GetMessageString() ? e.GetMessageString() : ""));
+  }
 }
 
 double fitted_angular_deflection(double radius, double band_width) {

@@ -162,6 +162,26 @@ TriangleSoup read_obj(const std::filesystem::path& path, const std::string& data
         }
         q = e;
       }
+      // Then x y z [w] or x y z r g b (vertex colours): 0, 1 or 3 more numbers. A line of more
+      // (1e7 numbers were read as one vertex, every index after it shifted) is refused.
+      int extra = 0;
+      for (;;) {
+        q = skip_spaces(q, eol);
+        if (q >= eol || *q == '#' || *q == '\r') break;
+        double unused = 0.0;
+        const char* e = parse_double(q, eol, &unused);
+        if (!e || (e < eol && !is_space(*e))) {
+          fail_line(path, line, "malformed vertex coordinate " + token_at(q, eol));
+        }
+        q = e;
+        if (++extra > 3) break;
+      }
+      if (extra == 2 || extra > 3) {
+        fail_line(path, line,
+                  std::string("a 'v' line with ") + (extra > 3 ? "more than 6" : "5") +
+                      " numbers; a vertex is 'v x y z', 'v x y z w' or 'v x y z r g b' (one "
+                      "vertex per line)");
+      }
       soup.points.emplace_back(c[0], c[1], c[2]);
       check_finite(path, soup.points.back(), soup.points.size() - 1, line);
     } else if (q + 1 < eol && is_space(q[1]) && q[0] == 'f') {

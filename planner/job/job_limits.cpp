@@ -203,6 +203,14 @@ double estimate_plan_points(const WindingOptions& w, double radius, double axial
 void check_plan_size(const WindingOptions& w, double radius, double axial, double edge,
                      const JobLimits& limits) {
   const double circumference = 2.0 * M_PI * radius;
+  if (w.band_width > circumference) {
+    // Named up front (issue 28: found only by a late replay error).
+    throw ConfigError("key 'winding.band_width' = " + num(w.band_width) +
+                      " mm is wider than the mandrel's circumference, " + num(circumference) +
+                      " mm at its largest radius " + num(radius) +
+                      " mm: one band would lap over itself; check the band width and the "
+                      "mandrel's units");
+  }
   if (w.circuits == 0 && circumference / w.band_width > limits.max_circuits) {
     throw ConfigError("key 'winding.band_width' = " + num(w.band_width) + " mm gives about " +
                       num(circumference / w.band_width) + " circuits on a circumference of " +
@@ -305,6 +313,13 @@ void check_job_limits(const Job& job, const ConfigNode& root, const JobLimits& l
   }
   const double circumference = 2.0 * M_PI * s.radius;
   const double k_auto = circumference / w.band_width;
+  if (w.band_width > circumference) {
+    c.fail("winding.band_width", w.band_width, " mm",
+           "is wider than the mandrel's circumference, " + num(circumference) +
+               " mm at its largest radius " + num(s.radius) +
+               " mm: one band would lap over itself; check the band width and the mandrel's "
+               "size");
+  }
   if (w.circuits == 0 && k_auto > l.max_circuits) {
     c.fail("winding.band_width", w.band_width, " mm",
            "gives about " + num(k_auto) + " circuits on a circumference of " + num(circumference) +

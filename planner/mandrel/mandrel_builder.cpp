@@ -182,6 +182,13 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
   } else {
     out.health = check_mesh(TriangleSoup{out.mesh.points(), out.mesh.triangles()});
   }
+  // A mesh of degenerate triangles only (collinear or repeated vertices) was reported by the
+  // axis inference without the file (issue 28).
+  if (!(out.mesh.total_area() > 0.0)) {
+    throw InputError("mandrel (" + describe(m, selected) + "): the mesh has zero area (" +
+                     std::to_string(out.mesh.num_faces()) +
+                     " triangles, all degenerate: collinear or repeated vertices)");
+  }
   // Axis.
   if (m.has_axis) {
     out.axis = m.axis;

@@ -7,6 +7,8 @@
 #include <numeric>
 #include <string>
 
+#include "geometry/base/format_number.h"
+
 namespace windplan {
 
 /// A number of turns N for messages and reports, e.g. "1", "0.55", "2.5" (%g: six significant
@@ -90,13 +92,13 @@ struct WindingOptions {
       return fail("circuits must be >= 1 or auto (got " + std::to_string(circuits) + ")");
     }
     if (!(band_width > 0.0) || !std::isfinite(band_width)) {
-      return fail("band_width must be > 0 mm (got " + std::to_string(band_width) + ")");
+      return fail("band_width must be > 0 mm (got " + format_shortest(band_width) + ")");
     }
     if (!(beta >= 0.0 && beta <= 1.0)) {
-      return fail("beta must be in [0, 1] (got " + std::to_string(beta) + ")");
+      return fail("beta must be in [0, 1] (got " + format_shortest(beta) + ")");
     }
     if (!(mu >= 0.0) || !std::isfinite(mu)) {
-      return fail("mu must be >= 0 (got " + std::to_string(mu) + ")");
+      return fail("mu must be >= 0 (got " + format_shortest(mu) + ")");
     }
     if (!(slippage >= 0.0) || !std::isfinite(slippage)) {
       return fail("slippage must be >= 0 (got " + format_turns(slippage) + ")");

@@ -261,6 +261,11 @@ TEST_F(CliOutputSet, AnEmptyOrLinkedOutIsRefusedBeforePlanning) {
   test::RunResult r = run({"run", config("pipe.yaml").string(), "--out", ""});
   EXPECT_EQ(r.code, 2) << r.err;  // was exit 3, internal error
   EXPECT_NE(r.err.find("--out needs a folder name"), std::string::npos) << r.err;
+  r = run({"run", config("pipe.yaml").string(), "--threads", "100000"});
+  EXPECT_EQ(r.code, 2) << r.err;  // was "expects an integer >= 1"
+  EXPECT_NE(r.err.find("--threads expects an integer from 1 to 4096, got '100000' (more threads"),
+            std::string::npos)
+      << r.err;
   fs::create_symlink(dir_ / "gone", dir_ / "dangling");
   r = run({"run", config("pipe.yaml").string(), "--out", (dir_ / "dangling").string()});
   EXPECT_EQ(r.code, 1) << r.err;

@@ -302,5 +302,17 @@ TEST(OutputNames, WindplanNamesAndTheirTemporaries) {
   EXPECT_FALSE(is_windplan_output_name("thesis.tex"));
 }
 
+// The files of robot cells (export/robot) and of design: jobs (export/files/fea_deck.h) are
+// windplan's: a second run of such a job into its own folder replaces them.
+TEST(OutputNames, RobotProgramsAndDesignFiles) {
+  for (const char* n : {"wp_bent_tube.src", "wp_bent_tube_p03.dat", "wp_elbow_robot_p01.mod",
+                        "joints.csv", "joints.svg", "model.inp", "model_plies.csv", "design.md"}) {
+    EXPECT_TRUE(is_windplan_output_name(n)) << n;
+  }
+  for (const char* n : {"wp_.src", "wp_a b.src", "wp_job.txt", "xp_job.src", "wp_../x.mod"}) {
+    EXPECT_FALSE(is_windplan_output_name(n)) << n;
+  }
+}
+
 }  // namespace
 }  // namespace windplan

@@ -96,6 +96,12 @@ TEST(GcodeReader, AsStrictAsLinuxCnc) {
   expect_error(head + "G1 X1 X2 A1 F10\nM2\n", lc, "edit.ngc:3: two X words on one line");
   expect_error(head + "G1 X1 A1 F10 F20\nM2\n", lc, "edit.ngc:3: two F words on one line");
   expect_error(head + "G0 G1 X1 A1 F10\nM2\n", lc, "edit.ngc:3: two motion codes");
+  // A subprogram that calls itself recursed until the step bound (found by fuzz_gcode).
+  const MachineOptions fanuc = machine("lathe2", "fanuc");
+  expect_error(
+      "%\nO1000\nN1 G21 G90 G93\nN2 G0 X0 A0\nN3 M98 P1001\nN4 M30\nO1001\n"
+      "N5 G1 X1 A1 F10\nN6 M98 P1001\nN7 M99\n%\n",
+      fanuc, "edit.ngc:9: M98 calls O1001 nested more than 10 deep");
   // An M2 after 1 of 3 moves: the rest was silently never replayed.
   expect_error(head + "G1 X1 A1 F10\nM2\nG1 X2 A2 F10\nG1 X3 A3 F10\nM2\n", lc,
                "edit.ngc:4: the end code here stops the program, but 3 more line(s) follow "

@@ -396,6 +396,22 @@ TEST_F(MeshIo, NanCoordinatesNameTheVertex) {
   EXPECT_NE(es.find("triangle 1 corner 1 has a NaN"), std::string::npos) << es;
 }
 
+// Issue 28: a 'v' line with many numbers was read as one vertex (every index after it shifted).
+TEST_F(MeshIo, ObjVertexLinesHoldThreeFourOrSixNumbers) {
+  std::string many = "v 0 0 0\nv 1 0 0";
+  for (int i = 0; i < 1000; ++i) many += " 0 1 0";
+  many += "\nv 0 1 0\nf 1 2 3\n";
+  const std::string e = error_of(write("many.obj", many));
+  EXPECT_NE(e.find("many.obj:2: a 'v' line with more than 6 numbers"), std::string::npos) << e;
+  const std::string e5 = error_of(write("five.obj", "v 0 0 0 1 1\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  EXPECT_NE(e5.find("five.obj:1: a 'v' line with 5 numbers"), std::string::npos) << e5;
+  // w, and r g b vertex colours, as other programs write them; a trailing comment.
+  const TriangleSoup ok =
+      read_mesh(write("ok.obj", "v 0 0 0 1\nv 1 0 0 0.5 0.5 0.5\nv 0 1 0 # top\nf 1 2 3\n"));
+  ASSERT_EQ(ok.points.size(), 3u);
+  EXPECT_EQ(ok.points[1], Vec3(1, 0, 0));
+}
+
 TEST_F(MeshIo, MalformedNumbersNameTheLine) {
   const std::string e = error_of(write("m.obj", "v 0 0 0\nv 1 0x 0\n"));
   EXPECT_NE(e.find("m.obj:2:"), std::string::npos) << e;

@@ -146,5 +146,11 @@ TEST(ConfigNode, JobNamesMustBeShownAsWritten) {
   EXPECT_NE(e.find("key 'name': is blank (only spaces)"), std::string::npos) << e;
 }
 
+// "(got 1.000000)" hid why beta 1.0000001 is not in [0, 1] (issue 28).
+TEST(ConfigNode, ValuesInMessagesHaveTheirDigits) {
+  const std::string e = test::job_load_error(kPipe + "winding: {beta: 1.0000001}\n");
+  EXPECT_NE(e.find("beta must be in [0, 1] (got 1.0000001)"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace windplan

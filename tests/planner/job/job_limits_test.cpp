@@ -122,5 +122,27 @@ TEST(JobLimits, PlanPointEstimateAndItsBoundOnABuiltMandrel) {
   }
 }
 
+// Issue 28: a band wider than the circumference was found only by a late replay error.
+TEST(JobLimits, ABandWiderThanTheCircumferenceIsNamedUpFront) {
+  const std::string e = test::job_load_error(
+      "mandrel: {source: pipe, pipe: {radius: 1, length: 100}}\nwinding: {band_width: 10}\n");
+  EXPECT_NE(e.find("key 'winding.band_width' = 10 mm is wider than the mandrel's circumference, "
+                   "6.283 mm at its largest radius 1 mm"),
+            std::string::npos)
+      << e;
+  WindingOptions w;
+  w.band_width = 7.0;  // on a built mesh of largest radius 1 mm
+  try {
+    check_plan_size(w, 1.0, 100.0, 0.5, JobLimits{});
+    FAIL();
+  } catch (const ConfigError& err) {
+    EXPECT_NE(std::string(err.what()).find("is wider than the mandrel's circumference, 6.283 mm"),
+              std::string::npos)
+        << err.what();
+  }
+  w.band_width = 6.0;
+  EXPECT_NO_THROW(check_plan_size(w, 1.0, 100.0, 0.5, JobLimits{}));
+}
+
 }  // namespace
 }  // namespace windplan

@@ -486,5 +486,26 @@ TEST(MandrelBuilder, RegionAndSectionBadInputNameTheKey) {
   for (const std::string& m : {e}) EXPECT_EQ(m.find('\n'), std::string::npos) << m;
 }
 
+// Issue 28: a mesh of collinear triangles was refused by the axis inference without the file.
+TEST(MandrelBuilder, AZeroAreaMeshNamesTheFile) {
+  const fs::path dir = fs::temp_directory_path() / "windplan_mandrel_builder_collinear";
+  fs::create_directories(dir);
+  {
+    std::ofstream out(dir / "line.obj");
+    out << "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 1 2 3\nf 2 3 4\n";
+  }
+  try {
+    build_mandrel(load_job_from_string(
+        "mandrel: {source: mesh, file: " + (dir / "line.obj").string() + "}\n", "line.yaml"));
+    FAIL() << "a zero-area mesh was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("line.obj): the mesh has zero area (2 triangles, all "
+                                         "degenerate"),
+              std::string::npos)
+        << e.what();
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace windplan
