@@ -468,8 +468,8 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
         "coverage: the laid bands leave " + format_fixed(100.0 * worst->bare_fraction, 2) +
         "% of the circumference bare at " +
         (spine || r.tube_friction ? format_fixed(worst->station, 1) + " mm along the centre line"
-         : co.height              ? "height " + format_fixed(worst->station, 3) + " of the wound region"
-                                  : format_fixed(worst->station, 1) + " mm along the axis") +
+         : co.height ? "height " + format_fixed(worst->station, 3) + " of the wound region"
+                     : format_fixed(worst->station, 1) + " mm along the axis") +
         " (widest gap " + format_fixed(pm.coverage.widest_gap, 1) + " mm over " +
         std::to_string(pm.coverage.stations.size()) + " stations): " +
         (r.clairaut        ? "choose a pattern with more circuits (windplan patterns JOB)"

@@ -138,12 +138,12 @@ bool is_robot_program_name(const std::string& name) {
 
 bool is_windplan_output_name(const std::string& name) {
   static const std::set<std::string> names = {
-      "fibre_path.csv", "payout.csv",    "axes.csv",           "eye_pose.csv",
-      "cutlines.csv",   "toolpath.ngc",  "toolpath.gcode",     "toolpath.nc",
-      "mesh.ply",       "paths.ply",     "development.svg",    "report.json",
-      "report.md",      "manifest.json", "axes.svg",           "viewer.html",
-      "laminate.csv",   "laminate.vtu",  "layer_profiles.csv", "layer_profiles.svg",
-      "stability.svg",  "joints.csv",    "joints.svg",         "model.inp",
+      "fibre_path.csv",  "payout.csv",    "axes.csv",           "eye_pose.csv",
+      "cutlines.csv",    "toolpath.ngc",  "toolpath.gcode",     "toolpath.nc",
+      "mesh.ply",        "paths.ply",     "development.svg",    "report.json",
+      "report.md",       "manifest.json", "axes.svg",           "viewer.html",
+      "laminate.csv",    "laminate.vtu",  "layer_profiles.csv", "layer_profiles.svg",
+      "stability.svg",   "joints.csv",    "joints.svg",         "model.inp",
       "model_plies.csv", "design.md"};
   if (names.count(name) || is_robot_program_name(name)) return true;
   // "<name>.tmp.<pid>": a temporary of write_file_atomically left by a killed run.

@@ -30,9 +30,9 @@ TEST_F(CliSimulate, RunThenSimulateTheProgramWritesTheJson) {
   ASSERT_EQ(run({"run", (dir_ / "job.yaml").string(), "--out", (dir_ / "out").string()}).code, 0);
   const YAML::Node report = YAML::LoadFile((dir_ / "out" / "report.json").string());
   ASSERT_TRUE(report["motion"]["replay"]["max_deviation_mm"]);
-  const RunResult r = run({"simulate", (dir_ / "job.yaml").string(),
-                           (dir_ / "out" / "toolpath.ngc").string(), "--json",
-                           (dir_ / "sim.json").string()});
+  const RunResult r =
+      run({"simulate", (dir_ / "job.yaml").string(), (dir_ / "out" / "toolpath.ngc").string(),
+           "--json", (dir_ / "sim.json").string()});
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("replay:"), std::string::npos) << r.out;
   const YAML::Node j = YAML::LoadFile((dir_ / "sim.json").string());
@@ -64,8 +64,8 @@ TEST_F(CliSimulate, BadProgramsAreExitOneNamingTheLine) {
 TEST_F(CliSimulate, MachineProfilesAndTheirErrors) {
   // A shipped profile, with a job key overriding it.
   const fs::path machines = source_dir() / "configs" / "machines";
-  write(dir_ / "job.yaml", std::string(kJob) + "machine: {profile: " +
-                               (machines / "lathe4.yaml").string() +
+  write(dir_ / "job.yaml", std::string(kJob) +
+                               "machine: {profile: " + (machines / "lathe4.yaml").string() +
                                ", gcode: {dialect: fanuc}}\n");
   ASSERT_EQ(run({"run", (dir_ / "job.yaml").string(), "--out", (dir_ / "out").string()}).code, 0);
   const YAML::Node report = YAML::LoadFile((dir_ / "out" / "report.json").string());
