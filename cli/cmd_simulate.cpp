@@ -8,6 +8,7 @@
 
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "export/files/robot_report.h"
 #include "export/machine/kinematics.h"
 #include "export/program/gcode_reader.h"
 #include "export/program/replay.h"
@@ -59,21 +60,9 @@ int simulate_robot(const Job& job, const std::filesystem::path& program_file, co
   j.field("arm", job.machine.robot.arm_name);
   j.field("targets", rp.targets);
   j.field("substeps", rp.fibre.substeps);
-  j.field("max_deviation_mm", rp.fibre.max_deviation);
-  j.field("max_deviation_at", rp.max_deviation_at);
-  j.field("mean_deviation_mm", rp.fibre.mean_deviation);
-  j.field("max_eye_deviation_mm", rp.max_eye_deviation);
-  j.field("max_eye_deviation_at", rp.max_eye_deviation_at);
-  j.field("min_eye_clearance_mm", rp.fibre.min_clearance);
-  j.field("min_link_clearance_mm", rp.min_link_clearance);
-  j.field("min_link_clearance_at", rp.min_link_clearance_at);
-  j.field("min_joint_margin_deg", rp.min_joint_margin);
+  robot_replay_fields(j, rp);
   j.field("min_joint_margin_joint", rp.min_joint_margin_joint);
-  j.field("min_wrist_angle_deg", rp.min_wrist_angle);
-  j.field("max_joint_speed_ratio", rp.max_joint_speed_ratio);
   j.field("max_joint_speed_at", rp.max_joint_speed_at);
-  j.field("configuration_changes", rp.configuration_changes);
-  j.field("cycle_time_s", rp.cycle_time);
   j.field("replay_seconds", rp.seconds);
   j.end_object();
   const std::filesystem::path out =

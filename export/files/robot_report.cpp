@@ -12,6 +12,22 @@ std::string fmt(const char* f, double v) { return format_number(f, v); }
 
 }  // namespace
 
+void robot_replay_fields(JsonWriter& j, const RobotReplayResult& rp) {
+  j.field("max_deviation_mm", rp.fibre.max_deviation);
+  j.field("max_deviation_at", rp.max_deviation_at);
+  j.field("mean_deviation_mm", rp.fibre.mean_deviation);
+  j.field("max_eye_deviation_mm", rp.max_eye_deviation);
+  j.field("max_eye_deviation_at", rp.max_eye_deviation_at);
+  j.field("min_eye_clearance_mm", rp.fibre.min_clearance);
+  j.field("min_link_clearance_mm", rp.min_link_clearance);
+  j.field("min_link_clearance_at", rp.min_link_clearance_at);
+  j.field("min_joint_margin_deg", rp.min_joint_margin);
+  j.field("min_wrist_angle_deg", rp.min_wrist_angle);
+  j.field("max_joint_speed_ratio", rp.max_joint_speed_ratio);
+  j.field("configuration_changes", rp.configuration_changes);
+  j.field("cycle_time_s", rp.cycle_time);
+}
+
 void robot_json(JsonWriter& j, const ExportResult& r) {
   const RobotOptions& ro = r.machine.robot;
   const RobotMotion& m = r.robot;
@@ -33,19 +49,7 @@ void robot_json(JsonWriter& j, const ExportResult& r) {
   j.field("configuration_changes_inside_passes", 0);
   if (r.has_robot_replay) {
     j.key("replay").begin_object();
-    j.field("max_deviation_mm", rp.fibre.max_deviation);
-    j.field("max_deviation_at", rp.max_deviation_at);
-    j.field("mean_deviation_mm", rp.fibre.mean_deviation);
-    j.field("max_eye_deviation_mm", rp.max_eye_deviation);
-    j.field("max_eye_deviation_at", rp.max_eye_deviation_at);
-    j.field("min_eye_clearance_mm", rp.fibre.min_clearance);
-    j.field("min_link_clearance_mm", rp.min_link_clearance);
-    j.field("min_link_clearance_at", rp.min_link_clearance_at);
-    j.field("min_joint_margin_deg", rp.min_joint_margin);
-    j.field("min_wrist_angle_deg", rp.min_wrist_angle);
-    j.field("max_joint_speed_ratio", rp.max_joint_speed_ratio);
-    j.field("configuration_changes", rp.configuration_changes);
-    j.field("cycle_time_s", rp.cycle_time);
+    robot_replay_fields(j, rp);
     j.end_object();
   }
   j.end_object();

@@ -11,6 +11,9 @@
 
 namespace windplan {
 
+/// The robot replay's figures as fields of the open JSON object (report.json's robot.replay and
+/// `windplan simulate`'s report share them).
+void robot_replay_fields(JsonWriter& j, const RobotReplayResult& rp);
 void robot_json(JsonWriter& j, const ExportResult& r);
 std::string robot_markdown(const ExportResult& r);
 
