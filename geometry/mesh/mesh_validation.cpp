@@ -1,4 +1,4 @@
-// 825 lines, kept in one file on purpose: check_mesh and repair_mesh share one analysis of the
+// Over 800 lines, kept in one file on purpose: check_mesh and repair_mesh share one analysis of the
 // soup (analyze(): edge manifoldness, orientation, components, boundaries), and each repair step
 // re-runs it; split, the analysis would need a header of its own for two callers.
 #include "geometry/mesh/mesh_validation.h"
