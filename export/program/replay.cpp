@@ -218,13 +218,6 @@ double track(const std::vector<Vec3>& q, const std::vector<double>& sq, const Ve
   return best;
 }
 
-Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  if (!(l2 > 0.0)) return a;
-  return a + std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) * ab;
-}
-
 int reversals(const std::vector<double>& v) {
   int count = 0, dir = 0;
   for (std::size_t i = 1; i < v.size(); ++i) {

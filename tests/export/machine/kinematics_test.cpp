@@ -191,7 +191,9 @@ TEST(Kinematics, FeedPlanKeepsEveryAxisWithinItsLimitsAndTimeAccumulates) {
                   std::fabs(s.y_mm - p.y_mm) / 20, std::fabs(s.b_deg - p.b_deg) / 90});
     EXPECT_GE(s.duration, slowest * (1 - 1e-12));
     EXPECT_NEAR(s.t_s, p.t_s + s.duration, 1e-9);
-    if (s.duration > 0) EXPECT_NEAR(s.feed, 60.0 / s.duration, 1e-9);  // linuxcnc: inverse time
+    if (s.duration > 0) {
+      EXPECT_NEAR(s.feed, 60.0 / s.duration, 1e-9);  // linuxcnc: inverse time
+    }
   }
   EXPECT_DOUBLE_EQ(mo.wind_time, mo.states.back().t_s);
   EXPECT_LE(mo.limits.velocity_ratio, 1 + 1e-9);
@@ -225,7 +227,9 @@ TEST(Kinematics, PerMinuteFeedIsCombinedAxisSpeed) {
     const MachineState& s = mo.states[i];
     const double da = s.a_deg - p.a_deg, dx = s.x_mm - p.x_mm;
     EXPECT_GE(s.duration, std::max(std::fabs(da) / 720, std::fabs(dx) / 500) * (1 - 1e-12));
-    if (s.duration > 0) EXPECT_NEAR(s.feed, 60 * std::hypot(da, dx) / s.duration, 1e-6 * s.feed);
+    if (s.duration > 0) {
+      EXPECT_NEAR(s.feed, 60 * std::hypot(da, dx) / s.duration, 1e-6 * s.feed);
+    }
     EXPECT_EQ(s.b_deg, 0.0);
     EXPECT_NEAR(s.y_mm, 60.0, 1e-9);  // the lathe2 eye cylinder: R + clearance
   }

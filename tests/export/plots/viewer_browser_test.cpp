@@ -231,7 +231,8 @@ TEST_F(ViewerBrowser, DecimatedPageStillDraws) {
   plan.job_name = "large helix plan";
   plan.metrics.band_width = 20;
   const Mesh mesh(test::open_cylinder(50, 562, 48, 40));  // the helix rises 561.6 mm
-  const Motion motion = compute_motion(plan, MachineOptions{});
+  const MachineOptions machine;  // (named: GCC 12 warns maybe-uninitialized on the temporary)
+  const Motion motion = compute_motion(plan, machine);
   ViewerOptions o;
   o.max_bytes = 2500000;
   const ViewerPage page = viewer_page(plan, mesh, motion, o);

@@ -79,7 +79,8 @@ TEST(ViewerPage, SelfContainedWithThePlansData) {
   plan.metrics.band_width = 6;
   plan.metrics.warnings = {"slippage above mu"};
   const Mesh mesh(test::open_cylinder(50, 700, 24, 10));
-  const Motion motion = compute_motion(plan, MachineOptions{});
+  const MachineOptions machine;  // (named: GCC 12 warns maybe-uninitialized on the temporary)
+  const Motion motion = compute_motion(plan, machine);
   const ViewerPage page = viewer_page(plan, mesh, motion);
   const std::string& h = page.html;
   EXPECT_EQ(h.rfind("<!DOCTYPE html>", 0), 0u);

@@ -41,7 +41,9 @@ TEST(GcodeReader, ReadsBackEveryDialectAndKind) {
           EXPECT_NEAR(p.blocks[i].y, s.y_mm, 2e-4);
           EXPECT_NEAR(p.blocks[i].b, s.b_deg, 2e-4);
         }
-        if (i > 0) EXPECT_NEAR(p.blocks[i].feed, s.feed, 1e-4 * s.feed + 1e-4);
+        if (i > 0) {
+          EXPECT_NEAR(p.blocks[i].feed, s.feed, 1e-4 * s.feed + 1e-4);
+        }
       }
     }
   }
