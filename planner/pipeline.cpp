@@ -246,8 +246,7 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
       // 1/K of the conformal angle); K covers the section where one circuit covers least.
       WindingOptions w1 = wo;
       w1.circuits = 1;
-      HelixPlan one = plan_helices(ws.mesh, loops, rho, md.axis, w1);
-      for (HelixPass& p : one.passes) p.path = p.initial;
+      const HelixPlan one = plan_helices(ws.mesh, loops, rho, md.axis, w1, {}, false);
       const std::vector<Circuit> c1 = build_circuits(ws.mesh, one, ws.face_map, md.axis, w1);
       CoverageOptions co;
       co.band_width = wo.band_width;
@@ -266,15 +265,14 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
         w.circuits = auto_circuits;
       }
     }
-    r.helices = plan_helices(ws.mesh, loops, rho, md.axis, w);
     // The evenly spread helices are only nearly even around a bend's sections (the conformal
     // angle runs faster on the outside): add circuits until their bands leave no section bare
-    // (at most 6 more, and at most half as many again).
+    // (at most 6 more, and at most half as many again). The trials measure the traced helices
+    // only, so they are not refined; the K chosen is planned and refined once, below.
     const int k_last =
         std::min(kMaxCircuits, auto_circuits + std::max(1, std::min(6, auto_circuits / 2)));
     while (auto_circuits > 0 && w.circuits < k_last) {
-      HelixPlan traced = r.helices;
-      for (HelixPass& p : traced.passes) p.path = p.initial;
+      const HelixPlan traced = plan_helices(ws.mesh, loops, rho, md.axis, w, {}, false);
       CoverageOptions co;
       co.band_width = wo.band_width;
       co.stations = wo.coverage_stations;
@@ -283,8 +281,8 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
           ws.mesh, md.axis, build_circuits(ws.mesh, traced, ws.face_map, md.axis, w), co);
       if (!cov.measured() || cov.bare_fraction == 0.0) break;
       ++w.circuits;
-      r.helices = plan_helices(ws.mesh, loops, rho, md.axis, w);
     }
+    r.helices = plan_helices(ws.mesh, loops, rho, md.axis, w);
     if (auto_circuits > 0) r.helices.summary.circuits_auto = true;
   }
   helices.done();

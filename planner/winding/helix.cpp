@@ -82,7 +82,8 @@ std::vector<double> density_from_girth(const Mesh& m, const std::vector<double>&
 
 HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loops,
                        const std::vector<double>& rho, const SpindleAxis& axis,
-                       const WindingOptions& options, const GeodesicOptions& geodesic) {
+                       const WindingOptions& options, const GeodesicOptions& geodesic,
+                       bool refine_passes) {
   if (std::string why; !options.is_valid(&why)) throw ConfigError("winding: " + why);
   HelixPlan plan;
   plan.coords = compute_harmonic_coordinates(m, loops);
@@ -122,6 +123,10 @@ HelixPlan plan_helices(const Mesh& m, const std::array<std::vector<int>, 2>& loo
   // Refines one pass; writes only to the pass and to `warnings` and `ms`, so that passes can
   // be refined in parallel (below).
   auto refine_pass = [&](HelixPass* p, std::vector<std::string>* warnings, double* ms) -> bool {
+    if (!refine_passes) {  // (a trial: the traced level set, in the pass's own direction)
+      p->path = p->initial;
+      return true;
+    }
     const auto t0 = std::chrono::steady_clock::now();
     // Every pass is refined from loop 0 (return passes are reversed and back): measured in
     // session 1, return passes refined as traced took far longer. With beta = 0 (Euclidean) the

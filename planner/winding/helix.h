@@ -96,12 +96,16 @@ struct HelixPlan {
 /// A pass whose refinement comes back with non-finite crossings (seen from the core's funnel
 /// start) is refined again from its traced level set without it; if that fails too the level set
 /// is kept and the pass counts as not converged. Both are named in summary.warnings.
+/// \param refine_passes false: no pass is refined, each keeps its traced level set (path = initial;
+///        K auto from the traced first pass), for trials that only measure where the traced
+///        helices lie (the circuits and turnarounds do not depend on the refinement)
 /// \throw ConfigError for invalid options, naming winding.start_station / winding.end_station
 ///        and the valid range (mm) for a station outside station_range() or whose plane does not
 ///        cut the wound region around the mandrel; as compute_harmonic_coordinates / trace_helix.
 HelixPlan plan_helices(const Mesh& annulus, const std::array<std::vector<int>, 2>& loops,
                        const std::vector<double>& rho, const SpindleAxis& axis,
-                       const WindingOptions& options = {}, const GeodesicOptions& geodesic = {});
+                       const WindingOptions& options = {}, const GeodesicOptions& geodesic = {},
+                       bool refine_passes = true);
 
 /// The dwell (radians of theta, in [pi/2, 3 pi/2] + pi p / K) of both turnarounds of a circuit
 /// whose passes make `turns` turns each, so that each circuit advances theta by 2 pi p / K modulo
