@@ -130,6 +130,16 @@ TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const Win
                             md.winding.mesh, md.winding.face_map, md.axis, wo);
 }
 
+// The coverage measurement of the job's bands at its stations, on the sections normal to
+// `spine` when there is one (else on planes normal to the axis).
+CoverageOptions coverage_options(const WindingOptions& wo, const Spine* spine) {
+  CoverageOptions co;
+  co.band_width = wo.band_width;
+  co.stations = wo.coverage_stations;
+  co.spine = spine;
+  return co;
+}
+
 // Off revolution, on a tube: the geodesic core's passes (kept when they cover every section) or
 // the traced level sets of the conformal helices (evenly spread around every section by
 // construction, planner/winding/helix.h), laid instead when they cover more and friction holds
@@ -138,10 +148,7 @@ TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const Win
 void choose_tube_passes(const WindingSurface& ws, const SpindleAxis& axis, const Spine& spine,
                         const std::vector<double>& face_girth, const WindingOptions& wo,
                         PipelineResult* r) {
-  CoverageOptions co;
-  co.band_width = wo.band_width;
-  co.stations = wo.coverage_stations;
-  co.spine = &spine;
+  const CoverageOptions co = coverage_options(wo, &spine);
   WindingPlan& plan = r->plan;
   const CoverageReport geo = measure_coverage(ws.mesh, axis, plan.circuits, co);
   if (!geo.measured() || geo.bare_fraction == 0.0) return;
@@ -248,10 +255,7 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
       w1.circuits = 1;
       const HelixPlan one = plan_helices(ws.mesh, loops, rho, md.axis, w1, {}, false);
       const std::vector<Circuit> c1 = build_circuits(ws.mesh, one, ws.face_map, md.axis, w1);
-      CoverageOptions co;
-      co.band_width = wo.band_width;
-      co.stations = wo.coverage_stations;
-      co.spine = spine;
+      const CoverageOptions co = coverage_options(wo, spine);
       const CoverageReport cov = measure_coverage(ws.mesh, md.axis, c1, co);
       if (cov.measured() && cov.cover_factor > 0.0) {
         const double k = std::ceil((1.0 - 1e-9) / cov.cover_factor);
@@ -273,10 +277,7 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
         std::min(kMaxCircuits, auto_circuits + std::max(1, std::min(6, auto_circuits / 2)));
     while (auto_circuits > 0 && w.circuits < k_last) {
       const HelixPlan traced = plan_helices(ws.mesh, loops, rho, md.axis, w, {}, false);
-      CoverageOptions co;
-      co.band_width = wo.band_width;
-      co.stations = wo.coverage_stations;
-      co.spine = spine;
+      const CoverageOptions co = coverage_options(wo, spine);
       const CoverageReport cov = measure_coverage(
           ws.mesh, md.axis, build_circuits(ws.mesh, traced, ws.face_map, md.axis, w), co);
       if (!cov.measured() || cov.bare_fraction == 0.0) break;
@@ -409,11 +410,8 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     }
   }
   // Coverage on the laid bands, from the circuits alone (planner/winding/coverage.h).
-  CoverageOptions co;
-  co.band_width = wo.band_width;
-  co.stations = wo.coverage_stations;
+  CoverageOptions co = coverage_options(wo, spine);
   if (!md.revolution && !r.clairaut && !r.tube_friction) co.height = &r.helices.coords.height;
-  co.spine = spine;
   PlanMetrics& pm = plan.metrics;
   if (r.tube_friction) {  // on sections normal to the centre line, between the turnarounds
     const TubeFrictionWinding& tw = r.tube_layer;
