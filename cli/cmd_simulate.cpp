@@ -42,6 +42,17 @@ const char* const kSimulateHelp =
 
 namespace {
 
+/// Writes the replay's JSON report (--json, else <program>.simulate.json) and prints the
+/// replay's summary with the report's path.
+void write_simulate_report(const Args& args, const std::filesystem::path& program_file,
+                           const std::string& json, const std::string& summary) {
+  const std::filesystem::path out =
+      args.has("--json") ? std::filesystem::path(args.value("--json"))
+                         : std::filesystem::path(program_file.string() + ".simulate.json");
+  write_text_atomically(out, json + "\n");
+  std::cout << summary << "\n  report: " << out.string() << "\n";
+}
+
 /// A robot cell's program (export/robot/robot_replay.h).
 int simulate_robot(const Job& job, const std::filesystem::path& program_file, const Args& args) {
   const RobotProgram program = read_robot_program(program_file, job.machine.robot.dialect);
@@ -65,11 +76,7 @@ int simulate_robot(const Job& job, const std::filesystem::path& program_file, co
   j.field("max_joint_speed_at", rp.max_joint_speed_at);
   j.field("replay_seconds", rp.seconds);
   j.end_object();
-  const std::filesystem::path out =
-      args.has("--json") ? std::filesystem::path(args.value("--json"))
-                         : std::filesystem::path(program_file.string() + ".simulate.json");
-  write_text_atomically(out, j.str() + "\n");
-  std::cout << rp.summary << "\n  report: " << out.string() << "\n";
+  write_simulate_report(args, program_file, j.str(), rp.summary);
   const bool eye = rp.max_eye_deviation > rp.fibre.max_deviation;
   const double worst = eye ? rp.max_eye_deviation : rp.fibre.max_deviation;
   if (job.machine.replay_tolerance > 0.0 && worst > job.machine.replay_tolerance) {
@@ -127,11 +134,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   j.end_object();
   j.field("replay_seconds", rp.seconds);
   j.end_object();
-  const std::filesystem::path out =
-      args.has("--json") ? std::filesystem::path(args.value("--json"))
-                         : std::filesystem::path(program_file.string() + ".simulate.json");
-  write_text_atomically(out, j.str() + "\n");
-  std::cout << rp.summary << "\n  report: " << out.string() << "\n";
+  write_simulate_report(args, program_file, j.str(), rp.summary);
   if (job.machine.replay_tolerance > 0.0 && rp.max_deviation > job.machine.replay_tolerance) {
     char buf[200];
     std::snprintf(buf, sizeof buf,
