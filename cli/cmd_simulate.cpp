@@ -1,7 +1,6 @@
 // windplan simulate <job.yaml> <program> [--json FILE]
 // Reads back a G-code program (windplan's or a user's edit, in the job's dialect), runs it through
 // the job's machine model and replays where the fibre lands (export/program/replay.h).
-#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -77,15 +76,8 @@ int simulate_robot(const Job& job, const std::filesystem::path& program_file, co
   j.field("replay_seconds", rp.seconds);
   j.end_object();
   write_simulate_report(args, program_file, j.str(), rp.summary);
-  const bool eye = rp.max_eye_deviation > rp.fibre.max_deviation;
-  const double worst = eye ? rp.max_eye_deviation : rp.fibre.max_deviation;
-  if (job.machine.replay_tolerance > 0.0 && worst > job.machine.replay_tolerance) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  ": the replay %s %.3f mm from the plan, more than machine.replay_tolerance "
-                  "%.3f mm",
-                  eye ? "puts the eye" : "lays the fibre", worst, job.machine.replay_tolerance);
-    throw InputError((eye ? rp.max_eye_deviation_at : rp.max_deviation_at) + buf);
+  if (ReplayExcess e; !rp.within(job.machine.replay_tolerance, &e)) {
+    throw InputError(e.located(program_file.string()));
   }
   return 0;
 }
@@ -135,14 +127,8 @@ int run_simulate(const std::vector<std::string>& argv) {
   j.field("replay_seconds", rp.seconds);
   j.end_object();
   write_simulate_report(args, program_file, j.str(), rp.summary);
-  if (job.machine.replay_tolerance > 0.0 && rp.max_deviation > job.machine.replay_tolerance) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "%s:%d: the replay lays the fibre %.3f mm from the plan, more "
-                  "than machine.replay_tolerance %.3f mm",
-                  program_file.string().c_str(), rp.max_deviation_line, rp.max_deviation,
-                  job.machine.replay_tolerance);
-    throw InputError(buf);
+  if (ReplayExcess e; !rp.within(job.machine.replay_tolerance, &e)) {
+    throw InputError(e.located(program_file.string()));
   }
   return 0;
 }

@@ -5,8 +5,6 @@
 #include "export/plots/joints_svg.h"
 #include "export/plots/stability_svg.h"
 
-#include <algorithm>
-#include <cstdio>
 #include <map>
 
 #include "export/files/output_set.h"
@@ -150,30 +148,16 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
       r.has_robot_replay = true;
       r.replay = r.robot_replay.fibre;
       r.has_replay = true;
-      const RobotReplayResult& rr = r.robot_replay;
-      const bool eye = rr.max_eye_deviation > rr.fibre.max_deviation;
-      if (machine.replay_tolerance > 0.0 &&
-          std::max(rr.fibre.max_deviation, rr.max_eye_deviation) > machine.replay_tolerance) {
-        char buf[200];
-        std::snprintf(buf, sizeof buf, "%s %.3f mm from the plan at %s, more than %.3f mm",
-                      eye ? "puts the eye" : "lays the fibre",
-                      eye ? rr.max_eye_deviation : rr.fibre.max_deviation,
-                      (eye ? rr.max_eye_deviation_at : rr.max_deviation_at).c_str(),
-                      machine.replay_tolerance);
-        throw InputError("machine.replay_tolerance: the replay of " + r.robot_main + " " + buf +
-                         "; no program written");
+      if (ReplayExcess e; !r.robot_replay.within(machine.replay_tolerance, &e)) {
+        throw InputError(e.refused(r.robot_main));
       }
       return;
     }
     const std::string name = "toolpath" + gcode_extension(machine.gcode.dialect);
     r.replay = replay_program(read_gcode(program, machine, name), plan, mandrel_mesh, machine);
     r.has_replay = true;
-    if (machine.replay_tolerance > 0.0 && r.replay.max_deviation > machine.replay_tolerance) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "%.3f mm from the plan at line %d, more than %.3f mm",
-                    r.replay.max_deviation, r.replay.max_deviation_line, machine.replay_tolerance);
-      throw InputError("machine.replay_tolerance: the replay of " + name + " lays the fibre " +
-                       buf + "; no program written");
+    if (ReplayExcess e; !r.replay.within(machine.replay_tolerance, &e)) {
+      throw InputError(e.refused(name));
     }
   };
 

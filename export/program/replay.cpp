@@ -422,4 +422,32 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   return r;
 }
 
+bool ReplayResult::within(double tolerance, ReplayExcess* excess) const {
+  if (!(tolerance > 0.0) || !(max_deviation > tolerance)) return true;
+  if (excess) {
+    *excess = ReplayExcess();
+    excess->deviation = max_deviation;
+    excess->tolerance = tolerance;
+    excess->line = max_deviation_line;
+  }
+  return false;
+}
+
+std::string ReplayExcess::refused(const std::string& program) const {
+  const std::string where = at.empty() ? "line " + std::to_string(line) : at;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, " %.3f mm from the plan at %s, more than %.3f mm", deviation,
+                where.c_str(), tolerance);
+  return "machine.replay_tolerance: the replay of " + program +
+         (eye ? " puts the eye" : " lays the fibre") + buf + "; no program written";
+}
+
+std::string ReplayExcess::located(const std::string& program) const {
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                ": the replay %s %.3f mm from the plan, more than machine.replay_tolerance %.3f mm",
+                eye ? "puts the eye" : "lays the fibre", deviation, tolerance);
+  return (at.empty() ? program + ":" + std::to_string(line) : at) + buf;
+}
+
 }  // namespace windplan

@@ -51,6 +51,8 @@ struct ReplayOptions {
   double catch_distance = 10.0;
 };
 
+struct ReplayExcess;
+
 struct ReplayResult {
   int blocks = 0;
   int substeps = 0;
@@ -68,6 +70,27 @@ struct ReplayResult {
   AxisLimitCheck limits;  ///< block velocities and accelerations from the feed words
   double seconds = 0.0;   ///< wall time of the replay
   std::string summary;    ///< one line
+
+  /// The check of machine.replay_tolerance: true when max_deviation <= tolerance (mm) or the
+  /// tolerance is <= 0 (report only); else false, with `excess` (when given) naming it.
+  bool within(double tolerance, ReplayExcess* excess = nullptr) const;
+};
+
+/// A replay's worst deviation beyond machine.replay_tolerance (ReplayResult::within, and
+/// RobotReplayResult::within in export/robot/robot_replay.h), and the two messages that refuse it.
+struct ReplayExcess {
+  bool eye = false;        ///< the eye of a robot target is off (else: the laid fibre)
+  double deviation = 0.0;  ///< mm
+  double tolerance = 0.0;  ///< mm
+  std::string at;          ///< "file:line" of a robot program's target; "": a G-code `line`
+  int line = 0;            ///< G-code program line (when `at` is empty)
+
+  /// windplan run's: "machine.replay_tolerance: the replay of PROGRAM lays the fibre D mm from
+  /// the plan at line N (or: at FILE:LINE), more than T mm; no program written".
+  std::string refused(const std::string& program) const;
+  /// windplan simulate's: "PROGRAM:N (or: FILE:LINE): the replay lays the fibre D mm from the
+  /// plan, more than machine.replay_tolerance T mm" ("puts the eye" for an eye excess).
+  std::string located(const std::string& program) const;
 };
 
 /// \param program from read_gcode with the same machine options

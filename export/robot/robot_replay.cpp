@@ -220,4 +220,18 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
   return r;
 }
 
+bool RobotReplayResult::within(double tolerance, ReplayExcess* excess) const {
+  const bool eye = max_eye_deviation > fibre.max_deviation;
+  const double worst = eye ? max_eye_deviation : fibre.max_deviation;
+  if (!(tolerance > 0.0) || !(worst > tolerance)) return true;
+  if (excess) {
+    *excess = ReplayExcess();
+    excess->eye = eye;
+    excess->deviation = worst;
+    excess->tolerance = tolerance;
+    excess->at = eye ? max_eye_deviation_at : max_deviation_at;
+  }
+  return false;
+}
+
 }  // namespace windplan

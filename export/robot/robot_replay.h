@@ -40,6 +40,11 @@ struct RobotReplayResult {
   double cycle_time = 0.0;  ///< s
   double seconds = 0.0;     ///< wall time
   std::string summary;      ///< one line
+
+  /// The check of machine.replay_tolerance on the worst of the fibre's deviation and the eye's
+  /// (the larger one; the fibre's on a tie): true when it is <= tolerance (mm) or the tolerance
+  /// is <= 0 (report only); else false, with `excess` (when given) naming it and its file:line.
+  bool within(double tolerance, ReplayExcess* excess = nullptr) const;
 };
 
 /// \throw InputError for an empty program or mesh, a target out of reach or past a joint limit

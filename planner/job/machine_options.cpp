@@ -2,16 +2,11 @@
 
 #include <cmath>
 
+#include "planner/job/options_check.h"
+
 namespace windplan {
 
-namespace {
-
-bool fail(std::string* why, const std::string& msg) {
-  if (why) *why = msg;
-  return false;
-}
-
-}  // namespace
+using options_check::fail;
 
 std::string EnvelopeOptions::mode() const {
   if (!profile.empty()) return "profile";

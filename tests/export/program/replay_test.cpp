@@ -70,6 +70,23 @@ TEST(Replay, OneMillimetreCarriageFaultIsCaught) {
   EXPECT_GT(r.max_deviation, 0.8);
   EXPECT_LT(r.max_deviation, 1.05);
   EXPECT_GT(r.max_deviation_line, 500);
+  // machine.replay_tolerance (ReplayResult::within): 0.5 mm refuses it, naming the line; 2 mm and
+  // 0 (report only) let it pass.
+  ReplayExcess e;
+  EXPECT_TRUE(r.within(2.0, &e));
+  EXPECT_TRUE(r.within(0.0, &e));
+  ASSERT_FALSE(r.within(0.5, &e));
+  EXPECT_FALSE(e.eye);
+  EXPECT_EQ(e.line, r.max_deviation_line);
+  char dev[80];
+  std::snprintf(dev, sizeof dev, "%.3f mm from the plan", r.max_deviation);
+  const std::string line = std::to_string(r.max_deviation_line);
+  EXPECT_EQ(e.refused("toolpath.ngc"),
+            "machine.replay_tolerance: the replay of toolpath.ngc lays "
+            "the fibre " +
+                std::string(dev) + " at line " + line + ", more than 0.500 mm; no program written");
+  EXPECT_EQ(e.located("fault.ngc"), "fault.ngc:" + line + ": the replay lays the fibre " + dev +
+                                        ", more than machine.replay_tolerance 0.500 mm");
 }
 
 // Issue 28: a spindle jump of 1e9 deg was cut into fixed 0.5 mm sub-steps (hours); bounded by

@@ -133,6 +133,25 @@ TEST(RobotReplay, OneMillimetreErrorInOneTargetIsCaught) {
     // pitch c = 28.9 mm per radian).
     EXPECT_NEAR(r.max_eye_deviation, 0.92, 0.03) << dialect;
     EXPECT_EQ(r.max_eye_deviation_at, dialect == "krl" ? "helix_pts.src:702" : "helix_pts.mod:703");
+    // machine.replay_tolerance (RobotReplayResult::within): the worst is the eye's, named at its
+    // target's file and line; 0.5 mm refuses it, 1 mm and 0 (report only) do not.
+    ReplayExcess e;
+    EXPECT_TRUE(r.within(1.0, &e)) << dialect;
+    EXPECT_TRUE(r.within(0.0, &e)) << dialect;
+    ASSERT_FALSE(r.within(0.5, &e)) << dialect;
+    EXPECT_TRUE(e.eye);
+    EXPECT_EQ(e.deviation, r.max_eye_deviation);
+    char dev[80];
+    std::snprintf(dev, sizeof dev, "%.3f mm from the plan", r.max_eye_deviation);
+    EXPECT_EQ(e.located("x"), r.max_eye_deviation_at + ": the replay puts the eye " + dev +
+                                  ", more than machine.replay_tolerance 0.500 mm");
+    EXPECT_EQ(e.refused("main"), "machine.replay_tolerance: the replay of main puts the eye " +
+                                     std::string(dev) + " at " + r.max_eye_deviation_at +
+                                     ", more than 0.500 mm; no program written");
+    // Below the eye's deviation but above the fibre's: the fibre alone would pass.
+    RobotReplayResult fibre_only = r;
+    fibre_only.max_eye_deviation = 0.0;
+    EXPECT_TRUE(fibre_only.within(0.5)) << dialect;
   }
 }
 
