@@ -18,6 +18,7 @@
 #include "export/files/manifest.h"
 #include "export/files/output_set.h"
 #include "export/files/report.h"
+#include "export/robot/cell_reach.h"
 #include "geometry/base/atomic_file.h"
 #include "planner/job/job.h"
 #include "planner/pipeline.h"
@@ -82,6 +83,12 @@ int run_run(const std::vector<std::string>& argv) {
   PipelineOptions po;
   po.on_stage_start = [&](const std::string& stage) { progress.start(stage); };
   po.on_stage = [&](const StageTiming& t) { progress.finish(t.stage, t.seconds); };
+  if (job.machine.kind == "robot" && job.machine.robot.has_arm()) {
+    // The cell's reach, before the long work (export/robot/cell_reach.h).
+    po.on_mandrel = [&](const Mandrel& m) {
+      check_cell_reach(m.winding.mesh, m.axis, m.profile, job.machine);
+    };
+  }
   // A job with `layers:` is a layup (planner/plan_layup.h): every layer in order, one program.
   PipelineResult r;
   LayupResult layup;

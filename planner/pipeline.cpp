@@ -187,6 +187,7 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
   check_plan_size(job.winding, md.winding.mesh,
                   md.axis);  // (mesh and CAD mandrels: their size is known now)
   mandrel.done();
+  if (options.on_mandrel) options.on_mandrel(md);
   PipelineResult r = plan_winding(std::move(md), job, job.winding, options);
   std::vector<StageTiming>& t = r.plan.metrics.timings;
   t.insert(t.begin(), timings.timings.begin(), timings.timings.end());

@@ -36,6 +36,10 @@ struct PipelineOptions {
   std::function<void(const StageTiming&)> on_stage;
   /// Called before each stage starts with its name.
   std::function<void(const std::string&)> on_stage_start;
+  /// Called once the mandrel is built, before the winding stages: a check that needs the mandrel
+  /// and lives above planner/ (the robot cell's reach, export/robot/cell_reach.h) refuses the job
+  /// there by throwing, before the long work. plan_job and plan_layup call it.
+  std::function<void(const Mandrel&)> on_mandrel;
 };
 
 struct PipelineResult {

@@ -175,6 +175,7 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
   if (options.on_stage_start) options.on_stage_start("mandrel");
   R.mandrel = build_mandrel(job);
   stage("mandrel", t0);
+  if (options.on_mandrel) options.on_mandrel(R.mandrel);
   const Mandrel& md = R.mandrel;
   const WindingSurface& ws = md.winding;
   const SpindleAxis& axis = md.axis;

@@ -170,7 +170,7 @@ bool RobotArm::inverse(const Eigen::Isometry3d& target, const Joints& seed, Join
 }
 
 bool RobotArm::inverse_near(const Eigen::Isometry3d& target, const Joints& home, double margin,
-                            double wrist, Joints* q) const {
+                            double wrist, Joints* q, bool any) const {
   const Vec3 p = target.translation();
   const Vec3 ax(robot_.joints[0].axis[0], robot_.joints[0].axis[1], robot_.joints[0].axis[2]);
   const double a1 = std::atan2(p.y(), p.x()) * kDeg * (ax.z() < 0.0 ? -1.0 : 1.0);
@@ -194,6 +194,7 @@ bool RobotArm::inverse_near(const Eigen::Isometry3d& target, const Joints& home,
             best = d;
             *q = got;
           }
+          if (any) return true;
         }
       }
     }

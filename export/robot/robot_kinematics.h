@@ -46,9 +46,10 @@ class RobotArm {
   bool inverse(const Eigen::Isometry3d& target, const Joints& seed, Joints* q) const;
   /// Solves a target with no previous joints: Newton-Raphson from a grid of seeds (A1 towards the
   /// target; A2, A3, A5 over their usual ranges); of the solutions inside the limits less
-  /// `margin` and with |A5| >= `wrist`, the one nearest `home` (sum of squared deg). False: none.
+  /// `margin` and with |A5| >= `wrist`, the one nearest `home` (sum of squared deg), or with
+  /// `any` the first found (a reach test). False: none.
   bool inverse_near(const Eigen::Isometry3d& target, const Joints& home, double margin,
-                    double wrist, Joints* q) const;
+                    double wrist, Joints* q, bool any = false) const;
   /// Status and Turn (see the header comment).
   int status(const Joints& q) const;
   static int turn(const Joints& q);

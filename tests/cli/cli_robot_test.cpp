@@ -94,6 +94,22 @@ TEST_F(CliRobot, BadInputIsOneLineExitOne) {
   r = run({"run", (dir_ / "job.yaml").string(), "--out", (dir_ / "o").string()});
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("out of reach of the KUKA KR 16-2"), std::string::npos) << r.err;
+  // A positioner 5 m in front of the robot: refused once the mandrel is built, before any
+  // planning stage (export/robot/cell_reach.h), naming the profile, its frame and the point.
+  std::ofstream(dir_ / "far_positioner.yaml")
+      << "name: far\nframe: {xyz: [5000, 0, 500], abc: [90, 0, 0]}\n";
+  write_job(", positioner: " + (dir_ / "far_positioner.yaml").string(), 0);
+  r = run({"run", (dir_ / "job.yaml").string(), "--out", (dir_ / "o").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("far_positioner.yaml: frame with machine.robot.offset 0.0 mm puts the "
+                       "mandrel out of reach of the KUKA KR 16-2: the eye at"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("beyond the arm's full stretch"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("mandrel  done"), std::string::npos) << r.err;
+  for (const char* stage : {"girth", "helices", "metrics", "export"})
+    EXPECT_EQ(r.err.find(stage), std::string::npos) << stage << " ran: " << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "o" / "report.json"));
   write_job("");
   std::ofstream(dir_ / "p.src") << "DEF p( )\nLIN XP1\nEND\n";
   r = run({"simulate", (dir_ / "job.yaml").string(), (dir_ / "p.src").string()});
