@@ -5,6 +5,7 @@
 #include "export/plots/joints_svg.h"
 #include "export/plots/stability_svg.h"
 
+#include <algorithm>
 #include <map>
 
 #include "export/files/output_set.h"
@@ -188,6 +189,40 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     if (context.on_file) context.on_file(name, done, total);
     output_test_pause(name);  // (a test hook: export/files/output_set.h)
   };
+  // A robot cell's joints for the viewer's joint panel, one row per machine state, as joints.csv
+  // holds them (one target per state today); joints.svg takes their names and limits.
+  ViewerJoints joints;
+  if (r.has_robot) {
+    joints.arm = machine.robot.arm_name;
+    joints.series.resize(7);
+    joints.series[0].name = "E1";
+    for (int j = 0; j < 6; ++j) {
+      joints.series[j + 1].name = machine.robot.joints[j].name;
+      joints.series[j + 1].min = machine.robot.joints[j].min;
+      joints.series[j + 1].max = machine.robot.joints[j].max;
+    }
+    // One row per machine state (the viewer's states): a state's target, or the one before it.
+    std::vector<int> target_of(r.motion.states.size(), -1);
+    std::vector<double> end_time(r.robot.targets.size());
+    double time = 0.0;
+    for (std::size_t k = 0; k < r.robot.targets.size(); ++k) {
+      const RobotTarget& g = r.robot.targets[k];
+      time += g.duration;
+      end_time[k] = time;
+      if (g.state >= 0 && g.state < static_cast<int>(target_of.size()))
+        target_of[g.state] = static_cast<int>(k);
+    }
+    for (std::size_t i = 1; i < target_of.size(); ++i)
+      if (target_of[i] < 0) target_of[i] = target_of[i - 1];
+    for (std::size_t i = 0; i < target_of.size(); ++i) {
+      const int k = std::max(0, target_of[i]);
+      if (r.robot.targets.empty()) break;
+      const RobotTarget& g = r.robot.targets[k];
+      joints.time.push_back(end_time[k]);
+      joints.series[0].values.push_back(g.e1);
+      for (int j = 0; j < 6; ++j) joints.series[j + 1].values.push_back(g.q[j]);
+    }
+  }
   auto write_files = [&] {
     if (output.csv) {
       write_csv_file(dir / "fibre_path.csv", fibre_path_table(plan));
@@ -239,13 +274,8 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
       if (r.has_robot) {
         // The positioner's E1 and the arm's joints against time (export/plots/joints_svg.h).
         std::vector<double> t;
-        std::vector<JointSeries> js(7);
-        js[0].name = "E1";
-        for (int j = 0; j < 6; ++j) {
-          js[j + 1].name = machine.robot.joints[j].name;
-          js[j + 1].min = machine.robot.joints[j].min;
-          js[j + 1].max = machine.robot.joints[j].max;
-        }
+        std::vector<JointSeries> js = joints.series;
+        for (JointSeries& j : js) j.values.clear();
         double time = 0.0;
         for (const RobotTarget& g : r.robot.targets) {
           time += g.duration;
@@ -258,7 +288,10 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
       }
     }
     if (output.viewer) {
-      write_text_atomically(dir / "viewer.html", viewer_page(plan, mandrel_mesh, r.motion).html);
+      write_text_atomically(
+          dir / "viewer.html",
+          viewer_page(plan, mandrel_mesh, r.motion, {}, joints.time.empty() ? nullptr : &joints)
+              .html);
       wrote("viewer.html");
     }
   };

@@ -15,8 +15,9 @@
 namespace windplan {
 
 namespace embedded {
-const char* three_js();       // build/export/embedded/three_js.cpp
-const char* viewer_app_js();  // build/export/embedded/viewer_app_js.cpp
+const char* three_js();          // build/export/embedded/three_js.cpp
+const char* viewer_app_js();     // build/export/embedded/viewer_app_js.cpp
+const char* viewer_joints_js();  // build/export/embedded/viewer_joints_js.cpp
 }  // namespace embedded
 
 bool ViewerOptions::is_valid(std::string* why) const {
@@ -220,11 +221,61 @@ void headline_json(JsonWriter& j, const WindingPlan& plan, const Motion& motion)
 // The data block for one decimation (point stride k, state stride ks, mesh cell size).
 struct PageData {
   std::string json;
+  std::string joints_json;  ///< robot cells: the "windplan-joints" block (else empty)
   int points = 0, states = 0, triangles = 0;
 };
 
+// The joint panel's data (ViewerJoints) for the machine states kept on the page.
+std::string joints_data(const Motion& motion, const ViewerJoints& joints,
+                        const std::vector<int>& kept) {
+  std::vector<float> st, vals;
+  std::vector<std::uint32_t> rows;
+  for (int i : kept) {
+    st.push_back(float(motion.states[i].t_s));
+    rows.push_back(static_cast<std::uint32_t>(i));
+    vals.push_back(float(joints.time[i]));
+    for (const JointSeries& js : joints.series) vals.push_back(float(js.values[i]));
+  }
+  JsonWriter j(0, 9);
+  j.begin_object();
+  j.field("format", "windplan-joints 1");
+  j.field("arm", joints.arm);
+  j.field("cycle_time", joints.time.empty() ? 0.0 : joints.time.back());
+  j.key("names").begin_array();
+  for (const JointSeries& js : joints.series) j.value(js.name);
+  j.end_array();
+  // Limits; a joint without them (E1) is shown over its range in the program.
+  std::vector<double> lo, hi;
+  j.key("limited").begin_array();
+  for (const JointSeries& js : joints.series) {
+    const bool limited = std::isfinite(js.min) && std::isfinite(js.max);
+    j.value(limited);
+    double a = limited ? js.min : 0.0, b = limited ? js.max : 0.0;
+    if (!limited && !js.values.empty()) {
+      a = *std::min_element(js.values.begin(), js.values.end());
+      b = *std::max_element(js.values.begin(), js.values.end());
+      if (!(b > a)) b = a + 1.0;
+    }
+    lo.push_back(a);
+    hi.push_back(b);
+  }
+  j.end_array();
+  j.key("min").begin_array();
+  for (double v : lo) j.value(v);
+  j.end_array();
+  j.key("max").begin_array();
+  for (double v : hi) j.value(v);
+  j.end_array();
+  j.field("state_t", b64_f32(st));
+  j.field("rows", b64_u32(rows));
+  j.field("values", b64_f32(vals));
+  j.end_object();
+  return j.str();
+}
+
 PageData page_data(const WindingPlan& plan, const Motion& motion, const AxisFrame& frame,
-                   const PageMesh& mesh, int k, int ks, const std::string& note) {
+                   const PageMesh& mesh, int k, int ks, const std::string& note,
+                   const ViewerJoints* joints) {
   auto local = [&](const Vec3& p) {
     const Vec3 q = p - frame.origin;
     return Vec3(q.dot(frame.d), q.dot(frame.u), q.dot(frame.v));
@@ -289,6 +340,7 @@ PageData page_data(const WindingPlan& plan, const Motion& motion, const AxisFram
 
   // Machine states: t, A, X, Y, B, F, eye xyz, fibre xyz, free length, kept point index.
   std::vector<float> st;
+  std::vector<int> kept_states;
   const int ns = static_cast<int>(motion.states.size());
   for (int i = 0; i < ns; ++i) {
     const bool last_of_circuit =
@@ -303,8 +355,10 @@ PageData page_data(const WindingPlan& plan, const Motion& motion, const AxisFram
     st.insert(st.end(), {float(s.t_s), float(s.a_deg), float(s.x_mm), float(s.y_mm), float(s.b_deg),
                          float(s.feed), float(e.x()), float(e.y()), float(e.z()), float(p.x()),
                          float(p.y()), float(p.z()), float(s.free_length), float(gi)});
+    kept_states.push_back(i);
     ++out.states;
   }
+  if (joints) out.joints_json = joints_data(motion, *joints, kept_states);
   j.field("state_stride", 14);
   j.field("states", b64_f32(st));
 
@@ -378,7 +432,8 @@ label { margin-right: 8px; }
 #hint { position: absolute; left: 8px; bottom: 6px; color: #5a6673; font-size: 11px; }
 )CSS";
 
-std::string page_html(const WindingPlan& plan, const std::string& json) {
+std::string page_html(const WindingPlan& plan, const std::string& json,
+                      const std::string& joints_json) {
   std::string h;
   h.reserve(json.size() + 1000000);
   h += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>";
@@ -390,10 +445,18 @@ std::string page_html(const WindingPlan& plan, const std::string& json) {
        "double-click: reset view</div>\n";
   h += "<script id=\"windplan-data\" type=\"application/json\">";
   h += script_safe(json);
+  if (!joints_json.empty()) {
+    h += "</script>\n<script id=\"windplan-joints\" type=\"application/json\">";
+    h += script_safe(joints_json);
+  }
   h += "</script>\n<script>\n// three.js r111 (MIT licence), Debian package libjs-three\n";
   h += embedded::three_js();
   h += "\n</script>\n<script>\n";
   h += embedded::viewer_app_js();
+  if (!joints_json.empty()) {
+    h += "\n</script>\n<script>\n";
+    h += embedded::viewer_joints_js();
+  }
   h += "\n</script>\n</body>\n</html>\n";
   return h;
 }
@@ -401,9 +464,16 @@ std::string page_html(const WindingPlan& plan, const std::string& json) {
 }  // namespace
 
 ViewerPage viewer_page(const WindingPlan& plan, const Mesh& mandrel, const Motion& motion,
-                       const ViewerOptions& opts) {
+                       const ViewerOptions& opts, const ViewerJoints* joints) {
   std::string why;
   if (!opts.is_valid(&why)) throw InputError("viewer options: " + why);
+  if (joints) {
+    bool ok = joints->time.size() == motion.states.size() && !joints->series.empty();
+    for (const JointSeries& js : joints->series) ok = ok && js.values.size() == joints->time.size();
+    if (!ok)
+      throw InputError("viewer: the robot's joints need one value per machine state (" +
+                       std::to_string(motion.states.size()) + ")");
+  }
   const AxisFrame frame = make_axis_frame(plan.axis);
   ViewerPage page;
   for (const Circuit& c : plan.circuits) page.points += static_cast<int>(c.points.size());
@@ -412,8 +482,12 @@ ViewerPage viewer_page(const WindingPlan& plan, const Mesh& mandrel, const Motio
 
   // Decimate until the page fits: the mandrel first when it alone takes over 40% of the budget
   // (vertex clustering, the cell growing by 1.5), then the points and states by a growing stride.
-  const std::size_t fixed =
-      std::strlen(embedded::three_js()) + std::strlen(embedded::viewer_app_js()) + 20000;
+  const std::size_t fixed = std::strlen(embedded::three_js()) +
+                            std::strlen(embedded::viewer_app_js()) + 20000 +
+                            (joints ? std::strlen(embedded::viewer_joints_js()) + 1000 : 0);
+  // Bytes per machine state on the page: 14 float32; a robot's joints add the series, the
+  // robot's time, the planned time and the row (base64: 4/3).
+  const double state_bytes = 56.0 + (joints ? 4.0 * (joints->series.size() + 3) : 0.0);
   const double budget = static_cast<double>(opts.max_bytes) - static_cast<double>(fixed);
   auto b64_size = [](double bytes) { return bytes * 4.0 / 3.0; };
   PageMesh mesh = cluster_mesh(mandrel, frame, 0.0);
@@ -444,15 +518,16 @@ ViewerPage viewer_page(const WindingPlan& plan, const Mesh& mandrel, const Motio
                 std::to_string(mesh.tris.size() / 3) + " triangles, ";
       note += "kept for the page only; the CSV and G-code files hold every point.";
     }
-    data = page_data(plan, motion, frame, mesh, k, ks, note);
-    if (static_cast<double>(data.json.size()) <= budget) break;
-    // Thin what takes room: the points (32 bytes each) and the states (56) whichever is over a
-    // quarter of the budget (base64: 4/3).
-    const double over = static_cast<double>(data.json.size()) / budget;
+    data = page_data(plan, motion, frame, mesh, k, ks, note, joints);
+    const double bytes = static_cast<double>(data.json.size() + data.joints_json.size());
+    if (bytes <= budget) break;
+    // Thin what takes room: the points (32 bytes each) and the states (56, more with a robot's
+    // joints) whichever is over a quarter of the budget (base64: 4/3).
+    const double over = bytes / budget;
     const int k0 = k, ks0 = ks;
     if (b64_size(32.0 * data.points) > 0.25 * budget)
       k = std::max(k + 1, static_cast<int>(std::ceil(k * over)));
-    if (b64_size(56.0 * data.states) > 0.25 * budget)
+    if (b64_size(state_bytes * data.states) > 0.25 * budget)
       ks = std::max(ks + 1, static_cast<int>(std::ceil(ks * over)));
     if (k == k0 && ks == ks0) {  // neither dominates: thin both
       k += 1;
@@ -463,7 +538,7 @@ ViewerPage viewer_page(const WindingPlan& plan, const Mesh& mandrel, const Motio
   page.points_kept = data.points;
   page.states_kept = data.states;
   page.triangles_kept = data.triangles;
-  page.html = page_html(plan, data.json);
+  page.html = page_html(plan, data.json, data.joints_json);
   return page;
 }
 

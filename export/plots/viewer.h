@@ -28,6 +28,7 @@
 #include <string>
 
 #include "export/machine/kinematics.h"
+#include "export/plots/joints_svg.h"
 #include "geometry/mesh/mesh.h"
 #include "planner/plan/plan.h"
 
@@ -48,10 +49,25 @@ struct ViewerPage {
   std::string note;                       ///< decimation note shown in the page; empty: none
 };
 
+/// A robot cell's joints for the page's joint panel (robot jobs only; export_plan fills it from
+/// the robot motion, as joints.csv): every series (E1, then A1..A6 of the arm; deg, with their
+/// limits, none for E1) holds one value per machine state of `motion`, and `time` the robot's
+/// time of each (s, joints.csv's t_s). The page then embeds them ("windplan-joints": for every
+/// state kept on the page, its planned time, its joints.csv row, the robot's time and the
+/// values, as float32) and the joint panel's script (export/plots/viewer_joints.js): at each
+/// moment of the slider, each joint's value with a bar over its limits, and the joints against
+/// time with a cursor. A page without joints is the same page, byte for byte, as before them.
+struct ViewerJoints {
+  std::string arm;                  ///< the arm's name, for the panel's heading
+  std::vector<double> time;         ///< s, per machine state
+  std::vector<JointSeries> series;  ///< E1, A1..A6: per machine state, deg
+};
+
 /// The page of a plan. `motion` is the plan's (compute_motion); `mandrel` the mesh the plan was
-/// made on. \throw InputError when options are invalid.
+/// made on; `joints` a robot cell's (nullptr: none). \throw InputError when options are invalid
+/// or the joints do not have one value per machine state.
 ViewerPage viewer_page(const WindingPlan& plan, const Mesh& mandrel, const Motion& motion,
-                       const ViewerOptions& opts = {});
+                       const ViewerOptions& opts = {}, const ViewerJoints* joints = nullptr);
 
 /// The layer of each circuit (in plan order; WindingPlan::layers), as the page and
 /// development.svg colour and group them: 0 for every circuit of a plan without layers.

@@ -6,15 +6,19 @@
 //   - the mandrel (neutral grey) and the bands (saturated colours) cover parts of the 3-D view,
 //     counted by colour class in the screenshot;
 //   - moving the time slider (URL hash t=) changes the picture: few band pixels near the start,
-//     many at the end.
+//     many at the end;
+//   - a robot job's joint panel shows, at the slider's moment, the joints joints.csv holds.
 // The screenshots stay in build/screenshots/ for a person to look at.
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -209,9 +213,88 @@ class ViewerBrowser : public ::testing::Test {
   fs::path dir_;
 };
 
-TEST_F(ViewerBrowser, Vessel) { check_job("vessel.yaml", "vessel"); }
+// The joint panel's line at slider fraction t ("windplan-viewer: joints t=0.250 row=R t_robot=S
+// E1=.. A1=.. ..."): the joints.csv row and every name=value; row -1 when absent.
+struct JointLine {
+  long row = -1;
+  std::map<std::string, double> value;  // t_robot and the joints
+};
 
-TEST_F(ViewerBrowser, BentTube) { check_job("bent_tube.yaml", "bent_tube"); }
+JointLine joint_line(const std::string& console, const std::string& t) {
+  JointLine out;
+  const std::string key = "windplan-viewer: joints t=" + t + " ";
+  const std::size_t p = console.find(key);
+  if (p == std::string::npos) return out;
+  std::istringstream in(console.substr(p + key.size(), console.find('"', p) - p - key.size()));
+  for (std::string tok; in >> tok;) {
+    const std::size_t eq = tok.find('=');
+    if (eq == std::string::npos) continue;
+    if (tok.substr(0, eq) == "row")
+      out.row = std::stol(tok.substr(eq + 1));
+    else
+      out.value[tok.substr(0, eq)] = std::stod(tok.substr(eq + 1));
+  }
+  return out;
+}
+
+// The rows of a CSV file windplan wrote (numbers only, after the header).
+std::vector<std::vector<double>> csv_rows(const fs::path& file) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(read_all(file));
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<double> r;
+    std::istringstream cells(line);
+    for (std::string c; std::getline(cells, c, ',');) r.push_back(std::stod(c));
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+TEST_F(ViewerBrowser, Vessel) {
+  const fs::path page = check_job("vessel.yaml", "vessel");
+  // A lathe job's page has no joint panel.
+  EXPECT_EQ(read_all(page).find("windplan-joints"), std::string::npos);
+}
+
+// A robot cell (the shipped bent tube on the KR 16-2 cell): the joint panel is built, and at two
+// moments of the slider it shows the joints of the state viewer_app.js shows, read back against
+// joints.csv (its row: E1, A1..A6 and the robot's time) and axes.csv (the state's planned time is
+// at or before the slider's moment); the values change with the slider.
+TEST_F(ViewerBrowser, BentTube) {
+  const fs::path page = check_job("bent_tube.yaml", "bent_tube");
+  const std::vector<std::vector<double>> joints = csv_rows(page.parent_path() / "joints.csv");
+  const std::vector<std::vector<double>> axes = csv_rows(page.parent_path() / "axes.csv");
+  ASSERT_EQ(joints.size(), axes.size());
+  ASSERT_FALSE(axes.empty());
+  const double wind_time = axes.back()[2];
+  const char* names[7] = {"E1", "A1", "A2", "A3", "A4", "A5", "A6"};
+  std::vector<JointLine> seen;
+  for (const char* t : {"0.250", "0.750"}) {
+    const Shot s = shoot(page, std::string("t=") + t, std::string("bent_tube_joints_t") + t);
+    expect_clean(s, std::string("t=") + t);
+    EXPECT_NE(s.console.find("windplan-viewer: joints panel E1,A1,A2,A3,A4,A5,A6"),
+              std::string::npos)
+        << s.console;
+    const JointLine j = joint_line(s.console, t);
+    ASSERT_GE(j.row, 0) << s.console;
+    ASSERT_LT(j.row, static_cast<long>(joints.size()));
+    const std::vector<double>& csv = joints[j.row];  // circuit, index, t_s, E1, A1..A6, S, T
+    EXPECT_NEAR(j.value.at("t_robot"), csv[2], 2e-3);
+    for (int k = 0; k < 7; ++k) EXPECT_NEAR(j.value.at(names[k]), csv[3 + k], 2e-3) << names[k];
+    EXPECT_LE(axes[j.row][2], std::stod(t) * wind_time * (1 + 1e-6));
+    EXPECT_GT(axes[j.row][2], std::stod(t) * wind_time - 0.01 * wind_time);
+    std::printf("joint panel at t=%s: joints.csv row %ld, A1 %.3f A2 %.3f A3 %.3f deg\n", t, j.row,
+                j.value.at("A1"), j.value.at("A2"), j.value.at("A3"));
+    seen.push_back(j);
+  }
+  ASSERT_EQ(seen.size(), 2u);
+  EXPECT_LT(seen[0].row, seen[1].row);
+  double moved = 0.0;
+  for (const char* n : names) moved += std::fabs(seen[0].value.at(n) - seen[1].value.at(n));
+  EXPECT_GT(moved, 1.0);  // deg, summed over the joints
+}
 
 // The layup job (planner/plan_layup.h): coloured by layer, with each layer named in the panel.
 TEST_F(ViewerBrowser, VesselLayup) {

@@ -3,6 +3,7 @@
 // tests/export/plots/viewer_browser_test.cpp.
 #include "export/plots/viewer.h"
 
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -115,6 +116,60 @@ TEST(ViewerPage, SelfContainedWithThePlansData) {
   ASSERT_EQ(st.size(), 14u * motion.states.size());
   EXPECT_NEAR(st[14 * (motion.states.size() - 1)], motion.wind_time, 1e-3 * motion.wind_time);
   EXPECT_EQ(floats(string_field(h, "mesh_triangles")).size(), 3u * mesh.num_faces());
+}
+
+// A robot cell's page: the joints block and the joint panel's script are added, the data read
+// back matches the joints given (per machine state: its joints.csv row, planned time, robot time
+// and values); the same plan without joints is the page as before, byte for byte, with neither.
+TEST(ViewerPage, RobotJointsAddTheJointPanel) {
+  WindingPlan plan = test::helix_plan(50, 40, 1.5, 200, 3);
+  const Mesh mesh(test::open_cylinder(50, 700, 24, 10));
+  const MachineOptions machine;
+  const Motion motion = compute_motion(plan, machine);
+  const int n = static_cast<int>(motion.states.size());
+  ViewerJoints joints;
+  joints.arm = "test arm";
+  joints.series.resize(7);
+  for (int j = 0; j < 7; ++j) {
+    joints.series[j].name = j == 0 ? "E1" : "A" + std::to_string(j);
+    if (j > 0) {
+      joints.series[j].min = -170;
+      joints.series[j].max = 170;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    joints.time.push_back(0.5 * i);
+    for (int j = 0; j < 7; ++j) joints.series[j].values.push_back(10.0 * j + 0.01 * i);
+  }
+  const ViewerPage plain = viewer_page(plan, mesh, motion);
+  const ViewerPage robot = viewer_page(plan, mesh, motion, {}, &joints);
+  EXPECT_EQ(viewer_page(plan, mesh, motion, {}, nullptr).html, plain.html);
+  EXPECT_EQ(plain.html.find("windplan-joints"), std::string::npos);
+  const std::string& h = robot.html;
+  EXPECT_EQ(count(h, "</script>"), 5);  // data, joints, three.js, the viewer, the joint panel
+  EXPECT_EQ(count(h, "<script id=\"windplan-joints\" type=\"application/json\">"), 1);
+  EXPECT_NE(h.find("windplan-viewer: joints panel"), std::string::npos);
+  EXPECT_NE(h.find("\"arm\":\"test arm\""), std::string::npos);
+  EXPECT_NE(h.find("\"names\":[\"E1\",\"A1\",\"A2\",\"A3\",\"A4\",\"A5\",\"A6\"]"),
+            std::string::npos);
+  EXPECT_NE(h.find("\"limited\":[false,true,true,true,true,true,true]"), std::string::npos);
+  const std::vector<float> t = floats(string_field(h, "state_t"));
+  const std::vector<float> v = floats(string_field(h, "values"));
+  const std::vector<unsigned char> rows = unbase64(string_field(h, "rows"));
+  ASSERT_EQ(t.size(), static_cast<std::size_t>(n));  // not decimated: every state
+  ASSERT_EQ(v.size(), 8u * n);
+  ASSERT_EQ(rows.size(), 4u * n);
+  for (int i : {0, n / 3, n - 1}) {
+    std::uint32_t row = 0;
+    std::memcpy(&row, &rows[4 * i], 4);
+    EXPECT_EQ(row, static_cast<std::uint32_t>(i));
+    EXPECT_FLOAT_EQ(t[i], static_cast<float>(motion.states[i].t_s));
+    EXPECT_FLOAT_EQ(v[8 * i], static_cast<float>(0.5 * i));
+    for (int j = 0; j < 7; ++j) EXPECT_FLOAT_EQ(v[8 * i + 1 + j], float(10.0 * j + 0.01 * i));
+  }
+  // One value too few: refused.
+  joints.series[3].values.pop_back();
+  EXPECT_THROW(viewer_page(plan, mesh, motion, {}, &joints), InputError);
 }
 
 TEST(ViewerPage, MeasuredCoverageInThePanel) {
