@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "export/machine/clearance.h"
+#include "export/machine/clearance_eye.h"
 #include "export/machine/monotone_axes.h"
 #include "export/machine/resample.h"
 #include "export/machine/tangent_smoothing.h"
@@ -198,8 +199,16 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
   m.inverse_time = uses_inverse_time(opts.gcode);
   m.layers = plan.layers;
   const AxisFrame frame = make_axis_frame(plan.axis);
-  const Envelope env = make_envelope(swept_profile(plan, mandrel), opts.envelope, opts.kind);
-  m.envelope = env.description;
+  // A robot's eye follows the mandrel itself (export/machine/clearance_eye.h) when there is a
+  // mesh to measure the clearance on; otherwise, and on lathes, the envelope of the swept mandrel.
+  const bool true_distance = opts.kind == "robot" && opts.envelope.mode() == "clearance" &&
+                             mandrel && mandrel->num_faces() > 0;
+  const Envelope env = true_distance
+                           ? Envelope{}
+                           : make_envelope(swept_profile(plan, mandrel), opts.envelope, opts.kind);
+  m.envelope = true_distance ? "true distance " + num(opts.envelope.clearance) +
+                                   " mm from the mandrel (robot: the eye follows the tube)"
+                             : env.description;
   const bool lathe2 = opts.kind == "lathe2";
   // Machine axes that move (and bound the time): lathe2 drives A and X only.
   const AxisOptions* axes[4] = {&opts.a, &opts.x, &opts.y, &opts.b};
@@ -222,6 +231,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     ResampleResult resampled;
     double max_tangent_change = 0.0;  // deg
     int max_eye_iterations = 0;
+    int fibre_into_mandrel = 0;
     std::exception_ptr error;
   };
   std::vector<CircuitMotion> per_circuit(plan.circuits.size());
@@ -266,7 +276,16 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
           cm.max_tangent_change = std::max(cm.max_tangent_change, std::acos(cosang) * kDeg);
         }
         try {
-          sol[i] = solve_payout_eye(frame, env, fibre[i], tangent[i]);
+          if (true_distance) {
+            const ClearanceEye ce = solve_clearance_eye(*mandrel, *query, fibre[i], tangent[i],
+                                                        opts.envelope.clearance);
+            sol[i].eye = ce.eye;
+            sol[i].free_length = ce.free_length;
+            sol[i].iterations = ce.iterations;
+            if (ce.enters) ++cm.fibre_into_mandrel;
+          } else {
+            sol[i] = solve_payout_eye(frame, env, fibre[i], tangent[i]);
+          }
         } catch (const InputError& e) {
           // The point is named only on failure (no string per point on the hot path).
           throw InputError("circuit " + std::to_string(c.index) + ", point " + std::to_string(i) +
@@ -292,7 +311,26 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
         forced.push_back(seg.first);
         forced.push_back(seg.last);
       }
-      cm.resampled = resample_by_chord({&fibre, &eyes}, opts.chord_tolerance, forced);
+      if (true_distance) {
+        // The cell moves the eye linearly in X, Y and the positioner angle between targets, so
+        // in the mandrel frame it sweeps round the axis, off the Cartesian chord of the eyes (a
+        // chord 16 deg round at 100 mm sags 1 mm, into the clearance). The eyes in those
+        // coordinates (X, Y, angle x the circuit's largest Y: an arc is never longer) are kept
+        // within the tolerance too.
+        std::vector<Vec3> axes_path(n);
+        double y_max = 0.0, prev_theta = 0.0;
+        for (int i = 0; i < n; ++i) y_max = std::max(y_max, frame.radius(eyes[i]));
+        for (int i = 0; i < n; ++i) {
+          const double raw = frame.angle(eyes[i]);
+          const double theta =
+              i == 0 ? raw : prev_theta + std::remainder(raw - prev_theta, 2 * kPi);
+          prev_theta = theta;
+          axes_path[i] = Vec3(frame.axial(eyes[i]), frame.radius(eyes[i]), theta * y_max);
+        }
+        cm.resampled = resample_by_chord({&fibre, &eyes, &axes_path}, opts.chord_tolerance, forced);
+      } else {
+        cm.resampled = resample_by_chord({&fibre, &eyes}, opts.chord_tolerance, forced);
+      }
     } catch (...) {
       cm.error = std::current_exception();
     }
@@ -311,6 +349,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     if (cm.error) std::rethrow_exception(cm.error);
     m.max_tangent_change = std::max(m.max_tangent_change, cm.max_tangent_change);
     m.max_eye_iterations = std::max(m.max_eye_iterations, cm.max_eye_iterations);
+    m.fibre_into_mandrel += cm.fibre_into_mandrel;
     const std::vector<Vec3>& tangent = cm.tangent;
     const std::vector<EyeSolution>& sol = cm.sol;
     if (query && cm.clearance.min_distance < min_clearance) {

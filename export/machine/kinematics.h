@@ -113,6 +113,9 @@ struct Motion {
   double max_chord_deviation = 0.0;  ///< mm (fibre and eye polylines)
   Range a, x, y, b, free_length;     ///< deg, mm, mm, deg, mm
   int max_eye_iterations = 0;
+  /// Dense points whose free fibre to a robot's true-distance eye passes inside the mandrel
+  /// (export/machine/clearance_eye.h); 0 for envelopes.
+  int fibre_into_mandrel = 0;
   /// The plan's layers (WindingPlan::layers; empty for a one-layer job): the G-code comments
   /// each layer and pauses between layers (export/program/gcode.h).
   std::vector<LayerSummary> layers;
