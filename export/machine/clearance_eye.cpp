@@ -20,26 +20,33 @@ ClearanceEye solve_clearance_eye(const Mesh& mesh, const ClosestPointQuery& quer
   if (!p.allFinite()) throw InputError(at + "the fibre point is not finite");
   const Vec3 t = t_in / tn;
   ClearanceEye s;
-  // Distance from E(l) to the mesh; marks the march as entering when E(l) is below the plane of
-  // its closest face (the mesh's faces are oriented outwards).
-  auto dist = [&](double l, bool test_inside) {
+  // Distance from E(l) to the mesh, and whether E(l) is inside the mandrel: below the plane of its
+  // closest face (the mesh's faces are oriented outwards) by more than 1e-3 mm.
+  bool inside = false;
+  auto dist = [&](double l) {
     const Vec3 e = p + l * t;
     const ClosestPointQuery::Hit h = query.closest(e);
     ++s.iterations;
-    if (test_inside && h.distance > 1e-3 && h.point.element >= 0) {
+    inside = false;
+    if (h.distance > 1e-3 && h.point.element >= 0) {
       const int f = containing_face(mesh, h.point);
-      if ((e - h.position).dot(mesh.face_normal(f)) < -1e-3) s.enters = true;
+      inside = (e - h.position).dot(mesh.face_normal(f)) < -1e-3;
     }
     return h.distance;
   };
   double lo = 0.0, hi = 0.0, d = 0.0;
+  bool was_inside = false;
   while (true) {
-    // d is 1-Lipschitz in l: no l in (hi, hi + clearance - d) reaches the clearance.
-    const double step = std::max(clearance - d, tolerance);
+    // Outside, d is 1-Lipschitz in l: no l in (hi, hi + clearance - d) reaches the clearance.
+    // Inside (the line cut into the mandrel), the ball of radius d is inside: step by d to the
+    // way out, then on as outside.
+    const double step = std::max(was_inside ? d : clearance - d, tolerance);
     lo = hi;
     hi += step;
-    d = dist(hi, true);
-    if (d >= clearance) break;
+    d = dist(hi);
+    was_inside = inside;
+    if (inside) s.enters = true;
+    if (!inside && d >= clearance) break;
     if (hi > max_length) {
       char buf[120];
       std::snprintf(buf, sizeof buf,
@@ -51,7 +58,7 @@ ClearanceEye solve_clearance_eye(const Mesh& mesh, const ClosestPointQuery& quer
   }
   while (hi - lo > tolerance) {
     const double mid = 0.5 * (lo + hi);
-    if (dist(mid, false) < clearance) {
+    if (dist(mid) < clearance) {
       lo = mid;
     } else {
       hi = mid;

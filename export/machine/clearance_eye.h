@@ -8,9 +8,11 @@
 // L the first length at which the distance from E(L) to the (unswept) mandrel mesh reaches the
 // clearance c. The mesh distance d(L) is 1-Lipschitz in L, so marching by c - d(L) never steps
 // past the first L with d = c (sphere tracing, monotone-safe); the last bracket is refined by
-// bisection to `tolerance`. Every point of the march is also tested for being inside the mandrel
-// (below the closest face's plane, more than 1e-3 mm from it): the free fibre P -> E would then
-// cut into the mandrel, which is reported (`enters`), not hidden.
+// bisection to `tolerance`. The distance is unsigned, so every point of the march is also tested
+// for being inside the mandrel (below the closest face's plane by more than 1e-3 mm): where the
+// free fibre P -> E would cut into the mandrel (a concave stretch, e.g. along the inside of a
+// bend), the march goes on through it by steps of d (the ball of radius d is inside) and the eye
+// is the first point beyond with d = c; this is reported (`enters`), never hidden.
 #include <string>
 
 #include "geometry/mesh/closest_point.h"

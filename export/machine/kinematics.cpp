@@ -349,7 +349,8 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     if (cm.error) std::rethrow_exception(cm.error);
     m.max_tangent_change = std::max(m.max_tangent_change, cm.max_tangent_change);
     m.max_eye_iterations = std::max(m.max_eye_iterations, cm.max_eye_iterations);
-    m.fibre_into_mandrel += cm.fibre_into_mandrel;
+    if (true_distance)
+      m.fibre_into_mandrel = std::max(0, m.fibre_into_mandrel) + cm.fibre_into_mandrel;
     const std::vector<Vec3>& tangent = cm.tangent;
     const std::vector<EyeSolution>& sol = cm.sol;
     if (query && cm.clearance.min_distance < min_clearance) {

@@ -114,8 +114,8 @@ struct Motion {
   Range a, x, y, b, free_length;     ///< deg, mm, mm, deg, mm
   int max_eye_iterations = 0;
   /// Dense points whose free fibre to a robot's true-distance eye passes inside the mandrel
-  /// (export/machine/clearance_eye.h); 0 for envelopes.
-  int fibre_into_mandrel = 0;
+  /// (export/machine/clearance_eye.h); -1 for envelopes (not measured).
+  int fibre_into_mandrel = -1;
   /// The plan's layers (WindingPlan::layers; empty for a one-layer job): the G-code comments
   /// each layer and pauses between layers (export/program/gcode.h).
   std::vector<LayerSummary> layers;
