@@ -248,7 +248,8 @@ TEST(RobotReplay, BentTubeProgramsReplayWithinHalfAMillimetre) {
         read_robot_program(texts, files.front().name, dialect), c.planned.plan, mesh, m, &mo);
     EXPECT_LT(r.fibre.max_deviation, 0.5) << dialect << ": " << r.summary;
     EXPECT_LT(r.max_eye_deviation, 0.5) << dialect << ": " << r.summary;
-    EXPECT_GT(r.fibre.min_clearance, m.envelope.clearance - 1.0) << r.summary;
+    // Between targets too (corner eyes, resampling in the cell's interpolation).
+    EXPECT_GT(r.fibre.min_clearance, m.envelope.clearance - 2 * m.chord_tolerance) << r.summary;
     EXPECT_LE(r.max_joint_speed_ratio, 1.001) << r.summary;  // durations written to 4 decimals
     EXPECT_EQ(r.configuration_changes, 0) << r.summary;
   }
