@@ -29,6 +29,9 @@ void motion_json(JsonWriter& j, const Motion& mo, const ReplayResult* rp) {
   j.field("required_clearance_mm", mo.required_clearance);
   j.field("min_clearance_circuit", mo.min_clearance_circuit);
   j.field("min_clearance_point", mo.min_clearance_index);
+  // A robot's true-distance eye only (export/machine/clearance_eye.h): the lathes' files stay as
+  // they were.
+  if (mo.fibre_into_mandrel >= 0) j.field("fibre_into_mandrel_points", mo.fibre_into_mandrel);
   j.field("carriage_reversals", mo.carriage_reversals);
   j.field("max_carriage_reversals_per_circuit", mo.max_carriage_reversals_per_circuit);
   j.field("mid_pass_carriage_reversals", mo.mid_pass_carriage_reversals);
@@ -92,6 +95,9 @@ std::string motion_summary(const Motion& mo, const ReplayResult* rp) {
     << (std::isnan(mo.min_clearance) ? std::string("not checked")
                                      : "min " + fmt("%.2f", mo.min_clearance) + " mm (required " +
                                            fmt("%.2f", mo.required_clearance) + ")")
+    << (mo.fibre_into_mandrel >= 0 ? ", free fibre into the mandrel at " +
+                                         std::to_string(mo.fibre_into_mandrel) + " points"
+                                   : std::string())
     << "\n"
     << "  reversals        carriage " << mo.carriage_reversals << " (max "
     << mo.max_carriage_reversals_per_circuit << " per circuit, " << mo.mid_pass_carriage_reversals

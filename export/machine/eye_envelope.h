@@ -13,6 +13,8 @@
 //     R_env is sampled at every profile station, every station +/- clearance and at steps of at
 //     most min(1 mm, clearance / 10), so its chords fall at most h^2 / (8 clearance) <= 0.006 mm
 //     (clearance 20) inside the exact dilation;
+//     a robot uses it only without a mandrel mesh: with one, its eye is at the true clearance
+//     from the unswept mandrel (export/machine/clearance_eye.h);
 //   - profile mode: the explicit (x, r) polyline (lathe4, robot; lathe2 only if it is constant);
 //   - free_length mode: no envelope (lathe4, robot).
 // A point at (x, R_env(x)) of a surface of revolution is at distance >= clearance from the mandrel

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "export/machine/clearance.h"
+#include "export/machine/clearance_eye.h"
 #include "export/machine/monotone_axes.h"
 #include "export/machine/resample.h"
 #include "export/machine/tangent_smoothing.h"
@@ -198,8 +199,16 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
   m.inverse_time = uses_inverse_time(opts.gcode);
   m.layers = plan.layers;
   const AxisFrame frame = make_axis_frame(plan.axis);
-  const Envelope env = make_envelope(swept_profile(plan, mandrel), opts.envelope, opts.kind);
-  m.envelope = env.description;
+  // A robot's eye follows the mandrel itself (export/machine/clearance_eye.h) when there is a
+  // mesh to measure the clearance on; otherwise, and on lathes, the envelope of the swept mandrel.
+  const bool true_distance = opts.kind == "robot" && opts.envelope.mode() == "clearance" &&
+                             mandrel && mandrel->num_faces() > 0;
+  const Envelope env = true_distance
+                           ? Envelope{}
+                           : make_envelope(swept_profile(plan, mandrel), opts.envelope, opts.kind);
+  m.envelope = true_distance ? "true distance " + num(opts.envelope.clearance) +
+                                   " mm from the mandrel (robot: the eye follows the tube)"
+                             : env.description;
   const bool lathe2 = opts.kind == "lathe2";
   // Machine axes that move (and bound the time): lathe2 drives A and X only.
   const AxisOptions* axes[4] = {&opts.a, &opts.x, &opts.y, &opts.b};
@@ -222,7 +231,78 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     ResampleResult resampled;
     double max_tangent_change = 0.0;  // deg
     int max_eye_iterations = 0;
+    int fibre_into_mandrel = 0;
     std::exception_ptr error;
+    // A robot's corner eyes (insert_corner_eyes): per entry of tangent and sol, its dense point,
+    // fibre position and arc length; empty when none is inserted.
+    std::vector<int> dense;
+    std::vector<Vec3> position;
+    std::vector<double> s;
+  };
+  // Where a robot's fibre tangent turns by more than kCornerDeg between two dense points (a pass
+  // meeting a dwell arc on the pins at a tube's end: 14.5 deg on bent_tube) the eye swings round
+  // the contact by L times the angle, and the straight move between the two eyes cuts inside the
+  // clearance (0.54 mm on bent_tube, measured by the replay). Eyes are inserted there with the
+  // tangent turned in steps of at most kCornerDeg (slerp; the fibre point on the chord between
+  // the two), each at the true clearance. Returns the number of eyes; fills the arrays of `cm`
+  // and first_of (dense index -> entry).
+  constexpr double kCornerDeg = 2.0;
+  auto insert_corner_eyes = [&](const Mesh& mesh, const ClosestPointQuery& q, double clearance,
+                                const std::vector<double>& s_dense, std::vector<Vec3>* fibre,
+                                std::vector<Vec3>* eyes, CircuitMotion* cm,
+                                std::vector<int>* first_of) {
+    const int n = static_cast<int>(fibre->size());
+    std::vector<Vec3> fibre2, eyes2, tangent2;
+    std::vector<EyeSolution> sol2;
+    std::vector<int> dense;
+    std::vector<double> s2;
+    first_of->assign(n, 0);
+    bool inserted = false;
+    for (int i = 0; i < n; ++i) {
+      if (i > 0) {
+        const Vec3& ta = cm->tangent[i - 1];
+        const Vec3& tb = cm->tangent[i];
+        const double ang = std::acos(std::clamp(ta.dot(tb), -1.0, 1.0));
+        const int parts = static_cast<int>(std::ceil(ang * kDeg / kCornerDeg));
+        for (int k = 1; k < parts && std::sin(ang) > 1e-9; ++k) {
+          const double f = static_cast<double>(k) / parts;
+          const Vec3 t = (std::sin((1.0 - f) * ang) * ta + std::sin(f * ang) * tb) / std::sin(ang);
+          const Vec3 p = (1.0 - f) * (*fibre)[i - 1] + f * (*fibre)[i];
+          const ClearanceEye ce = solve_clearance_eye(mesh, q, p, t, clearance);
+          if (ce.enters) ++cm->fibre_into_mandrel;
+          EyeSolution es;
+          es.eye = ce.eye;
+          es.free_length = ce.free_length;
+          es.iterations = ce.iterations;
+          fibre2.push_back(p);
+          eyes2.push_back(ce.eye);
+          tangent2.push_back(t.normalized());
+          sol2.push_back(es);
+          dense.push_back(i - 1);
+          s2.push_back((1.0 - f) * s_dense[i - 1] + f * s_dense[i]);
+          inserted = true;
+        }
+      }
+      (*first_of)[i] = static_cast<int>(fibre2.size());
+      fibre2.push_back((*fibre)[i]);
+      eyes2.push_back((*eyes)[i]);
+      tangent2.push_back(cm->tangent[i]);
+      sol2.push_back(cm->sol[i]);
+      dense.push_back(i);
+      s2.push_back(s_dense[i]);
+    }
+    if (!inserted) {
+      first_of->clear();
+      return n;
+    }
+    *fibre = std::move(fibre2);
+    *eyes = std::move(eyes2);
+    cm->tangent = std::move(tangent2);
+    cm->sol = std::move(sol2);
+    cm->position = *fibre;
+    cm->dense = std::move(dense);
+    cm->s = std::move(s2);
+    return static_cast<int>(fibre->size());
   };
   std::vector<CircuitMotion> per_circuit(plan.circuits.size());
   parallel_for_index(static_cast<int>(plan.circuits.size()), [&](int ordinal) {
@@ -266,7 +346,16 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
           cm.max_tangent_change = std::max(cm.max_tangent_change, std::acos(cosang) * kDeg);
         }
         try {
-          sol[i] = solve_payout_eye(frame, env, fibre[i], tangent[i]);
+          if (true_distance) {
+            const ClearanceEye ce = solve_clearance_eye(*mandrel, *query, fibre[i], tangent[i],
+                                                        opts.envelope.clearance);
+            sol[i].eye = ce.eye;
+            sol[i].free_length = ce.free_length;
+            sol[i].iterations = ce.iterations;
+            if (ce.enters) ++cm.fibre_into_mandrel;
+          } else {
+            sol[i] = solve_payout_eye(frame, env, fibre[i], tangent[i]);
+          }
         } catch (const InputError& e) {
           // The point is named only on failure (no string per point on the hot path).
           throw InputError("circuit " + std::to_string(c.index) + ", point " + std::to_string(i) +
@@ -274,6 +363,12 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
         }
         eyes[i] = sol[i].eye;
         cm.max_eye_iterations = std::max(cm.max_eye_iterations, sol[i].iterations);
+      }
+      int n_eyes = n;
+      std::vector<int> first_of;  // dense index -> its entry in the (augmented) arrays
+      if (true_distance) {
+        n_eyes = insert_corner_eyes(*mandrel, *query, opts.envelope.clearance, s, &fibre, &eyes,
+                                    &cm, &first_of);
       }
       if (query) {
         cm.clearance = check_clearance(*query, eyes);
@@ -289,10 +384,30 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
       }
       std::vector<int> forced;
       for (const CircuitSegment& seg : c.segments) {
-        forced.push_back(seg.first);
-        forced.push_back(seg.last);
+        for (int k : {seg.first, seg.last}) {
+          forced.push_back(first_of.empty() || k < 0 || k >= n ? k : first_of[k]);
+        }
       }
-      cm.resampled = resample_by_chord({&fibre, &eyes}, opts.chord_tolerance, forced);
+      if (true_distance) {
+        // The cell moves the eye linearly in X, Y and the positioner angle between targets, so
+        // in the mandrel frame it sweeps round the axis, off the Cartesian chord of the eyes (a
+        // chord 16 deg round at 100 mm sags 1 mm, into the clearance). The eyes in those
+        // coordinates (X, Y, angle x the circuit's largest Y: an arc is never longer) are kept
+        // within the tolerance too.
+        std::vector<Vec3> axes_path(n_eyes);
+        double y_max = 0.0, prev_theta = 0.0;
+        for (int i = 0; i < n_eyes; ++i) y_max = std::max(y_max, frame.radius(eyes[i]));
+        for (int i = 0; i < n_eyes; ++i) {
+          const double raw = frame.angle(eyes[i]);
+          const double theta =
+              i == 0 ? raw : prev_theta + std::remainder(raw - prev_theta, 2 * kPi);
+          prev_theta = theta;
+          axes_path[i] = Vec3(frame.axial(eyes[i]), frame.radius(eyes[i]), theta * y_max);
+        }
+        cm.resampled = resample_by_chord({&fibre, &eyes, &axes_path}, opts.chord_tolerance, forced);
+      } else {
+        cm.resampled = resample_by_chord({&fibre, &eyes}, opts.chord_tolerance, forced);
+      }
     } catch (...) {
       cm.error = std::current_exception();
     }
@@ -311,6 +426,8 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     if (cm.error) std::rethrow_exception(cm.error);
     m.max_tangent_change = std::max(m.max_tangent_change, cm.max_tangent_change);
     m.max_eye_iterations = std::max(m.max_eye_iterations, cm.max_eye_iterations);
+    if (true_distance)
+      m.fibre_into_mandrel = std::max(0, m.fibre_into_mandrel) + cm.fibre_into_mandrel;
     const std::vector<Vec3>& tangent = cm.tangent;
     const std::vector<EyeSolution>& sol = cm.sol;
     if (query && cm.clearance.min_distance < min_clearance) {
@@ -322,17 +439,19 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     m.max_chord_deviation = std::max(m.max_chord_deviation, rs.max_deviation);
     const double s0 = c.points.front().s;
     circuit_begin.push_back(static_cast<int>(m.states.size()));
-    for (int k : rs.kept) {
+    for (int j : rs.kept) {
+      // j indexes the eyes (with a robot's corner eyes inserted), k the plan's dense points.
+      const int k = cm.dense.empty() ? j : cm.dense[j];
       const FibrePoint& fp = c.points[k];
       MachineState st;
       st.circuit = c.index;
       st.ordinal = static_cast<int>(ordinal);
       st.index = k;
-      st.position = fp.position;
-      st.eye = sol[k].eye;
-      st.direction = tangent[k];
-      st.free_length = sol[k].free_length;
-      st.paid_out = laid_before + (fp.s - s0) + st.free_length;
+      st.position = cm.dense.empty() ? fp.position : cm.position[j];
+      st.eye = sol[j].eye;
+      st.direction = tangent[j];
+      st.free_length = sol[j].free_length;
+      st.paid_out = laid_before + ((cm.dense.empty() ? fp.s : cm.s[j]) - s0) + st.free_length;
       const double a_raw = -frame.angle(st.eye) * kDeg;
       st.a_deg = first ? a_raw : unwrap_deg(a_raw, prev.a_deg);
       st.x_mm = frame.axial(st.eye);

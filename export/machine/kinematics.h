@@ -6,7 +6,12 @@
 // leaves the eye envelope; L >= 0 is the free fibre length between eye and mandrel. The
 // envelope is a surface of revolution about the spindle axis, R_env(x) of the axial coordinate x,
 // chosen per machine kind (export/machine/eye_envelope.h: a cylinder for lathe2, the true-distance
-// clearance envelope for lathe4 and robots, or an explicit profile; or a fixed free length). The
+// clearance envelope for lathe4 and robots, or an explicit profile; or a fixed free length).
+// A robot with the mandrel mesh (kind robot, envelope.clearance) has no envelope of revolution:
+// its eye is the first point of the tangent line at the true clearance from the mesh
+// (export/machine/clearance_eye.h), with eyes inserted where the tangent turns by more than 2 deg
+// between two dense points, and its targets resampled in (X, Y, angle) as well (the cell's
+// interpolation), so that the eye keeps the clearance between them. The
 // tangents t are the plan's, smoothed under machine.tangent_window
 // (export/machine/tangent_smoothing.h). L solves f(L) = r(E(L)) - R_env(x(E(L))) = 0 for the first
 // root: f is Lipschitz with constant 1 + S (S = the largest |dR_env/dx|), so marching by -f/(1+S)
@@ -113,6 +118,9 @@ struct Motion {
   double max_chord_deviation = 0.0;  ///< mm (fibre and eye polylines)
   Range a, x, y, b, free_length;     ///< deg, mm, mm, deg, mm
   int max_eye_iterations = 0;
+  /// Dense points whose free fibre to a robot's true-distance eye passes inside the mandrel
+  /// (export/machine/clearance_eye.h); -1 for envelopes (not measured).
+  int fibre_into_mandrel = -1;
   /// The plan's layers (WindingPlan::layers; empty for a one-layer job): the G-code comments
   /// each layer and pauses between layers (export/program/gcode.h).
   std::vector<LayerSummary> layers;

@@ -111,14 +111,16 @@ TEST_F(CliSimulate, EveryShippedJobMovesAsAMachineShould) {
     const YAML::Node m = report["motion"];
     const bool robot = report["machine"]["kind"].as<std::string>() == "robot";
     SCOPED_TRACE(e.path().string());
-    EXPECT_LE(m["max_carriage_reversals_per_circuit"].as<int>(), 2);
-    // The bent tubes are no surfaces of revolution: their bends swing about the spindle, and
-    // carriage reversals fall in the middle half of a pass (measured: bent_tube 1, elbow 4).
-    const std::string stem = e.path().stem().string();
-    if (stem != "bent_tube" && stem != "elbow" && stem != "elbow_robot") {
+    // A robot's eye follows the part at the true clearance (export/machine/clearance_eye.h) and
+    // its cells keep no axis monotone: on a bent tube E1 and the lathe model's X, measured about
+    // the principal axis, turn back and forth (bent_tube: 293 E1 reversals inside passes, X up to
+    // 70 per circuit). The cell is held to its own checks instead (configuration, joint speeds,
+    // the replay within replay_tolerance: tests/export/robot/robot_replay_test.cpp).
+    if (!robot) {
+      EXPECT_LE(m["max_carriage_reversals_per_circuit"].as<int>(), 2);
       EXPECT_EQ(m["mid_pass_carriage_reversals"].as<int>(), 0);
+      EXPECT_EQ(m["spindle_reversals_in_passes"].as<int>(), 0);
     }
-    EXPECT_EQ(m["spindle_reversals_in_passes"].as<int>(), 0);
     EXPECT_LE(m["max_velocity_ratio"].as<double>(), 1 + 1e-9);
     EXPECT_LE(m["max_acceleration_ratio"].as<double>(), 1 + 1e-9);
     EXPECT_GE(m["min_clearance_mm"].as<double>(), m["required_clearance_mm"].as<double>() - 0.05);

@@ -17,6 +17,7 @@
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
 #include "planner/job/job.h"
+#include "planner/pipeline.h"
 #include "tests/export/gcode_parser.h"
 #include "tests/export/plan_fixtures.h"
 #include "tests/mesh_fixtures.h"
@@ -406,6 +407,34 @@ TEST(ExportPlan, KilledExportLeavesOnlyCompleteFiles) {
   }
   std::cout << "[ info ] full export " << full_ms << " ms; files complete " << complete_seen
             << ", absent " << absent_seen << "\n";
+}
+
+// A lathe asked to wind a bent tube (radius 25 mm, 90 deg bend of radius 100 mm): its eye on the
+// envelope of the tube swept about the spindle cannot lay the fibre where planned (the replay is
+// tens of mm off), so the export is refused with the tolerance named (the output set then
+// keeps none of the staged files: export/files/output_set.h).
+TEST(ExportPlan, LatheOnABentTubeIsRefusedByItsReplay) {
+  const Job job = load_job_from_string(
+      "name: lathe bend\n"
+      "mandrel:\n"
+      "  source: bent_tube\n"
+      "  linear_deflection: 0.25\n"
+      "  bent_tube: {radius: 25, segments: [100, 100], bends: [{angle: 90, radius: 100, "
+      "plane_angle: 0}]}\n"
+      "winding: {turns: 8, circuits: 2, band_width: 8, beta: 0, mu: 0.2}\n"
+      "girth: {samples: 16}\n"
+      "machine: {kind: lathe4, replay_tolerance: 0.5}\n",
+      "/tmp/lathe_bend.yaml");
+  const PipelineResult r = plan_job(job);
+  const fs::path d = temp_dir("lathe_bend");
+  try {
+    export_plan(r.plan, r.mandrel.mesh, job.machine, OutputOptions{}, d);
+    FAIL() << "a lathe4 program on a bent tube was written";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("machine.replay_tolerance"), std::string::npos) << what;
+    EXPECT_NE(what.find("no program written"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

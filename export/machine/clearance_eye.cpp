@@ -1,0 +1,74 @@
+#include "export/machine/clearance_eye.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "geometry/base/errors.h"
+#include "geometry/mesh/surface_path.h"
+
+namespace windplan {
+
+ClearanceEye solve_clearance_eye(const Mesh& mesh, const ClosestPointQuery& query, const Vec3& p,
+                                 const Vec3& t_in, double clearance, const std::string& where,
+                                 double tolerance, double max_length) {
+  const std::string at = where.empty() ? std::string() : where + ": ";
+  const double tn = t_in.norm();
+  if (!(tn > 1e-12) || !std::isfinite(tn)) {
+    throw InputError(at + "the fibre tangent is zero or not finite");
+  }
+  if (!p.allFinite()) throw InputError(at + "the fibre point is not finite");
+  const Vec3 t = t_in / tn;
+  ClearanceEye s;
+  // Distance from E(l) to the mesh, and whether E(l) is inside the mandrel: below the plane of its
+  // closest face (the mesh's faces are oriented outwards) by more than 1e-3 mm.
+  bool inside = false;
+  auto dist = [&](double l) {
+    const Vec3 e = p + l * t;
+    const ClosestPointQuery::Hit h = query.closest(e);
+    ++s.iterations;
+    inside = false;
+    if (h.distance > 1e-3 && h.point.element >= 0) {
+      const int f = containing_face(mesh, h.point);
+      inside = (e - h.position).dot(mesh.face_normal(f)) < -1e-3;
+    }
+    return h.distance;
+  };
+  double lo = 0.0, hi = 0.0, d = 0.0;
+  bool was_inside = false;
+  while (true) {
+    // Outside, d is 1-Lipschitz in l: no l in (hi, hi + clearance - d) reaches the clearance.
+    // Inside (the line cut into the mandrel), the ball of radius d is inside: step by d to the
+    // way out, then on as outside.
+    const double step = std::max(was_inside ? d : clearance - d, tolerance);
+    lo = hi;
+    hi += step;
+    d = dist(hi);
+    was_inside = inside;
+    if (inside) s.enters = true;
+    if (!inside && d >= clearance) break;
+    if (hi > max_length) {
+      char buf[120];
+      std::snprintf(buf, sizeof buf,
+                    "the fibre tangent stays within the clearance %.6g mm of the mandrel for "
+                    "%.6g mm",
+                    clearance, max_length);
+      throw InputError(at + buf);
+    }
+  }
+  while (hi - lo > tolerance) {
+    const double mid = 0.5 * (lo + hi);
+    if (dist(mid) < clearance) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  // The eye at hi: at or just beyond the clearance.
+  s.free_length = hi;
+  s.eye = p + hi * t;
+  s.distance = query.closest(s.eye).distance;
+  return s;
+}
+
+}  // namespace windplan
