@@ -22,8 +22,14 @@ struct TubeSpine {
   SpineSummary summary;
 };
 
-/// The wound region's centre line. Never throws for a region that is not a tube: `spine` is then
-/// empty and `why` says what failed.
+/// The centre line of the winding surface `ws` (an annulus; s from its loop 0). A bent tube's
+/// analytic line is trimmed to the stations of the loops' centroids (a region with
+/// centre-line ends). Never throws for a region that is not a tube: `spine` is then empty and
+/// `why` says what failed.
+TubeSpine tube_spine(const WindingSurface& ws, const SpindleAxis& axis,
+                     const MandrelOptions& options);
+
+/// The wound region's centre line: tube_spine(mandrel.winding, mandrel.axis, options).
 TubeSpine mandrel_tube_spine(const Mandrel& mandrel, const MandrelOptions& options);
 
 }  // namespace windplan
