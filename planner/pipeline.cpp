@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "geometry/base/format_number.h"
+#include "geometry/region/sharp_edges.h"
 #include "planner/cutlines/cutlines.h"
 #include "planner/job/job_limits.h"
 #include "planner/mandrel/tube_spine.h"
@@ -66,6 +67,11 @@ std::string turn_limit_warning(const ClairautLimit& lim, const WindingOptions& w
 // constant angle to the centre line (planner/winding/tube_friction.h): planned on a parametric
 // bent tube, whose centre line is known exactly; refused elsewhere, and refused where the keys
 // it does not use are set (they would be silently ignored).
+// The largest turn across an edge of a wound surface off revolution (deg): above it, a corner
+// without radius (a tessellated radius turns by a few degrees per edge; the aerobar's square
+// edges by 80-90).
+constexpr double kSharpEdgeDeg = 60.0;
+
 TubeCentreLine tube_line_of(const Job& job) {
   const BentTubeParams& bt = job.mandrel.bent_tube;
   std::vector<TubeBend> bends;
@@ -207,6 +213,20 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   const WindingSurface& ws = md.winding;
   const std::array<std::vector<int>, 2> loops{ws.loops[0].vertices, ws.loops[1].vertices};
 
+  // Off a shape of revolution, corners without a radius are refused before the long work
+  // (geometry/region/sharp_edges.h): the shared aerobar mandrel (a 10 mm slab with square edges)
+  // ran 116 s to lay 45% bare with |k_g/k_n| unbounded on half the fibre.
+  if (!md.revolution) {
+    const SharpEdges sharp = sharp_edges(ws.mesh, kSharpEdgeDeg);
+    if (sharp.count > 0) {
+      throw InputError("mandrel (" + md.description + "): the wound surface has sharp edges (" +
+                       sharp.brief() + "; more than " + format_fixed(kSharpEdgeDeg, 0) +
+                       " deg is a corner without a radius): friction holds a turning fibre only "
+                       "where the surface curves, and a band over a corner is not laid as "
+                       "planned; give the mandrel rounded edges (a radius of at least the band "
+                       "width) or choose a region without them (mandrel.region)");
+    }
+  }
   // Girth: needed for the density (beta > 0) and, off a shape of revolution, for the spacing
   // normalisation; on a shape of revolution with beta = 0, 2 pi r is the exact girth.
   Stage girth("girth", &timings, options);
