@@ -257,13 +257,13 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     throw ConfigError("winding.pins: pins are planned for friction layers on a bent tube only " +
                       std::string("(winding.slippage and winding.angle or turns on a bent_tube)"));
   }
-  if (!md.revolution && !tube_layer) r.tube = mandrel_tube_spine(md, job.mandrel);
-  const Spine* spine = r.tube.spine.empty() ? nullptr : &r.tube.spine;
+  if (!md.revolution && !tube_layer) r.tube.centre_line = mandrel_tube_spine(md, job.mandrel);
+  const Spine* spine = r.tube.centre_line.spine.empty() ? nullptr : &r.tube.centre_line.spine;
   int auto_circuits = 0;  // circuits: auto off revolution, from the sections (below)
   std::vector<double> rho;
   if (tube_layer) {
-    r.tube_layer = plan_tube_layer(md, job, wo);
-    r.tube_friction = true;
+    r.tube.layer = plan_tube_layer(md, job, wo);
+    r.tube.friction = true;
   } else if (!r.clairaut) {
     if (wo.beta > 0.0) rho = density_from_girth(ws.mesh, r.face_girth, wo.beta);
     WindingOptions w = wo;
@@ -383,8 +383,8 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
       }
     }
     r.passes = circuit_pass_reports(plan.circuits, md.axis, "clairaut");
-  } else if (r.tube_friction) {
-    TubeFrictionWinding& tw = r.tube_layer;
+  } else if (r.tube.friction) {
+    TubeFrictionWinding& tw = r.tube.layer;
     plan.circuits = std::move(tw.circuits);
     tw.circuits.clear();
     plan.metrics = circuit_plan_metrics(plan.circuits, md.axis, wo);
@@ -431,10 +431,10 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   }
   // Coverage on the laid bands, from the circuits alone (planner/winding/coverage.h).
   CoverageOptions co = coverage_options(wo, spine);
-  if (!md.revolution && !r.clairaut && !r.tube_friction) co.height = &r.helices.coords.height;
+  if (!md.revolution && !r.clairaut && !r.tube.friction) co.height = &r.helices.coords.height;
   PlanMetrics& pm = plan.metrics;
-  if (r.tube_friction) {  // on sections normal to the centre line, between the turnarounds
-    const TubeFrictionWinding& tw = r.tube_layer;
+  if (r.tube.friction) {  // on sections normal to the centre line, between the turnarounds
+    const TubeFrictionWinding& tw = r.tube.layer;
     // (pins: a band width inside the pin circles, off the dwells)
     const double in = tw.pins > 0 ? wo.band_width : 0.0;
     pm.coverage = measure_tube_coverage(
@@ -456,15 +456,15 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     if (auto_circuits > 0 && pm.coverage.bare_fraction == 0.0) pm.circuits_for_coverage = K;
     pm.pattern = "K=" + std::to_string(K) + ", advance 1/" + std::to_string(K) +
                  " of the conformal angle per circuit, closes after " + std::to_string(K) +
-                 " circuits (a tube: " + r.tube.source + ", " + r.laid + " passes" +
+                 " circuits (a tube: " + r.tube.centre_line.source + ", " + r.laid + " passes" +
                  (auto_circuits > 0 ? ", K auto from the sections normal to the centre line" : "") +
                  ")";
     if (!r.laid_why.empty()) pm.warnings.push_back("tube passes: " + r.laid_why);
-  } else if (!md.revolution && !r.clairaut && !r.tube.why.empty()) {
+  } else if (!md.revolution && !r.clairaut && !r.tube.centre_line.why.empty()) {
     pm.warnings.push_back(
         "coverage: measured on levels of the harmonic height, not on sections "
         "normal to a centre line: " +
-        r.tube.why);
+        r.tube.centre_line.why);
   }
   if (r.clairaut) {  // the band spacing on the stations (the core's route has its own, per
                      // meridian)
@@ -483,13 +483,13 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     pm.warnings.push_back(
         "coverage: the laid bands leave " + format_fixed(100.0 * worst->bare_fraction, 2) +
         "% of the circumference bare at " +
-        (spine || r.tube_friction ? format_fixed(worst->station, 1) + " mm along the centre line"
+        (spine || r.tube.friction ? format_fixed(worst->station, 1) + " mm along the centre line"
          : co.height ? "height " + format_fixed(worst->station, 3) + " of the wound region"
                      : format_fixed(worst->station, 1) + " mm along the axis") +
         " (widest gap " + format_fixed(pm.coverage.widest_gap, 1) + " mm over " +
         std::to_string(pm.coverage.stations.size()) + " stations): " +
         (r.clairaut        ? "choose a pattern with more circuits (windplan patterns JOB)"
-         : r.tube_friction ? "more circuits (winding.circuits)"
+         : r.tube.friction ? "more circuits (winding.circuits)"
                            : "more circuits, a wider band or beta = 0 on a shape of revolution"));
   }
   // The geodesic turn limit (shapes of revolution) between the ends of the passes.

@@ -359,8 +359,8 @@ TEST(Pipeline, BentTubeIsAFullLayerOnSectionsNormalToTheCentreLine) {
   job.cutlines.clear();
   const PipelineResult r = plan_job(job);
   const PlanMetrics& m = r.plan.metrics;
-  EXPECT_EQ(r.tube.source, "bent_tube centre line");
-  EXPECT_NEAR(r.tube.spine.length(), 400 + 100 * M_PI / 2, 0.05);
+  EXPECT_EQ(r.tube.centre_line.source, "bent_tube centre line");
+  EXPECT_NEAR(r.tube.centre_line.spine.length(), 400 + 100 * M_PI / 2, 0.05);
   ASSERT_TRUE(m.coverage.centre_line);
   EXPECT_GE(m.coverage.stations.size(), 12u);
   EXPECT_EQ(m.coverage.bare_fraction, 0.0) << m.coverage.brief_report();
