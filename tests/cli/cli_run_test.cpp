@@ -383,20 +383,39 @@ TEST_F(CliRun, SharedMandrelMeshesWindOrSayWhatToChange) {
 
 // The shared bent-pipe.stl (units m): a closed tube whose flat end caps are normal to its legs
 // winds without a region (its two planar end caps dropped), and between two sections normal to
-// its centre line (mandrel.region.centre_line); a station past the centre line is one line.
+// its centre line (mandrel.region.centre_line): remeshed at 25 mm, 8 turns, a full layer (no
+// section of 24 bare) with every laid point within mu, read back from report.json and
+// fibre_path.csv; a station past the centre line is one line.
 TEST_F(CliRun, SharedBentPipeWindsBetweenCentreLineStations) {
   const fs::path mesh = test::shared_mesh("bent-pipe.stl");
   if (!fs::exists(mesh)) GTEST_SKIP() << mesh << " is absent (../shared not checked out)";
-  const std::string head =
-      "mandrel:\n  source: mesh\n  file: " + mesh.string() + "\n  units: m\n  repair: true\n";
+  const std::string head = "mandrel:\n  source: mesh\n  file: " + mesh.string() +
+                           "\n  units: m\n  repair: true\n  remesh: 25\n";
   const std::string tail =
-      "winding: {turns: 2, pattern: auto, band_width: 20, mu: 0.2}\nmachine: {kind: robot}\n";
+      "winding: {turns: 8, pattern: auto, band_width: 20, mu: 0.2, coverage_stations: 24}\n"
+      "machine: {kind: robot}\n";
   const fs::path job = dir_ / "bent_pipe.yaml";
   std::ofstream(job) << head << "  region: {centre_line: {from: 50, to: 970}}\n" << tail;
   const Proc r = run({"run", job.string(), "--out", (dir_ / "bp").string()});
   ASSERT_EQ(r.code, 0) << r.err;
   const YAML::Node rep = YAML::LoadFile((dir_ / "bp" / "report.json").string());
-  EXPECT_GT(rep["summary"]["cover_factor"].as<double>(), 1.0);
+  EXPECT_TRUE(rep["coverage"]["measured"].as<bool>());
+  EXPECT_EQ(rep["coverage"]["stations"].size(), 24u);
+  EXPECT_EQ(rep["coverage"]["bare_fraction"].as<double>(), 0.0);
+  EXPECT_LE(rep["summary"]["max_slippage"].as<double>(), 0.2);
+  // Every laid point's |k_g/k_n| column within mu (the last column of fibre_path.csv).
+  std::ifstream csv(dir_ / "bp" / "fibre_path.csv");
+  std::string line;
+  std::getline(csv, line);
+  ASSERT_NE(line.find(",slippage"), std::string::npos) << line;
+  int rows = 0;
+  double worst = 0.0;
+  while (std::getline(csv, line)) {
+    worst = std::max(worst, std::stod(line.substr(line.rfind(',') + 1)));
+    ++rows;
+  }
+  EXPECT_GT(rows, 1000);
+  EXPECT_LE(worst, 0.2);
   const Proc m = run({"mandrel", job.string()});
   ASSERT_EQ(m.code, 0) << m.err;
   EXPECT_NE(m.out.find("50 .. 970 mm along the tube's centre line (1020.45 mm long)"),
