@@ -51,7 +51,7 @@ namespace {
 int tube_patterns(const Job& job, const Mandrel& md, int top, bool json) {
   const PipelineResult run = plan_winding(md, job, job.winding);
   const int k0 = static_cast<int>(run.plan.circuits.size());
-  if (run.tube.centre_line.spine.empty()) {
+  if (run.tube.friction || run.tube.centre_line.spine.empty()) {
     throw InputError(job.path.string() + ": the mandrel is not a shape of revolution and its " +
                      "wound region has no centre line (" + run.tube.centre_line.why +
                      "): patterns are listed for shapes of revolution and tubes only");

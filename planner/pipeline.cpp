@@ -63,23 +63,18 @@ std::string turn_limit_warning(const ClairautLimit& lim, const WindingOptions& w
   return w + "beta > 0, or stations (the limit is recomputed between them)";
 }
 
-// Off a shape of revolution, winding.slippage and winding.angle ask for a friction layer at a
-// constant angle to the centre line (planner/winding/tube_friction.h): planned on a parametric
-// bent tube, whose centre line is known exactly; refused elsewhere, and refused where the keys
-// it does not use are set (they would be silently ignored).
 // The largest turn across an edge of a wound surface off revolution (deg): above it, a corner
 // without radius (a tessellated radius turns by a few degrees per edge; the aerobar's square
 // edges by 80-90).
 constexpr double kSharpEdgeDeg = 60.0;
 
-TubeCentreLine tube_line_of(const Job& job) {
-  const BentTubeParams& bt = job.mandrel.bent_tube;
-  std::vector<TubeBend> bends;
-  for (const BendParams& b : bt.bends) bends.push_back({b.angle, b.radius, b.plane_angle});
-  return TubeCentreLine(bt.radius, bt.segments, bends);
-}
-
-TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const WindingOptions& wo) {
+// Off a shape of revolution, winding.slippage and winding.angle ask for a friction layer at a
+// constant angle to the centre line (planner/winding/tube_friction.h): planned on a parametric
+// bent tube, whose centre line is known exactly (the tube's TubeSpine::exact, which *centre_line
+// receives); refused elsewhere, and refused where the keys it does not use are set (they would
+// be silently ignored).
+TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const WindingOptions& wo,
+                                    TubeSpine* centre_line) {
   const std::string keys = wo.slippage > 0.0 ? "winding.slippage" : "winding.angle";
   if (job.mandrel.source != "bent_tube") {
     throw ConfigError(keys + ": friction paths off a shape of revolution are planned on a " +
@@ -102,7 +97,8 @@ TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const Win
                       std::string("no sections of a bent tube; bound the region with its ends"));
   }
   const BentTubeParams& bt = job.mandrel.bent_tube;
-  const TubeCentreLine line = tube_line_of(job);
+  *centre_line = mandrel_tube_spine(md, job.mandrel);
+  const TubeCentreLine& line = *centre_line->exact;
   // The region's ends: each boundary loop must be a section of the tube (one station).
   std::array<double, 2> ends{};
   for (int e = 0; e < 2; ++e) {
@@ -262,7 +258,7 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   int auto_circuits = 0;  // circuits: auto off revolution, from the sections (below)
   std::vector<double> rho;
   if (tube_layer) {
-    r.tube.layer = plan_tube_layer(md, job, wo);
+    r.tube.layer = plan_tube_layer(md, job, wo, &r.tube.centre_line);
     r.tube.friction = true;
   } else if (!r.clairaut) {
     if (wo.beta > 0.0) rho = density_from_girth(ws.mesh, r.face_girth, wo.beta);
@@ -438,7 +434,7 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     // (pins: a band width inside the pin circles, off the dwells)
     const double in = tw.pins > 0 ? wo.band_width : 0.0;
     pm.coverage = measure_tube_coverage(
-        tube_line_of(job), plan.circuits, wo.band_width,
+        *r.tube.centre_line.exact, plan.circuits, wo.band_width,
         tw.apex_s[0] + 0.5 * tw.turnaround_span[0] + in,
         tw.apex_s[1] - tw.apex_moved[1] - 0.5 * tw.turnaround_span[1] - in, wo.coverage_stations);
   } else {
@@ -460,7 +456,7 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
                  (auto_circuits > 0 ? ", K auto from the sections normal to the centre line" : "") +
                  ")";
     if (!r.laid_why.empty()) pm.warnings.push_back("tube passes: " + r.laid_why);
-  } else if (!md.revolution && !r.clairaut && !r.tube.centre_line.why.empty()) {
+  } else if (!md.revolution && !r.clairaut && !r.tube.friction && !r.tube.centre_line.why.empty()) {
     pm.warnings.push_back(
         "coverage: measured on levels of the harmonic height, not on sections "
         "normal to a centre line: " +

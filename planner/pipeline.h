@@ -45,8 +45,9 @@ struct PipelineOptions {
 struct TubeResult {
   bool friction = false;      ///< a friction layer: `layer` holds its figures
   TubeFrictionWinding layer;  ///< (its circuits moved into the plan)
-  /// The centre line of the passes' coverage (not set for a friction layer, which measures on
-  /// its exact line's stations): empty spine, with `why`, when the region is not a tube.
+  /// The tube's centre line: the sections normal to it measure the passes' coverage (a friction
+  /// layer plans and measures on its `exact` line); empty spine, with `why`, when the region is
+  /// not a tube.
   TubeSpine centre_line;
 };
 

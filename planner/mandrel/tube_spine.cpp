@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "geometry/base/errors.h"
-#include "geometry/cad/parametric_mandrel.h"
 
 namespace windplan {
 
@@ -16,7 +15,13 @@ TubeSpine tube_spine(const WindingSurface& ws, const SpindleAxis& axis,
   TubeSpine t;
   const std::array<std::vector<int>, 2> loops{ws.loops[0].vertices, ws.loops[1].vertices};
   if (options.source == "bent_tube") {
-    std::vector<Vec3> pts = bent_tube_centreline(options.bent_tube, 90);
+    std::vector<TubeBend> bends;
+    for (const BendParams& b : options.bent_tube.bends) {
+      bends.push_back({b.angle, b.radius, b.plane_angle});
+    }
+    t.exact = std::make_shared<const TubeCentreLine>(options.bent_tube.radius,
+                                                     options.bent_tube.segments, bends);
+    std::vector<Vec3> pts = t.exact->polyline(90);
     // Drop repeated points (a zero-length segment) before building the spine.
     std::vector<Vec3> clean;
     for (const Vec3& p : pts) {

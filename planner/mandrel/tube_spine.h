@@ -3,19 +3,27 @@
 // convention: s from the wound region's start loop, loop 0, to its end loop).
 //
 // A parametric bent tube (mandrel.source: bent_tube) has it in closed form: its centre line
-// (geometry/cad/parametric_mandrel.h, bent_tube_centreline) sampled at 90 points per bend,
+// (planner/winding/tube_centre_line.h, the closed forms the friction layers use) sampled at 90
+// points per bend,
 // oriented from loop 0. Every other source that is not a shape of revolution gets it from the
 // centroids of its sections (extract_spine). The analytic line is used only when both loops'
 // centroids lie on it (within 2% of the tube radius; a region cut or a remesh can move them);
 // otherwise it is extracted too.
+#include <memory>
 #include <string>
 
 #include "geometry/region/spine.h"
 #include "planner/mandrel/mandrel_builder.h"
+#include "planner/winding/tube_centre_line.h"
 
 namespace windplan {
 
 struct TubeSpine {
+  /// A parametric bent tube's exact centre line with the closed forms of its surface
+  /// (planner/winding/tube_centre_line.h): the whole tube's, s from the tube's own start (not
+  /// the region's); null for every other source. `spine` is sampled from it (90 points per
+  /// bend), so both are one centre line.
+  std::shared_ptr<const TubeCentreLine> exact;
   Spine spine;         ///< empty when the wound region is not a tube
   std::string source;  ///< "bent_tube centre line", "section centroids" or "" (none)
   std::string why;     ///< when empty: why (the extraction's message)
