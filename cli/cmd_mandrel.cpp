@@ -116,7 +116,14 @@ int run_mandrel(const std::vector<std::string>& argv) {
     j.end_array();
     if (job.mandrel.region.enabled) {
       j.key("region").begin_object();
-      j.field("start", job.mandrel.region.start).field("end", job.mandrel.region.end);
+      if (job.mandrel.region.centre_line) {
+        j.key("centre_line").begin_object();
+        j.field("length", m.centre_line_length);
+        j.field("from", m.region_stations[0]).field("to", m.region_stations[1]);
+        j.end_object();
+      } else {
+        j.field("start", job.mandrel.region.start).field("end", job.mandrel.region.end);
+      }
       j.field("split_edges", m.region_split_edges);
       j.field("moved_vertices", m.region_moved_vertices);
       j.field("max_move", m.region_max_move);
@@ -162,10 +169,16 @@ int run_mandrel(const std::vector<std::string>& argv) {
       << L.axial << " mm\n";
   }
   if (job.mandrel.region.enabled) {
-    s << "  region: axial " << job.mandrel.region.start << " .. " << job.mandrel.region.end
-      << " mm, cut exactly on both planes (" << m.region_split_edges << " edges split, "
-      << m.region_moved_vertices << " vertices moved onto a plane, at most " << m.region_max_move
-      << " mm)\n";
+    if (job.mandrel.region.centre_line) {
+      s << "  region: " << m.region_stations[0] << " .. " << m.region_stations[1]
+        << " mm along the tube's centre line (" << m.centre_line_length
+        << " mm long), cut exactly on the sections normal to it (";
+    } else {
+      s << "  region: axial " << job.mandrel.region.start << " .. " << job.mandrel.region.end
+        << " mm, cut exactly on both planes (";
+    }
+    s << m.region_split_edges << " edges split, " << m.region_moved_vertices
+      << " vertices moved onto a plane, at most " << m.region_max_move << " mm)\n";
   }
   s << "  candidate regions (#" << m.chosen_candidate + 1 << " is wound):\n"
     << region_table(m.candidates, "  ");

@@ -51,9 +51,9 @@ namespace {
 int tube_patterns(const Job& job, const Mandrel& md, int top, bool json) {
   const PipelineResult run = plan_winding(md, job, job.winding);
   const int k0 = static_cast<int>(run.plan.circuits.size());
-  if (run.tube.spine.empty()) {
+  if (run.tube.friction || run.tube.centre_line.spine.empty()) {
     throw InputError(job.path.string() + ": the mandrel is not a shape of revolution and its " +
-                     "wound region has no centre line (" + run.tube.why +
+                     "wound region has no centre line (" + run.tube.centre_line.why +
                      "): patterns are listed for shapes of revolution and tubes only");
   }
   struct Row {
@@ -76,8 +76,8 @@ int tube_patterns(const Job& job, const Mandrel& md, int top, bool json) {
     JsonWriter j;
     j.begin_object();
     j.field("job", job.name);
-    j.field("tube", run.tube.source);
-    j.field("centre_line_mm", run.tube.spine.length());
+    j.field("tube", run.tube.centre_line.source);
+    j.field("centre_line_mm", run.tube.centre_line.spine.length());
     j.key("patterns").begin_array();
     for (const Row& r : rows) {
       j.begin_object();
@@ -103,8 +103,9 @@ int tube_patterns(const Job& job, const Mandrel& md, int top, bool json) {
   std::snprintf(buf, sizeof buf,
                 "patterns: %s: a tube (%s, centre line %.1f mm), %s turns per pass; coverage on "
                 "%d sections normal to the centre line\n",
-                job.name.c_str(), run.tube.source.c_str(), run.tube.spine.length(),
-                format_turns(job.winding.turns).c_str(), job.winding.coverage_stations);
+                job.name.c_str(), run.tube.centre_line.source.c_str(),
+                run.tube.centre_line.spine.length(), format_turns(job.winding.turns).c_str(),
+                job.winding.coverage_stations);
   s << buf;
   s << "     K    p  laid                 cover  bare[%]  gap[mm]  stack  plies  max|kg/kn|\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {

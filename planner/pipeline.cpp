@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "geometry/base/format_number.h"
+#include "geometry/region/sharp_edges.h"
 #include "planner/cutlines/cutlines.h"
 #include "planner/job/job_limits.h"
 #include "planner/mandrel/tube_spine.h"
@@ -62,18 +63,18 @@ std::string turn_limit_warning(const ClairautLimit& lim, const WindingOptions& w
   return w + "beta > 0, or stations (the limit is recomputed between them)";
 }
 
+// The largest turn across an edge of a wound surface off revolution (deg): above it, a corner
+// without radius (a tessellated radius turns by a few degrees per edge; the aerobar's square
+// edges by 80-90).
+constexpr double kSharpEdgeDeg = 60.0;
+
 // Off a shape of revolution, winding.slippage and winding.angle ask for a friction layer at a
 // constant angle to the centre line (planner/winding/tube_friction.h): planned on a parametric
-// bent tube, whose centre line is known exactly; refused elsewhere, and refused where the keys
-// it does not use are set (they would be silently ignored).
-TubeCentreLine tube_line_of(const Job& job) {
-  const BentTubeParams& bt = job.mandrel.bent_tube;
-  std::vector<TubeBend> bends;
-  for (const BendParams& b : bt.bends) bends.push_back({b.angle, b.radius, b.plane_angle});
-  return TubeCentreLine(bt.radius, bt.segments, bends);
-}
-
-TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const WindingOptions& wo) {
+// bent tube, whose centre line is known exactly (the tube's TubeSpine::exact, which *centre_line
+// receives); refused elsewhere, and refused where the keys it does not use are set (they would
+// be silently ignored).
+TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const WindingOptions& wo,
+                                    TubeSpine* centre_line) {
   const std::string keys = wo.slippage > 0.0 ? "winding.slippage" : "winding.angle";
   if (job.mandrel.source != "bent_tube") {
     throw ConfigError(keys + ": friction paths off a shape of revolution are planned on a " +
@@ -96,7 +97,8 @@ TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const Win
                       std::string("no sections of a bent tube; bound the region with its ends"));
   }
   const BentTubeParams& bt = job.mandrel.bent_tube;
-  const TubeCentreLine line = tube_line_of(job);
+  *centre_line = mandrel_tube_spine(md, job.mandrel);
+  const TubeCentreLine& line = *centre_line->exact;
   // The region's ends: each boundary loop must be a section of the tube (one station).
   std::array<double, 2> ends{};
   for (int e = 0; e < 2; ++e) {
@@ -208,6 +210,20 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   const WindingSurface& ws = md.winding;
   const std::array<std::vector<int>, 2> loops{ws.loops[0].vertices, ws.loops[1].vertices};
 
+  // Off a shape of revolution, corners without a radius are refused before the long work
+  // (geometry/region/sharp_edges.h): the shared aerobar mandrel (a 10 mm slab with square edges)
+  // ran 116 s to lay 45% bare with |k_g/k_n| unbounded on half the fibre.
+  if (!md.revolution) {
+    const SharpEdges sharp = sharp_edges(ws.mesh, kSharpEdgeDeg);
+    if (sharp.count > 0) {
+      throw InputError("mandrel (" + md.description + "): the wound surface has sharp edges (" +
+                       sharp.brief() + "; more than " + format_fixed(kSharpEdgeDeg, 0) +
+                       " deg is a corner without a radius): friction holds a turning fibre only "
+                       "where the surface curves, and a band over a corner is not laid as "
+                       "planned; give the mandrel rounded edges (a radius of at least the band "
+                       "width) or choose a region without them (mandrel.region)");
+    }
+  }
   // Girth: needed for the density (beta > 0) and, off a shape of revolution, for the spacing
   // normalisation; on a shape of revolution with beta = 0, 2 pi r is the exact girth.
   Stage girth("girth", &timings, options);
@@ -238,13 +254,13 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     throw ConfigError("winding.pins: pins are planned for friction layers on a bent tube only " +
                       std::string("(winding.slippage and winding.angle or turns on a bent_tube)"));
   }
-  if (!md.revolution && !tube_layer) r.tube = mandrel_tube_spine(md, job.mandrel);
-  const Spine* spine = r.tube.spine.empty() ? nullptr : &r.tube.spine;
+  if (!md.revolution && !tube_layer) r.tube.centre_line = mandrel_tube_spine(md, job.mandrel);
+  const Spine* spine = r.tube.centre_line.spine.empty() ? nullptr : &r.tube.centre_line.spine;
   int auto_circuits = 0;  // circuits: auto off revolution, from the sections (below)
   std::vector<double> rho;
   if (tube_layer) {
-    r.tube_layer = plan_tube_layer(md, job, wo);
-    r.tube_friction = true;
+    r.tube.layer = plan_tube_layer(md, job, wo, &r.tube.centre_line);
+    r.tube.friction = true;
   } else if (!r.clairaut) {
     if (wo.beta > 0.0) rho = density_from_girth(ws.mesh, r.face_girth, wo.beta);
     WindingOptions w = wo;
@@ -364,8 +380,8 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
       }
     }
     r.passes = circuit_pass_reports(plan.circuits, md.axis, "clairaut");
-  } else if (r.tube_friction) {
-    TubeFrictionWinding& tw = r.tube_layer;
+  } else if (r.tube.friction) {
+    TubeFrictionWinding& tw = r.tube.layer;
     plan.circuits = std::move(tw.circuits);
     tw.circuits.clear();
     plan.metrics = circuit_plan_metrics(plan.circuits, md.axis, wo);
@@ -412,14 +428,14 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
   }
   // Coverage on the laid bands, from the circuits alone (planner/winding/coverage.h).
   CoverageOptions co = coverage_options(wo, spine);
-  if (!md.revolution && !r.clairaut && !r.tube_friction) co.height = &r.helices.coords.height;
+  if (!md.revolution && !r.clairaut && !r.tube.friction) co.height = &r.helices.coords.height;
   PlanMetrics& pm = plan.metrics;
-  if (r.tube_friction) {  // on sections normal to the centre line, between the turnarounds
-    const TubeFrictionWinding& tw = r.tube_layer;
+  if (r.tube.friction) {  // on sections normal to the centre line, between the turnarounds
+    const TubeFrictionWinding& tw = r.tube.layer;
     // (pins: a band width inside the pin circles, off the dwells)
     const double in = tw.pins > 0 ? wo.band_width : 0.0;
     pm.coverage = measure_tube_coverage(
-        tube_line_of(job), plan.circuits, wo.band_width,
+        *r.tube.centre_line.exact, plan.circuits, wo.band_width,
         tw.apex_s[0] + 0.5 * tw.turnaround_span[0] + in,
         tw.apex_s[1] - tw.apex_moved[1] - 0.5 * tw.turnaround_span[1] - in, wo.coverage_stations);
   } else {
@@ -437,15 +453,15 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     if (auto_circuits > 0 && pm.coverage.bare_fraction == 0.0) pm.circuits_for_coverage = K;
     pm.pattern = "K=" + std::to_string(K) + ", advance 1/" + std::to_string(K) +
                  " of the conformal angle per circuit, closes after " + std::to_string(K) +
-                 " circuits (a tube: " + r.tube.source + ", " + r.laid + " passes" +
+                 " circuits (a tube: " + r.tube.centre_line.source + ", " + r.laid + " passes" +
                  (auto_circuits > 0 ? ", K auto from the sections normal to the centre line" : "") +
                  ")";
     if (!r.laid_why.empty()) pm.warnings.push_back("tube passes: " + r.laid_why);
-  } else if (!md.revolution && !r.clairaut && !r.tube.why.empty()) {
+  } else if (!md.revolution && !r.clairaut && !r.tube.friction && !r.tube.centre_line.why.empty()) {
     pm.warnings.push_back(
         "coverage: measured on levels of the harmonic height, not on sections "
         "normal to a centre line: " +
-        r.tube.why);
+        r.tube.centre_line.why);
   }
   if (r.clairaut) {  // the band spacing on the stations (the core's route has its own, per
                      // meridian)
@@ -464,13 +480,13 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     pm.warnings.push_back(
         "coverage: the laid bands leave " + format_fixed(100.0 * worst->bare_fraction, 2) +
         "% of the circumference bare at " +
-        (spine || r.tube_friction ? format_fixed(worst->station, 1) + " mm along the centre line"
+        (spine || r.tube.friction ? format_fixed(worst->station, 1) + " mm along the centre line"
          : co.height ? "height " + format_fixed(worst->station, 3) + " of the wound region"
                      : format_fixed(worst->station, 1) + " mm along the axis") +
         " (widest gap " + format_fixed(pm.coverage.widest_gap, 1) + " mm over " +
         std::to_string(pm.coverage.stations.size()) + " stations): " +
         (r.clairaut        ? "choose a pattern with more circuits (windplan patterns JOB)"
-         : r.tube_friction ? "more circuits (winding.circuits)"
+         : r.tube.friction ? "more circuits (winding.circuits)"
                            : "more circuits, a wider band or beta = 0 on a shape of revolution"));
   }
   // The geodesic turn limit (shapes of revolution) between the ends of the passes.

@@ -42,6 +42,19 @@ struct PipelineOptions {
   std::function<void(const Mandrel&)> on_mandrel;
 };
 
+/// Off shapes of revolution, the wound region as a tube: either a friction layer at a constant
+/// angle to the exact centre line of a parametric bent tube (winding.slippage or winding.angle;
+/// planner/winding/tube_friction.h), or geodesic / helix passes with coverage measured on the
+/// sections normal to the region's centre line (planner/mandrel/tube_spine.h).
+struct TubeResult {
+  bool friction = false;      ///< a friction layer: `layer` holds its figures
+  TubeFrictionWinding layer;  ///< (its circuits moved into the plan)
+  /// The tube's centre line: the sections normal to it measure the passes' coverage (a friction
+  /// layer plans and measures on its `exact` line); empty spine, with `why`, when the region is
+  /// not a tube.
+  TubeSpine centre_line;
+};
+
 struct PipelineResult {
   Mandrel mandrel;
   bool has_girth = false;  ///< the girth field was computed (beta > 0 or no revolution)
@@ -52,15 +65,9 @@ struct PipelineResult {
   /// plan); false: from the geodesic core (`helices`).
   bool clairaut = false;
   RevolutionWinding revolution;
-  /// true: a friction layer at winding.angle on a bent tube (planner/winding/tube_friction.h;
-  /// winding.slippage or winding.angle off a shape of revolution), `tube_layer` holds its figures
-  /// (its circuits moved into the plan).
-  bool tube_friction = false;
-  TubeFrictionWinding tube_layer;
   HelixPlan helices;
-  /// Off shapes of revolution: the wound region's centre line (planner/mandrel/tube_spine.h);
-  /// coverage is measured on the sections normal to it when there is one.
-  TubeSpine tube;
+  /// Off shapes of revolution: the wound region as a tube (see TubeResult).
+  TubeResult tube;
   /// Off shapes of revolution with a centre line: the passes laid (docs/config.md, "Which paths
   /// off revolution"): "geodesic" (the core's refinement) or "helix" (the traced, evenly spread
   /// level sets, held by friction), and the figures of the one not laid, for the report.

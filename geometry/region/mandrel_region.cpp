@@ -104,6 +104,27 @@ bool RegionOptions::is_valid(std::string* why) const {
     return false;
   };
   if (!enabled) return true;
+  if (centre_line) {
+    if (!std::isfinite(from) || !std::isfinite(to)) {
+      return fail("region.centre_line: from and to must be finite");
+    }
+    if ((from_fraction && !(from >= 0.0 && from <= 1.0)) ||
+        (to_fraction && !(to >= 0.0 && to <= 1.0))) {
+      return fail("region.centre_line: from_fraction and to_fraction must lie in [0, 1]");
+    }
+    if (from_fraction == to_fraction && !(from < to)) {
+      return fail("region.centre_line: from (" + fmt(from) + ") must be smaller than to (" +
+                  fmt(to) + ")");
+    }
+    if (surface != "outer") {
+      return fail("region.surface: " + surface + " is not supported with region.centre_line " +
+                  "(it takes the largest annulus, or region.component)");
+    }
+    if (component < 0) return fail("region.component must be >= 1 (0 = the largest annulus)");
+    std::string w;
+    if (!cut.is_valid(&w)) return fail("region: " + w);
+    return true;
+  }
   if (!std::isfinite(start) || !std::isfinite(end)) {
     return fail("region.start and region.end must be finite (mm)");
   }

@@ -34,6 +34,14 @@ struct RegionOptions {
   std::string surface = "outer";  ///< "outer" or "inner": the surface around the axis to take
   int component = 0;              ///< 1-based candidate index (overrides surface); 0 = by surface
   PlaneCutOptions cut;            ///< the exact plane cut (no-sliver fraction)
+  /// `region.centre_line`: the ends are sections normal to the tube's centre line at two
+  /// stations (geometry/region/centre_line_region.h) instead of planes normal to the axis;
+  /// start/end are then unused.
+  bool centre_line = false;
+  double from = 0.0;           ///< mm of arc length along the centre line (centre_line.from)
+  double to = 0.0;             ///< mm (centre_line.to), > from
+  bool from_fraction = false;  ///< `from` is a fraction of the centre line's length ([0, 1])
+  bool to_fraction = false;    ///< `to` is a fraction of the centre line's length ([0, 1])
   bool is_valid(std::string* why) const;
 };
 

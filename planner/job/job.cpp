@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 #include <utility>
 
 #include "geometry/base/atomic_file.h"
@@ -181,8 +182,27 @@ void decode_mandrel(ConfigNode n, const std::filesystem::path& base, MandrelOpti
   if (ConfigNode r = n.section("region"); r.present()) {
     RegionOptions& g = m->region;
     g.enabled = true;
-    r.require("start", &g.start);
-    r.require("end", &g.end);
+    if (ConfigNode c = r.section("centre_line"); c.present()) {
+      // Ends on sections normal to the tube's centre line: from/to in mm of arc length, or
+      // from_fraction/to_fraction of its length (one of each pair).
+      g.centre_line = true;
+      if (r.has("start") || r.has("end")) {
+        r.fail("centre_line", "give either start/end (planes normal to the axis) or " +
+                                  std::string("centre_line (sections normal to the centre line)"));
+      }
+      for (auto [key, value, fraction] : {std::tuple{"from", &g.from, &g.from_fraction},
+                                          std::tuple{"to", &g.to, &g.to_fraction}}) {
+        const std::string k = key, kf = k + "_fraction";
+        if (c.has(k) && c.has(kf)) c.fail(kf, "give " + k + " (mm) or " + kf + ", not both");
+        if (!c.has(k) && !c.has(kf)) c.fail(k, "missing: give " + k + " (mm) or " + kf);
+        *fraction = c.has(kf);
+        c.require(*fraction ? kf : k, value);
+      }
+      c.finish();
+    } else {
+      r.require("start", &g.start);
+      r.require("end", &g.end);
+    }
     r.get_choice("surface", {"outer", "inner"}, &g.surface);
     r.get("component", &g.component);
     r.get("min_fraction", &g.cut.min_fraction);

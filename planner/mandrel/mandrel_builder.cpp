@@ -13,8 +13,12 @@
 #include "geometry/cad/section_mandrel.h"
 #include "geometry/cad/tessellate.h"
 #include "geometry/mesh/remesh.h"
+#include "geometry/region/centre_line_region.h"
+#include "geometry/region/planar_end_caps.h"
+#include "geometry/region/spine.h"
 #include "planner/job/job_limits.h"
 #include "planner/mandrel/mandrel_mesh.h"
+#include "planner/mandrel/tube_spine.h"
 
 namespace windplan {
 
@@ -90,6 +94,44 @@ double body_outline(const MandrelOptions& m, double theta) {
   if (m.source == "vessel") return m.vessel.radius;
   if (m.source == "section") return section_radius(m.section, theta);
   return 0.0;
+}
+
+// mandrel.region.centre_line: the whole tube's wound faces (the selection without a region, or
+// without its two planar end caps), its centre line, and the region between the sections normal
+// to it at the two stations.
+RegionSelection centre_line_region(const MandrelOptions& m, const std::vector<int>& patch,
+                                   const std::vector<char>& patch_wound, Mandrel* out) {
+  std::vector<char> whole(out->mesh.num_faces(), 0);
+  for (int f = 0; f < out->mesh.num_faces(); ++f) whole[f] = patch_wound[patch[f]];
+  WindingSurface tube;
+  try {
+    tube = extract_winding_surface(out->mesh, whole, out->axis);
+  } catch (const TopologyError& e) {
+    const PlanarEndCaps caps = planar_end_caps(out->mesh, whole);
+    if (!caps.found) {
+      throw ConfigError(std::string("mandrel.region.centre_line: the mandrel is not a tube with ") +
+                        "two ends (" + e.what() + "; and " + caps.brief() +
+                        "): give region.start/end along the axis instead");
+    }
+    tube = extract_winding_surface(out->mesh, caps.keep, out->axis);
+  }
+  const TubeSpine ts = tube_spine(tube, out->axis, m);
+  if (ts.spine.empty()) {
+    throw ConfigError("mandrel.region.centre_line: the tube's centre line was not found (" +
+                      ts.why + "): give region.start/end along the axis instead");
+  }
+  const double L = ts.spine.length();
+  CentreLineEnds ends;
+  ends.from = m.region.from_fraction ? m.region.from * L : m.region.from;
+  ends.to = m.region.to_fraction ? m.region.to * L : m.region.to;
+  if (m.region.from_fraction) ends.from_key += "_fraction";
+  if (m.region.to_fraction) ends.to_key += "_fraction";
+  RegionSelection sel = select_centre_line_region(out->mesh, ts.spine, ends, out->axis,
+                                                  m.region.component, m.region.cut);
+  out->centre_line_length = L;
+  out->region_stations = {ends.from, ends.to};
+  out->region_end_centres = {ts.spine.point(ends.from), ts.spine.point(ends.to)};
+  return sel;
 }
 
 }  // namespace
@@ -238,7 +280,8 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
   std::vector<char> keep;
   if (m.region.enabled) {
     const auto t_region = Clock::now();
-    RegionSelection sel = select_region(out.mesh, out.axis, m.region);
+    RegionSelection sel = m.region.centre_line ? centre_line_region(m, patch, patch_wound, &out)
+                                               : select_region(out.mesh, out.axis, m.region);
     std::vector<int> cut_patch(sel.mesh.num_faces());
     for (int f = 0; f < sel.mesh.num_faces(); ++f) {
       cut_patch[f] = 2 * patch[sel.face_parent[f]] + (sel.keep[f] ? 1 : 0);
@@ -293,8 +336,33 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
   if (!m.region.enabled) out.candidates = candidate_regions(out.mesh, keep, out.axis);
   out.description = describe(m, selected);
   try {
-    out.winding = extract_winding_surface(out.mesh, keep, out.axis);
+    try {
+      out.winding = extract_winding_surface(out.mesh, keep, out.axis);
+    } catch (const TopologyError&) {
+      // A closed tube whose flat end caps are not normal to the axis (a bent pipe's legs).
+      if (m.region.enabled || m.source != "mesh" || m.remesh > 0.0) throw;
+      PlanarEndCaps caps = planar_end_caps(out.mesh, keep);
+      if (!caps.found) throw;
+      out.winding = extract_winding_surface(out.mesh, caps.keep, out.axis);
+      out.candidates = candidate_regions(out.mesh, caps.keep, out.axis);
+      out.warnings.push_back(
+          "the mesh's faces normal to the axis are no end caps of a tube: "
+          "wound without its " +
+          caps.brief());
+    }
     if (!m.region.enabled) out.chosen_candidate = 0;  // the selection is one annulus
+    if (m.region.centre_line) {
+      // Loop 0 is the end at centre_line.from.
+      std::array<Vec3, 2> c;
+      for (int e = 0; e < 2; ++e) {
+        std::vector<Vec3> pts;
+        for (int v : out.winding.loops[e].vertices) pts.push_back(out.winding.mesh.position(v));
+        c[e] = loop_centroid(pts);
+      }
+      if ((c[0] - out.region_end_centres[0]).norm() > (c[1] - out.region_end_centres[0]).norm()) {
+        std::swap(out.winding.loops[0], out.winding.loops[1]);
+      }
+    }
   } catch (const TopologyError& e) {
     out.suggestion = suggest_region(out.mesh, out.axis);
     std::string list;

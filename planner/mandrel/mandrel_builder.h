@@ -23,6 +23,7 @@
 // When the wound region is not an annulus, the TopologyError lists the candidate regions (each
 // connected part: axial extent, radius range, loops) and suggests the mandrel.region keys of a
 // range whose outer surface is one.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -56,13 +57,18 @@ struct Mandrel {
   int region_split_edges = 0;     ///< plane cut: edges split on the region planes
   int region_moved_vertices = 0;  ///< plane cut: vertices moved onto a plane (no slivers)
   double region_max_move = 0.0;   ///< mm
-  CadShape shape;                 ///< the B-rep (cad and parametric sources), empty for meshes
-  int brep_faces = 0;             ///< B-rep faces (0 for meshes)
-  std::string description;        ///< one line: source, shape and dimensions
-  double tessellation_ms = 0;     ///< B-rep meshing and welding (0 for meshes)
-  double remesh_ms = 0;           ///< isotropic remeshing (0 when off)
-  double region_ms = 0;           ///< mandrel.region: plane cut and candidates (0 when not set)
-  double total_ms = 0;            ///< the whole build
+  /// mandrel.region.centre_line: the whole tube's centre-line length (mm), the two stations
+  /// (mm along it) and the centre-line points there (the centres of the region's end sections).
+  double centre_line_length = 0.0;
+  std::array<double, 2> region_stations{0.0, 0.0};
+  std::array<Vec3, 2> region_end_centres{Vec3::Zero(), Vec3::Zero()};
+  CadShape shape;              ///< the B-rep (cad and parametric sources), empty for meshes
+  int brep_faces = 0;          ///< B-rep faces (0 for meshes)
+  std::string description;     ///< one line: source, shape and dimensions
+  double tessellation_ms = 0;  ///< B-rep meshing and welding (0 for meshes)
+  double remesh_ms = 0;        ///< isotropic remeshing (0 when off)
+  double region_ms = 0;        ///< mandrel.region: plane cut and candidates (0 when not set)
+  double total_ms = 0;         ///< the whole build
   std::vector<std::string> warnings;
 
   /// The start loop (lower axial position) and end loop, as winding-surface vertex indices.

@@ -48,6 +48,7 @@ TubeCentreLine::TubeCentreLine(double tube_radius, const std::vector<double>& se
     p.f0.toward = phi;
     p.centre = f.c + b.radius * toward;
     p.axis = f.t.cross(toward).normalized();
+    p.angle = th;
     pieces_.push_back(p);
     spans_.push_back({s, s + p.len, 1.0 / b.radius, phi});
     const Eigen::AngleAxisd rot(th, p.axis);
@@ -59,6 +60,22 @@ TubeCentreLine::TubeCentreLine(double tube_radius, const std::vector<double>& se
   }
   if (pieces_.empty()) throw InputError("tube centre line: zero length");
   length_ = s;
+}
+
+std::vector<Vec3> TubeCentreLine::polyline(int per_bend) const {
+  per_bend = std::max(1, per_bend);
+  std::vector<Vec3> pts{pieces_.front().f0.c};
+  for (const Piece& p : pieces_) {
+    if (!p.bend) {
+      pts.push_back(p.f0.c + p.len * p.f0.t);
+      continue;
+    }
+    for (int k = 1; k <= per_bend; ++k) {
+      const Eigen::AngleAxisd rot(p.angle * k / per_bend, p.axis);
+      pts.push_back(p.centre + rot * (p.f0.c - p.centre));
+    }
+  }
+  return pts;
 }
 
 int TubeCentreLine::piece(double s) const {

@@ -67,6 +67,12 @@ class TubeCentreLine {
   double normal_curvature(double s, double theta, double a) const;
   /// The geodesic term of k_g: k_g = da/dl - geodesic_turn (1/mm).
   double geodesic_turn(double s, double theta, double a) const;
+  /// The centre line as a polyline: its start, each straight piece's end, and per_bend points
+  /// along each bend (at k / per_bend of its turn, k = 1..per_bend). The same points, to the bit,
+  /// as geometry/cad/parametric_mandrel.h's bent_tube_centreline (the same arithmetic), so that
+  /// the wound region's Spine (planner/mandrel/tube_spine.h) and the closed forms here are one
+  /// centre line. \param per_bend >= 1
+  std::vector<Vec3> polyline(int per_bend) const;
   /// Nearest centre-line station of p (mm, clamped to [0, length()]), its theta and the distance
   /// of p from that centre-line point (mm).
   void locate(const Vec3& p, double* s, double* theta, double* distance) const;
@@ -90,6 +96,7 @@ class TubeCentreLine {
     double s0 = 0.0, len = 0.0;
     TubeFrame f0;                                      // frame at the piece's start
     Vec3 centre = Vec3::Zero(), axis = Vec3::UnitZ();  // bend only
+    double angle = 0.0;                                // bend only: its turn (rad)
   };
   int piece(double s) const;
   double r_ = 0.0, length_ = 0.0;

@@ -359,8 +359,9 @@ TEST(Pipeline, BentTubeIsAFullLayerOnSectionsNormalToTheCentreLine) {
   job.cutlines.clear();
   const PipelineResult r = plan_job(job);
   const PlanMetrics& m = r.plan.metrics;
-  EXPECT_EQ(r.tube.source, "bent_tube centre line");
-  EXPECT_NEAR(r.tube.spine.length(), 400 + 100 * M_PI / 2, 0.05);
+  EXPECT_EQ(r.tube.centre_line.source, "bent_tube centre line");
+  EXPECT_NEAR(r.tube.centre_line.spine.length(), 400 + 100 * M_PI / 2, 0.05);
+  ASSERT_TRUE(m.coverage.centre_line);
   EXPECT_GE(m.coverage.stations.size(), 12u);
   EXPECT_EQ(m.coverage.bare_fraction, 0.0) << m.coverage.brief_report();
   EXPECT_LE(m.max_slippage, job.winding.mu);
@@ -393,7 +394,7 @@ TEST(Pipeline, ElbowRobotIsAFullLayerWithinMu) {
   const Job job = load_job(test::source_dir() / "configs" / "elbow_robot.yaml");
   const PipelineResult r = plan_job(job);
   const PlanMetrics& m = r.plan.metrics;
-  EXPECT_TRUE(r.tube_friction);
+  EXPECT_TRUE(r.tube.friction);
   EXPECT_GE(m.coverage.stations.size(), 12u);
   EXPECT_EQ(m.coverage.bare_fraction, 0.0) << m.coverage.brief_report();
   EXPECT_LE(m.max_slippage, job.winding.mu);

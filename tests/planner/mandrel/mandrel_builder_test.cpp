@@ -509,3 +509,78 @@ TEST(MandrelBuilder, AZeroAreaMeshNamesTheFile) {
 
 }  // namespace
 }  // namespace windplan
+
+// ---- mandrel.region.centre_line: ends on sections normal to the centre line ----
+
+namespace windplan {
+namespace {
+
+const char* kElbow =
+    "mandrel:\n  source: bent_tube\n  angular_deflection: 5\n"
+    "  bent_tube: {radius: 25, segments: [200, 200], bends: [{angle: 90, radius: 100}]}\n";
+
+TEST(MandrelBuilder, CentreLineRegionEndsOnEachLegsOwnSection) {
+  const std::string yaml = std::string(kElbow) + "  region: {centre_line: {from: 50, to: 407}}\n";
+  const Mandrel m = build_mandrel(load_job_from_string(yaml, "/tmp/elbow_cl.yaml"));
+  // The whole centre line: 200 + 100 pi / 2 + 200.
+  const double L = 400 + 50 * M_PI;
+  EXPECT_NEAR(m.centre_line_length, L, 0.1);
+  const Spine whole = spine_from_polyline(bent_tube_centreline(
+      load_job_from_string(yaml, "/tmp/elbow_cl.yaml").mandrel.bent_tube, 720));
+  // Loop 0 is the section at `from`, loop 1 at `to`: every point on the plane normal to the
+  // centre line there, at the tube radius from its centre (tessellation sagitta apart).
+  for (int e = 0; e < 2; ++e) {
+    const double s = e == 0 ? 50.0 : 407.0;
+    // The analytic line may run either way; the station counts from the lower axial end.
+    const double s_line = (whole.points.front() - m.region_end_centres[0]).norm() <
+                                  (whole.points.back() - m.region_end_centres[0]).norm()
+                              ? s
+                              : whole.length() - s;
+    // The end's centre is at that station of the exact line (the builder's line has 90 points
+    // per bend: its chords run 0.004 mm inside the arc), and the loop lies on the plane normal
+    // to the exact line there (a plane normal to an axis would be tens of mm off on one leg).
+    const double at = whole.project(m.region_end_centres[e]);
+    EXPECT_NEAR(at, s_line, 0.01);
+    const Vec3 c = m.region_end_centres[e], t = whole.tangent(at);
+    for (int v : m.winding.loops[e].vertices) {
+      const Vec3 p = m.winding.mesh.position(v);
+      EXPECT_NEAR((p - c).dot(t), 0.0, 0.01);
+      EXPECT_NEAR((p - c).norm(), 25.0, 0.1);
+    }
+  }
+  // The wound area: 2 pi r (to - from) (Pappus on the bend) to the tessellation's chords.
+  EXPECT_NEAR(m.winding.area, 2 * M_PI * 25 * (407 - 50), 0.005 * m.winding.area);
+  // Fractions: the same ends.
+  const Mandrel f = build_mandrel(load_job_from_string(
+      std::string(kElbow) + "  region: {centre_line: {from_fraction: " + std::to_string(50 / L) +
+          ", to: 407}}\n",
+      "/tmp/elbow_clf.yaml"));
+  EXPECT_NEAR(f.winding.area, m.winding.area, 1e-6 * m.winding.area);
+}
+
+TEST(MandrelBuilder, CentreLineRegionBadInputNamesTheKey) {
+  auto error = [](const std::string& region) {
+    try {
+      build_mandrel(load_job_from_string(std::string(kElbow) + "  region: " + region + "\n",
+                                         "/tmp/elbow_bad.yaml"));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error("{centre_line: {from: 50, to: 600}}")
+                .find("mandrel.region.centre_line.to: 600.00 mm is outside the tube's centre "
+                      "line (0 .. 557.08 mm"),
+            std::string::npos);
+  EXPECT_NE(error("{centre_line: {from: 0, to: 100}}").find("centre_line.from"), std::string::npos);
+  EXPECT_NE(error("{centre_line: {from: 50}}").find("to"), std::string::npos);
+  EXPECT_NE(error("{centre_line: {from: 50, from_fraction: 0.1, to: 90}}").find("not both"),
+            std::string::npos);
+  EXPECT_NE(error("{start: 0, centre_line: {from: 50, to: 90}}").find("either start/end"),
+            std::string::npos);
+  EXPECT_NE(error("{centre_line: {from: 90, to: 50}}").find("must be smaller"), std::string::npos);
+  EXPECT_NE(error("{centre_line: {from_fraction: 1.5, to: 50}}").find("[0, 1]"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace windplan

@@ -66,6 +66,39 @@ TEST(FibreMetrics, ParallelOnASphereHasClosedFormGeodesicCurvature) {
   }
 }
 
+// A fibre bent by less than 1e-4 / mm (a radius of 10 m) is straight to the measurement: its
+// slippage is 0, not k_g / k_n of two tiny values. A meridian of a cylinder (k_n = 0) with a
+// lateral wiggle of 1e-6 mm measured k_g / k_n up to hundreds before; a parallel of a 12 m sphere
+// (k_n = 1 / 12000 / mm, k_g = tan(lat) / 12000, both below the limit) is straight too, and one of
+// a 5 m sphere (2e-4 / mm) is not: it keeps tan(lat).
+TEST(FibreMetrics, StraightFibreHasNoSlippage) {
+  std::vector<FibrePoint> pts;
+  for (int i = 0; i <= 400; ++i) {
+    FibrePoint p;
+    p.position = Vec3(50.0, 1e-6 * std::sin(0.3 * i), 0.5 * i);
+    p.normal = Vec3(1, 0, 0);
+    pts.push_back(p);
+  }
+  annotate_fibre_points(&pts, SpindleAxis{}, 10.0);
+  for (const FibrePoint& p : pts) ASSERT_EQ(p.slippage, 0.0);
+  for (const double Rs : {12000.0, 5000.0}) {
+    const double lat = 30.0 * M_PI / 180.0, r = Rs * std::cos(lat), z = Rs * std::sin(lat);
+    std::vector<FibrePoint> q;
+    for (int i = 0; i <= 2000; ++i) {
+      const double phi = 0.01 * i / 2000;  // 0.01 rad of the parallel: 100 mm at Rs 12 m
+      FibrePoint p;
+      p.position = Vec3(r * std::cos(phi), r * std::sin(phi), z);
+      p.normal = p.position.normalized();
+      q.push_back(p);
+    }
+    annotate_fibre_points(&q, SpindleAxis{}, 20.0);
+    const double expected = Rs > 10000.0 ? 0.0 : std::tan(lat);
+    for (std::size_t i = 200; i + 200 < q.size(); ++i) {
+      ASSERT_NEAR(q[i].slippage, expected, 5e-3) << Rs << " " << i;
+    }
+  }
+}
+
 // On a cone (varying radius), beta = 1 (rho = 1 / 2 pi r) gives helices whose turn spacing is
 // proportional to the girth (CV of the normalised spacing ~ 0), beta = 0 does not.
 TEST(FibreMetrics, InverseGirthDensityEquallySpacesTheTurns) {

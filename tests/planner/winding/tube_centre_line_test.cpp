@@ -37,6 +37,13 @@ TEST(TubeCentreLine, MatchesTheParametricBentTube) {
   for (std::size_t i = 0; i < pts.size(); ++i) {
     EXPECT_LT((line.frame(s[i]).c - pts[i]).norm(), 1e-9) << "point " << i;
   }
+  // Its polyline is bent_tube_centreline's, to the bit (the wound region's Spine is sampled
+  // from it: one centre line for the sections and the closed forms), at 8 and 90 per bend.
+  for (int per_bend : {8, 90}) {
+    const std::vector<Vec3> a = line.polyline(per_bend), b = bent_tube_centreline(p, per_bend);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << per_bend << " " << i;
+  }
   // The frame is orthonormal, t the centre line's derivative, and u, v do not twist about t.
   for (double q = 1.0; q < line.length(); q += 7.3) {
     const TubeFrame f = line.frame(q), g = line.frame(q + 1e-4), e = line.frame(q - 1e-4);

@@ -49,8 +49,8 @@ const char* kLayer =
 TEST(TubeFriction, ElbowLayerHoldsItsAngleWithinMu) {
   const Job job = load_job_from_string(elbow(250, kLayer), "/tmp/elbow.yaml");
   const PipelineResult r = plan_job(job);
-  ASSERT_TRUE(r.tube_friction);
-  const TubeFrictionWinding& w = r.tube_layer;
+  ASSERT_TRUE(r.tube.friction);
+  const TubeFrictionWinding& w = r.tube.layer;
   EXPECT_NEAR(w.required, 0.179, 5e-4);
   EXPECT_EQ(w.K, 16);  // ceil(2 pi 50 cos 55 / 12) = ceil(15.02)
   EXPECT_TRUE(w.summary.closed) << w.summary.brief_report();
@@ -158,8 +158,8 @@ TEST(TubeFriction, PinRingsHoldTheTurnarounds) {
   const PipelineResult r = plan_job(load_job_from_string(
       elbow(250, std::string(kLayer) + "  circuits: 23\n  pins: {count: 24, diameter: 4}\n"),
       "/tmp/e.yaml"));
-  ASSERT_TRUE(r.tube_friction);
-  const TubeFrictionWinding& w = r.tube_layer;
+  ASSERT_TRUE(r.tube.friction);
+  const TubeFrictionWinding& w = r.tube.layer;
   EXPECT_EQ(w.pins, 24);
   EXPECT_TRUE(w.summary.closed) << w.summary.brief_report();
   EXPECT_LT(w.spread_deg, 1e-6);
@@ -191,6 +191,35 @@ TEST(TubeFriction, PinRingsHoldTheTurnarounds) {
   }
 }
 
+// Region ends on centre-line stations (mandrel.region.centre_line): the passes turn on those
+// sections, each apex half a band inside its end (from + B / 2, to - B / 2 along the whole
+// tube's centre line), and every laid point lies between the two end planes.
+TEST(TubeFriction, TurnaroundsOnCentreLineStationEnds) {
+  std::string yaml = elbow(250, std::string(kLayer) + "  circuits: 4\n");
+  const std::string at = "  angular_deflection: 5\n";
+  yaml.insert(yaml.find(at) + at.size(), "  region: {centre_line: {from: 60, to: 530}}\n");
+  const PipelineResult r = plan_job(load_job_from_string(yaml, "/tmp/elbow_cl.yaml"));
+  ASSERT_TRUE(r.tube.friction);
+  const TubeFrictionWinding& w = r.tube.layer;
+  EXPECT_NEAR(w.apex_s[0], 60 + 6, 0.05);  // the loops' mean station: tessellation apart
+  EXPECT_NEAR(w.apex_s[1], 530 - 6, 0.05);
+  const TubeCentreLine line(50, {100, 100}, {{90, 250, 0}});
+  double lo = 1e300, hi = -1e300;
+  for (const Circuit& c : r.plan.circuits) {
+    for (const FibrePoint& p : c.points) {
+      double s = 0, th = 0, d = 0;
+      line.locate(p.position, &s, &th, &d);
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+    }
+  }
+  EXPECT_GT(lo, 60.0);
+  EXPECT_LT(hi, 530.0);
+  EXPECT_NEAR(lo, 66.0, 0.5);
+  // The far apexes move inward to close the pattern (apex_moved: least and most).
+  EXPECT_NEAR(hi, 524.0 - w.apex_moved[0], 0.5);
+}
+
 TEST(TubeFriction, ThreeRadiusElbowIsRefusedWithTheSlippageItNeeds) {
   const Job job = load_job_from_string(elbow(150, kLayer), "/tmp/elbow.yaml");
   try {
@@ -215,10 +244,10 @@ TEST(TubeFriction, TurnsPerPassChooseTheAngle) {
   EXPECT_NEAR(tube_angle_for_turns(line, 0, line.length(), o) * 180.0 / M_PI, 55.0, 1e-6);
   const PipelineResult r = plan_job(load_job_from_string(
       elbow(250, "  turns: 3.2\n  slippage: 0.19\n  mu: 0.2\n  band_width: 12\n"), "/tmp/e.yaml"));
-  ASSERT_TRUE(r.tube_friction);
+  ASSERT_TRUE(r.tube.friction);
   // The closing apex moves shorten some passes: the plan's turns are a little below 2.5.
-  EXPECT_NEAR(r.tube_layer.turns_per_pass, 3.2, 0.15);
-  EXPECT_LE(r.tube_layer.turns_per_pass, 3.2 + 1e-9);
+  EXPECT_NEAR(r.tube.layer.turns_per_pass, 3.2, 0.15);
+  EXPECT_LE(r.tube.layer.turns_per_pass, 3.2 + 1e-9);
   o.turns = 40;
   EXPECT_THROW(tube_angle_for_turns(line, 0, line.length(), o), ConfigError);
 }
