@@ -263,8 +263,7 @@ class Search {
 
   double vertex_key(int v, double d) const {
     if (target_ < 0) return d;
-    return d +
-           std::max((mesh_.position(v) - target_position_).norm(), landmark_bound(v, v, 0.0, 0.0));
+    return d + std::max((mesh_.position(v) - target_position_).norm(), landmark_bound(v));
   }
 
   // Lights the edges opposite to v in its faces with v as the pseudo-source.
@@ -361,26 +360,21 @@ class Search {
     const Vec2 X{x, 0.0};
     double key = w.sigma + norm(X - I) + norm(T - X);
     if (landmarks_ != nullptr) {
-      // Any x of the interval is within b1 of from(h) and len - b0 of to(h).
-      key =
-          std::max(key, nearest + landmark_bound(mesh_.from(w.h), mesh_.to(w.h), w.b1, len - w.b0));
+      key = std::max(
+          key, nearest + landmark_edge_bound(*landmarks_, target_landmark_.data(), mesh_.from(w.h),
+                                             mesh_.to(w.h), len, w.b0, w.b1));
     }
     push_window(w, distance_order_ ? nearest : key, key);
   }
 
-  // ALT lower bound on d(x, t) for the points x within ra of vertex a and rb of vertex b:
-  // max over landmarks L of |d(L, t) - d(L, x)| with d(L, x) bracketed through a and b.
-  double landmark_bound(int a, int b, double ra, double rb) const {
+  // ALT lower bound on d(v, t): max over landmarks L of |d(L, t) - d(L, v)|.
+  double landmark_bound(int v) const {
     if (landmarks_ == nullptr) return 0.0;
     const int k = landmarks_->count;
-    const double* la = landmarks_->dist.data() + static_cast<std::size_t>(a) * k;
-    const double* lb = landmarks_->dist.data() + static_cast<std::size_t>(b) * k;
+    const double* lv = landmarks_->dist.data() + static_cast<std::size_t>(v) * k;
     double bound = 0.0;
-    for (int i = 0; i < k; ++i) {
-      const double upper = std::min(la[i] + ra, lb[i] + rb);
-      const double lower = std::max(la[i] - ra, lb[i] - rb);
-      bound = std::max({bound, target_landmark_[i] - upper, lower - target_landmark_[i]});
-    }
+    for (int i = 0; i < k; ++i)
+      bound = std::max({bound, target_landmark_[i] - lv[i], lv[i] - target_landmark_[i]});
     return std::isfinite(bound) ? bound : 0.0;
   }
 
@@ -674,6 +668,29 @@ class Search {
   long vertex_events_ = 0;
   bool aborted_ = false;
 };
+
+}  // namespace
+
+double landmark_edge_bound(const Landmarks& landmarks, const double* target_dist, int a, int b,
+                           double length, double s0, double s1) {
+  const int k = landmarks.count;
+  const double* la = landmarks.dist.data() + static_cast<std::size_t>(a) * k;
+  const double* lb = landmarks.dist.data() + static_cast<std::size_t>(b) * k;
+  double bound = 0.0;
+  for (int i = 0; i < k; ++i) {
+    // d(L, x(s)) <= min(d(L, a) + s, d(L, b) + length - s): concave in s, largest where the
+    // two lines cross (clamped to [s0, s1]); >= max(d(L, a) - s, d(L, b) - length + s): convex,
+    // smallest where those cross.
+    const double su = std::clamp(0.5 * (lb[i] + length - la[i]), s0, s1);
+    const double upper = std::min(la[i] + su, lb[i] + length - su);
+    const double sl = std::clamp(0.5 * (la[i] - lb[i] + length), s0, s1);
+    const double lower = std::max(la[i] - sl, lb[i] - length + sl);
+    bound = std::max({bound, target_dist[i] - upper, lower - target_dist[i]});
+  }
+  return std::isfinite(bound) ? bound : 0.0;
+}
+
+namespace {
 
 void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
                   std::initializer_list<int> vertices) {

@@ -85,6 +85,14 @@ struct Landmarks {
   std::vector<double> dist;  ///< dist[v * count + k]: from landmark k to vertex v
 };
 
+/// ALT lower bound on d(x, t) over the points x of the edge from vertex a to vertex b (its
+/// length `length`) at arc lengths s in [s0, s1] from a: max over the landmarks L of
+/// |d(L, t) - d(L, x)|, with d(L, x) bracketed by d(L, a) +- s and d(L, b) +- (length - s)
+/// (a distance field is 1-Lipschitz along the edge) at the s of the interval that weakens the
+/// bracket most. `target_dist` holds d(L, t) per landmark. 0 where a field is infinite.
+double landmark_edge_bound(const Landmarks& landmarks, const double* target_dist, int a, int b,
+                           double length, double s0, double s1);
+
 /// `count` landmarks chosen farthest-point in space, their exact distance fields built in
 /// parallel (parallel_for_index): each is a full window propagation.
 Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh, int count);
