@@ -9,6 +9,48 @@
 
 namespace windplan {
 
+namespace {
+
+// The pseudo-normal of the closest feature of a face point (zero on an open boundary).
+Vec3 closest_side_normal(const Mesh& mesh, const SurfacePoint& sp) {
+  const int f = containing_face(mesh, sp);
+  const Vec3 b = barycentric_in_face(mesh, f, sp);
+  constexpr double eps = 1e-9;
+  int zeros = 0, nonzero = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (b[k] <= eps) {
+      ++zeros;
+    } else {
+      nonzero = k;
+    }
+  }
+  if (zeros == 0) return mesh.face_normal(f);
+  if (zeros == 1) {
+    int k = 0;
+    while (b[k] > eps) ++k;
+    const int he = 3 * f + (k + 1) % 3;  // the edge opposite corner k
+    const int tw = mesh.twin(he);
+    if (mesh.is_boundary_halfedge(tw)) return Vec3::Zero();
+    return mesh.face_normal(f) + mesh.face_normal(mesh.face(tw));
+  }
+  const int v = mesh.triangle(f)[nonzero];
+  if (mesh.is_boundary_vertex(v)) return Vec3::Zero();
+  Vec3 n = Vec3::Zero();
+  for (int h : mesh.outgoing_halfedges(v)) {
+    const int g = mesh.face(h);
+    if (g < 0) continue;
+    const Vec3 a = mesh.position(mesh.to(h)) - mesh.position(v);
+    const Vec3 c = mesh.position(mesh.from(mesh.prev(h))) - mesh.position(v);
+    const double an = a.norm(), cn = c.norm();
+    if (!(an > 0.0) || !(cn > 0.0)) continue;
+    const double angle = std::acos(std::clamp(a.dot(c) / (an * cn), -1.0, 1.0));
+    n += angle * mesh.face_normal(g);
+  }
+  return n;
+}
+
+}  // namespace
+
 ClearanceEye solve_clearance_eye(const Mesh& mesh, const ClosestPointQuery& query, const Vec3& p,
                                  const Vec3& t_in, double clearance, const std::string& where,
                                  double tolerance, double max_length) {
@@ -22,6 +64,9 @@ ClearanceEye solve_clearance_eye(const Mesh& mesh, const ClosestPointQuery& quer
   ClearanceEye s;
   // Distance from E(l) to the mesh, and whether E(l) is inside the mandrel: below the plane of its
   // closest face (the mesh's faces are oriented outwards) by more than 1e-3 mm.
+  // The side is read from the closest feature's angle-weighted pseudo-normal (Baerentzen and
+  // Aanaes): a face's normal, an edge's two faces, a vertex's fan weighted by its angles; a point
+  // whose closest feature lies on an open boundary (beyond a region's cut end) is outside.
   bool inside = false;
   auto dist = [&](double l) {
     const Vec3 e = p + l * t;
@@ -29,8 +74,8 @@ ClearanceEye solve_clearance_eye(const Mesh& mesh, const ClosestPointQuery& quer
     ++s.iterations;
     inside = false;
     if (h.distance > 1e-3 && h.point.element >= 0) {
-      const int f = containing_face(mesh, h.point);
-      inside = (e - h.position).dot(mesh.face_normal(f)) < -1e-3;
+      const Vec3 n = closest_side_normal(mesh, h.point);
+      inside = n.allFinite() && n.squaredNorm() > 0.0 && (e - h.position).dot(n) < -1e-3;
     }
     return h.distance;
   };
