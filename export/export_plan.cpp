@@ -145,7 +145,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
       for (const ProgramFile& f : robot_files) texts[f.name] = f.text;
       r.robot_replay =
           replay_robot_program(read_robot_program(texts, r.robot_main, machine.robot.dialect), plan,
-                               mandrel_mesh, machine);
+                               mandrel_mesh, machine, &r.motion);
       r.has_robot_replay = true;
       r.replay = r.robot_replay.fibre;
       r.has_replay = true;
