@@ -86,15 +86,19 @@ CsvTable axes_table(const Motion& motion) {
   return t;
 }
 
-/// The joint-space CSV of a robot cell: E1 and A1..A6 at every target, Status and Turn.
+/// The joint-space CSV of a robot cell: E1 and A1..A6 at every machine state (its last target:
+/// the targets inserted before it, export/robot/robot_motion.h, count in its time), Status and
+/// Turn; one row per row of axes.csv.
 CsvTable joints_table(const Motion& motion, const RobotMotion& robot) {
   CsvTable t;
   t.header = {"circuit",  "index",    "t_s [s]",  "E1 [deg]", "A1 [deg]", "A2 [deg]",
               "A3 [deg]", "A4 [deg]", "A5 [deg]", "A6 [deg]", "S",        "T"};
   double time = 0.0;
-  for (const RobotTarget& g : robot.targets) {
+  for (std::size_t k = 0; k < robot.targets.size(); ++k) {
+    const RobotTarget& g = robot.targets[k];
     const MachineState& s = motion.states[g.state];
     time += g.duration;
+    if (k + 1 < robot.targets.size() && robot.targets[k + 1].state == g.state) continue;
     t.rows.push_back({double(s.circuit), double(s.index), time, g.e1, g.q[0], g.q[1], g.q[2],
                       g.q[3], g.q[4], g.q[5], double(g.status), double(g.turn)});
   }
@@ -145,7 +149,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
       for (const ProgramFile& f : robot_files) texts[f.name] = f.text;
       r.robot_replay =
           replay_robot_program(read_robot_program(texts, r.robot_main, machine.robot.dialect), plan,
-                               mandrel_mesh, machine);
+                               mandrel_mesh, machine, &r.motion);
       r.has_robot_replay = true;
       r.replay = r.robot_replay.fibre;
       r.has_replay = true;
@@ -190,7 +194,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     output_test_pause(name);  // (a test hook: export/files/output_set.h)
   };
   // A robot cell's joints for the viewer's joint panel, one row per machine state, as joints.csv
-  // holds them (one target per state today); joints.svg takes their names and limits.
+  // holds them (a state's last target); joints.svg takes their names and limits.
   ViewerJoints joints;
   if (r.has_robot) {
     joints.arm = machine.robot.arm_name;

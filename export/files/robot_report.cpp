@@ -47,6 +47,9 @@ void robot_json(JsonWriter& j, const ExportResult& r) {
   j.field("min_wrist_angle_deg", m.min_wrist_angle);
   j.field("configuration_changes_between_passes", m.configuration_changes);
   j.field("configuration_changes_inside_passes", 0);
+  j.field("e1_reversals_inside_passes", m.positioner.reversals_in_passes);
+  j.field("e1_reversals_inside_passes_if_e1_were_a", m.positioner.a_reversals_in_passes);
+  j.field("e1_max_offset_from_a_deg", m.positioner.max_offset);
   if (r.has_robot_replay) {
     j.key("replay").begin_object();
     robot_replay_fields(j, rp);
@@ -72,6 +75,10 @@ std::string robot_markdown(const ExportResult& r) {
     << ") |\n| wrist singularity | |A5| >= " << fmt("%.1f", m.min_wrist_angle) << " deg |\n";
   o << "| configuration | one per pass; " << m.configuration_changes
     << " changes between passes |\n";
+  o << "| positioner E1 | monotone and smooth within each circuit: "
+    << m.positioner.reversals_in_passes << " reversals inside passes (E1 = A would make "
+    << m.positioner.a_reversals_in_passes << "); the arm takes up to "
+    << fmt("%.1f", m.positioner.max_offset) << " deg about the E1 axis |\n";
   if (r.has_robot_replay) {
     o << "| replay deviation | " << fmt("%.4f", rp.fibre.max_deviation) << " mm max ("
       << rp.max_deviation_at << "), mean " << fmt("%.4f", rp.fibre.mean_deviation)

@@ -46,14 +46,14 @@ Eigen::Isometry3d eye_in_base(const MachineState& s, double offset, bool roller)
 }
 
 std::string RobotMotion::brief_report() const {
-  char buf[400];
+  char buf[700];
   std::snprintf(buf, sizeof buf,
                 "robot: %zu targets, cycle %.1f s (planned %.1f s, %d moves slowed for joint "
                 "speeds, max ratio %.2f), joint margin %.1f deg (%s), wrist |A5| >= %.1f deg, %d "
-                "configuration changes between passes, IK %.3f s",
+                "configuration changes between passes, IK %.3f s; %s",
                 targets.size(), cycle_time, planned_time, slowed_moves, max_joint_speed_ratio,
                 min_joint_margin, min_joint_margin_joint.c_str(), min_wrist_angle,
-                configuration_changes, ik_seconds);
+                configuration_changes, ik_seconds, positioner.brief_report().c_str());
   return buf;
 }
 
@@ -79,23 +79,81 @@ RobotMotion compute_robot_motion(const Motion& motion, const WindingPlan& plan,
     return false;
   };
 
+  // E1 monotone and smooth within every circuit (export/robot/positioner_e1.h); the arm puts the
+  // eye at E1 - A about the E1 axis, so the eye in the mandrel frame stays where the plan has it.
+  m.positioner = fit_positioner_e1(motion, plan);
   Joints seed = ro.home;
   m.targets.reserve(motion.states.size());
+  // Where E1 - A changes by more than kTurnStepDeg between two states (A swings where the eye
+  // passes near the E1 axis, and at the links between circuits), the arm's straight move between
+  // the two turned eyes would leave the planned eye path (in the mandrel frame, by the chord of
+  // that turn): targets are inserted there on the planned eye path (the straight line between
+  // the two states' eyes in the mandrel frame), E1 and B interpolated linearly, each with its
+  // share of the move's time.
+  constexpr double kTurnStepDeg = 2.0;
+  const AxisFrame frame = make_axis_frame(plan.axis);
+  struct Step {
+    MachineState s;
+    int state;
+    double e1;
+  };
+  std::vector<Step> steps;
+  steps.reserve(motion.states.size());
   for (std::size_t i = 0; i < motion.states.size(); ++i) {
     const MachineState& s = motion.states[i];
+    const double e1 = m.positioner.e1[i];
+    const bool tie =
+        i == 0 || (s.ordinal != motion.states[i - 1].ordinal && layer_start(s.ordinal));
+    int parts = 1;
+    if (!tie) {
+      const MachineState& p = motion.states[i - 1];
+      const double pe1 = m.positioner.e1[i - 1];
+      const double turn = std::fabs((e1 - s.a_deg) - (pe1 - p.a_deg));
+      parts = std::max(1, static_cast<int>(std::ceil(turn / kTurnStepDeg)));
+      for (int k = 1; k < parts; ++k) {
+        const double f = static_cast<double>(k) / parts;
+        MachineState q = s;
+        q.eye = p.eye + f * (s.eye - p.eye);
+        const double a_lin = p.a_deg + f * (s.a_deg - p.a_deg);
+        const double a_raw = -frame.angle(q.eye) * kDeg;
+        q.a_deg = a_lin + std::remainder(a_raw - a_lin, 360.0);
+        q.x_mm = frame.axial(q.eye);
+        q.y_mm = frame.radius(q.eye);
+        q.b_deg = p.b_deg + f * (s.b_deg - p.b_deg);
+        q.duration = s.duration / parts;
+        steps.push_back({q, static_cast<int>(i), pe1 + f * (e1 - pe1)});
+      }
+    }
+    MachineState last = s;
+    last.duration = s.duration / parts;
+    steps.push_back({last, static_cast<int>(i), e1});
+  }
+  for (std::size_t n = 0; n < steps.size(); ++n) {
+    const MachineState& s = steps[n].s;
+    const std::size_t i = steps[n].state;
+    const bool first_of_state = n == 0 || steps[n - 1].state != steps[n].state;
     RobotTarget t;
     t.state = static_cast<int>(i);
-    t.tie_on = i == 0 || (s.ordinal != motion.states[i - 1].ordinal && layer_start(s.ordinal));
+    t.tie_on = first_of_state &&
+               (i == 0 || (s.ordinal != motion.states[i - 1].ordinal && layer_start(s.ordinal)));
+    t.e1 = steps[n].e1;
     t.eye = eye_in_base(s, ro.offset, ro.eye == "roller");
-    t.e1 = s.a_deg;
+    {
+      // The eye's place turned by E1 - A about the E1 axis; a ring eye keeps its orientation in
+      // the cell (it lays the fibre the same at any rotation, and the wrist need not turn), a
+      // roller eye turns with it (its B is measured in the mandrel's frame).
+      const Eigen::AngleAxisd turn((t.e1 - s.a_deg) / kDeg, Vec3::UnitX());
+      t.eye.translation() = turn * t.eye.translation();
+      if (ro.eye == "roller") t.eye.linear() = turn.toRotationMatrix() * t.eye.linear();
+    }
     const Eigen::Isometry3d cell_eye = m.base * t.eye;
-    const bool solved = i == 0 ? arm.inverse_near(cell_eye * tool_inv, ro.home, ro.joint_margin,
+    const bool solved = n == 0 ? arm.inverse_near(cell_eye * tool_inv, ro.home, ro.joint_margin,
                                                   ro.wrist_margin, &t.q)
                                : arm.inverse(cell_eye * tool_inv, seed, &t.q);
     if (!solved) {
       throw InputError("machine.robot: the eye pose of " + point_name(s, cell_eye.translation()) +
                        " is out of reach of the " + ro.arm_name +
-                       (i == 0 ? " (no inverse kinematics inside the joint limits"
+                       (n == 0 ? " (no inverse kinematics inside the joint limits"
                                : " (no inverse kinematics from the previous joints") +
                        "; move machine.robot.offset or the positioner's frame)");
     }

@@ -3,14 +3,17 @@
 // becomes a target of the arm (the eye's pose in the positioner's BASE frame) and an E1 angle of
 // the positioner, solved to joint values through the arm's inverse kinematics.
 //
-// The cell (planner/job/robot_options.h): the positioner turns the mandrel by E1 = A (the spindle
-// angle of the lathe model, so that the turned eye lies in the half-plane of the axis d and u);
-// in the positioner frame the eye is at (X + offset, Y, 0) (X, Y the carriage and cross-feed of
-// the lathe model) and its pose is: x towards the mandrel axis (-u), z the fibre direction
-// resolved in the d-v plane (cos B, 0, sin B) with B the eye rotation of lathe4 for a roller eye
-// (machine.robot.eye: roller), or B = 90 deg (z along the mandrel's turning direction) for a ring
-// eye (eye: ring, the default), whose orifice lays the fibre the same at any rotation, y = z x x.
-// The flange target is BASE * eye * TOOL^-1 (BASE the positioner frame in the cell).
+// The cell (planner/job/robot_options.h): the positioner turns the mandrel by E1, monotone and
+// smooth within every circuit (export/robot/positioner_e1.h: a fit of the lathe model's spindle
+// angle A, which would put the turned eye in the half-plane of the axis d and u but turns back and
+// forth on a bent tube). With E1 = A the eye is at (X + offset, Y, 0) in the positioner frame
+// (X, Y the carriage and cross-feed of the lathe model); the target is that pose turned by
+// E1 - A about the positioner's x axis (the E1 axis), so the eye in the mandrel frame is the
+// plan's whatever E1 is. The pose before that turn is: x towards the mandrel axis (-u), z the fibre
+// direction resolved in the d-v plane (cos B, 0, sin B) with B the eye rotation of lathe4 for a
+// roller eye (machine.robot.eye: roller), or B = 90 deg (z along the mandrel's turning direction)
+// for a ring eye (eye: ring, the default), whose orifice lays the fibre the same at any rotation, y
+// = z x x. The flange target is BASE * eye * TOOL^-1 (BASE the positioner frame in the cell).
 //
 // IK: the first target of the plan takes the solution nearest the arm's home joints
 // (RobotArm::inverse_near), every other is seeded from the previous solution (one continuous
@@ -24,6 +27,7 @@
 #include <vector>
 
 #include "export/machine/kinematics.h"
+#include "export/robot/positioner_e1.h"
 #include "export/robot/robot_kinematics.h"
 
 namespace windplan {
@@ -51,6 +55,7 @@ struct RobotMotion {
   int slowed_moves = 0;
   int configuration_changes = 0;  ///< between passes (at turnarounds or circuit links)
   double ik_seconds = 0.0;        ///< wall time of the IK
+  PositionerE1 positioner;        ///< E1 per state (positioner_e1.h), its reversals and offsets
   std::string brief_report() const;
 };
 

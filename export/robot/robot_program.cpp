@@ -109,7 +109,9 @@ std::vector<ProgramFile> krl(const RobotMotion& m, const std::string& job, const
       last_vel = v;
       // E1 at the speed the move's time asks for (% of its max): a move of the positioner with
       // the eye (nearly) still takes its time from $VEL_EXTAX, not from $VEL.CP.
-      const double de1 = std::fabs(t.e1 - m.targets[i - 1].e1);
+      // (from E1 as written, to 1e-4 deg: a slow E1 move's percentage from the unrounded values
+      // would time the rounded one far longer)
+      const double de1 = std::fabs(std::stod(mm(t.e1)) - std::stod(mm(m.targets[i - 1].e1)));
       const double pct =
           t.duration > 0.0 ? std::clamp(100.0 * de1 / t.duration / ro.e1_max_velocity, 1e-6, 100.0)
                            : 100.0;

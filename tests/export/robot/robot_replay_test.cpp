@@ -274,5 +274,54 @@ TEST(RobotReplay, BentTubeProgramsReplayWithinTolerance) {
   }
 }
 
+// The positioner turns one way within every pass (issue 26 follow-up): E1 read back from the
+// KRL program, counted per pass of the plan, never reverses, while the lathe model's A (what
+// E1 = A made) does on this tube; and the eye in the mandrel frame stays the plan's (the replay).
+TEST(RobotReplay, BentTubeE1NeverReversesInsideAPass) {
+  const BentTubeCell& c = bent_tube_cell();
+  const Mesh& mesh = c.planned.mandrel.mesh;
+  const MachineOptions& m = c.job.machine;
+  const WindingPlan& plan = c.planned.plan;
+  const Motion mo = compute_motion(plan, m, &mesh);
+  const RobotMotion rm = compute_robot_motion(mo, plan, m);
+  std::map<std::string, std::string> texts;
+  const std::vector<ProgramFile> files = robot_program(rm, c.job.name, m);
+  for (const ProgramFile& f : files) texts[f.name] = f.text;
+  const RobotProgram program = read_robot_program(texts, files.front().name, "krl");
+  ASSERT_EQ(program.targets.size(), rm.targets.size());
+  auto strictly_in_pass = [&](const MachineState& s) {
+    for (const CircuitSegment& seg : plan.circuits[s.ordinal].segments) {
+      if (seg.kind == CircuitSegment::Kind::Pass && s.index > seg.first && s.index < seg.last)
+        return true;
+    }
+    return false;
+  };
+  // Reversals of a value along the targets, at targets strictly inside a pass.
+  auto reversals = [&](auto value) {
+    int count = 0, dir = 0;
+    for (std::size_t k = 1; k < rm.targets.size(); ++k) {
+      const MachineState& s = mo.states[rm.targets[k].state];
+      if (s.ordinal != mo.states[rm.targets[k - 1].state].ordinal) dir = 0;
+      const double d = value(k) - value(k - 1);
+      if (std::fabs(d) < 1e-9) continue;
+      const int sgn = d > 0 ? 1 : -1;
+      if (dir != 0 && sgn != dir && strictly_in_pass(mo.states[rm.targets[k - 1].state])) ++count;
+      dir = sgn;
+    }
+    return count;
+  };
+  const int e1_reversals = reversals([&](std::size_t k) { return program.targets[k].e1; });
+  const int a_reversals =
+      reversals([&](std::size_t k) { return mo.states[rm.targets[k].state].a_deg; });
+  EXPECT_EQ(e1_reversals, 0);
+  EXPECT_GT(a_reversals, 0);  // the lathe model's A does turn back on this tube
+  EXPECT_EQ(rm.positioner.reversals_in_passes, 0);
+  EXPECT_GT(rm.positioner.a_reversals_in_passes, 0);
+  const RobotReplayResult r = replay_robot_program(program, plan, mesh, m, &mo);
+  EXPECT_LT(r.fibre.max_deviation, m.replay_tolerance) << r.summary;
+  EXPECT_LT(r.max_eye_deviation, 0.01) << r.summary;
+  EXPECT_GT(r.fibre.min_clearance, m.envelope.clearance - 2 * m.chord_tolerance) << r.summary;
+}
+
 }  // namespace
 }  // namespace windplan
