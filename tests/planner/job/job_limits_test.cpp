@@ -201,6 +201,12 @@ TEST(JobLimits, ImplausibleCombinationsAreRefusedUpFrontWithTheCause) {
   EXPECT_EQ(test::job_load_error(kPipe +
                                  "machine: {chord_tolerance: 0.01, envelope: {clearance: 0.1}}\n"),
             "");
+  // A 1 um pipe (was planned with cover factor 0): its band is wider than its circumference.
+  e = test::job_load_error("mandrel: {source: pipe, pipe: {radius: 0.001, length: 1}}\n");
+  EXPECT_NE(e.find("key 'winding.band_width' = 10 mm is wider than the mandrel's circumference, "
+                   "0.006283 mm"),
+            std::string::npos)
+      << e;
   // The mandrel longer than the carriage travels.
   e = test::job_load_error(kPipe + "machine: {axes: {X: {min: -100, max: 100}}}\n");
   EXPECT_NE(e.find("key 'machine.axes.X' = 200 mm of travel (-100 to 100 mm) is shorter than the "
@@ -236,6 +242,19 @@ TEST(JobLimits, AMeshReadInTheWrongUnitsIsRefusedOnceBuilt) {
     EXPECT_NE(m.find("check mandrel.units"), std::string::npos) << m;
   }
   EXPECT_NO_THROW(check_plausibility(job, w, 50, 200));
+  // The same mesh in metres read as mm (radius 0.05 mm): the band is wider than the
+  // circumference, and the message points at the units.
+  try {
+    check_plan_size(w, 0.05, 0.2, 0.01);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("0.3142 mm at its largest radius 0.05 mm"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("check the band width and the mandrel's units"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
