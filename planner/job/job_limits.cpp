@@ -162,8 +162,10 @@ Finding find_implausible(const Job& job, const WindingOptions& w, double r, doub
                 " mm or a smaller chord_tolerance"};
   }
   if (!(r > 0.0) || !(l > 0.0)) return {};
-  // The mandrel longer than the carriage travels (a mesh in mm read as inches).
-  if (lathe && finite_travel(mc.x) && l > mc.x.max - mc.x.min) {
+  // A mesh or CAD mandrel longer than the carriage travels (a mesh in mm read as inches; a
+  // parametric mandrel's length is typed in mm, and may be wound in part between stations).
+  const bool from_file = job.mandrel.source == "mesh" || job.mandrel.source == "cad";
+  if (from_file && lathe && finite_travel(mc.x) && l > mc.x.max - mc.x.min) {
     return {"machine.axes.X", mc.x.max - mc.x.min, " mm",
             "of travel (" + num(mc.x.min) + " to " + num(mc.x.max) +
                 " mm) is shorter than the mandrel, " + num(l) +
@@ -214,7 +216,9 @@ Finding find_implausible(const Job& job, const WindingOptions& w, double r, doub
     lead = std::sqrt(c * (2.0 * r + c)) / std::tan(alpha);
   }
   const bool x_travel = lathe && finite_travel(mc.x);
-  const double max_lead = x_travel ? mc.x.max - mc.x.min : lim.max_relative_eye_lead * l;
+  const double max_lead = x_travel
+                              ? mc.x.max - mc.x.min
+                              : std::max(lim.max_relative_eye_lead * l, lim.min_eye_lead_bound);
   if (lead > max_lead) {
     const std::string why =
         "the payout eye trails the fibre's contact by about " + num(lead) +
@@ -224,8 +228,13 @@ Finding find_implausible(const Job& job, const WindingOptions& w, double r, doub
                                : num(c) + " mm out") +
         "), beyond " +
         (x_travel ? "the X axis travel, " + num(max_lead) + " mm"
-                  : "the bound " + num(max_lead) + " mm (" + num(lim.max_relative_eye_lead) +
-                        " times the mandrel's length, " + num(l) + " mm)");
+                  : "the bound " + num(max_lead) + " mm (" +
+                        (max_lead > lim.min_eye_lead_bound
+                             ? num(lim.max_relative_eye_lead) + " times the mandrel's length, " +
+                                   num(l) + " mm)"
+                             : std::string("the least bound, for mandrels under ") +
+                                   num(lim.min_eye_lead_bound / lim.max_relative_eye_lead) +
+                                   " mm long)"));
     if (alpha < 10.0 * M_PI / 180.0 && !angle_key.empty()) {
       const double v = angle_key == "winding.turns"   ? w.turns
                        : angle_key == "winding.angle" ? w.angle

@@ -45,6 +45,8 @@ struct JobLimits {
   /// The payout eye's lead along the axis at most this many mandrel lengths when the machine's
   /// X travel is not given (dimensionless).
   double max_relative_eye_lead = 10.0;
+  /// mm: ... but at least this (a small part may still sit on a machine whose eye is 20 mm out).
+  double min_eye_lead_bound = 1000.0;
   /// mm: the fibre the plan lays (2 K passes), estimated (10 km; 2e7 replay sub-steps of 0.5 mm).
   double max_fibre_length = 1e7;
 };
@@ -101,10 +103,10 @@ void check_plan_size(const WindingOptions& w, double radius, double axial, doubl
 ///  - the eye's lead along the axis, sqrt(c (2 R + c)) / tan(alpha) for an eye c out along a
 ///    tangent at the winding angle alpha (tan alpha = 2 pi R N / L from the turns; sin alpha =
 ///    c_t / R from the turnaround or angle), beyond the machine's X travel (when given) or
-///    max_relative_eye_lead L: names winding.turns (or angle) when alpha is under 10 deg, else
-///    machine.envelope.clearance;
+///    max(max_relative_eye_lead L, min_eye_lead_bound): names winding.turns (or angle) when alpha
+///    is under 10 deg, else machine.envelope.clearance;
 ///  - the eye radius R + c beyond the Y axis travel (lathe4, when given);
-///  - the mandrel's length beyond the X travel (when given): check mandrel.units;
+///  - a mesh or CAD mandrel's length beyond the X travel (when given): check mandrel.units;
 ///  - the fibre laid, 2 K sqrt((2 pi R N)^2 + L^2) (K auto = 2 pi R / band width), above
 ///    max_fibre_length: check mandrel.units, or a wider band.
 /// Parametric mandrels are checked by check_job_limits at load (with the key's line); mesh and
