@@ -188,6 +188,7 @@ PipelineResult plan_job(const Job& job, const PipelineOptions& options) {
   Mandrel md = build_mandrel(job);
   check_plan_size(job.winding, md.winding.mesh,
                   md.axis);  // (mesh and CAD mandrels: their size is known now)
+  check_plausibility(job, md.winding.mesh, md.axis);  // (issue 28: before any long stage)
   mandrel.done();
   if (options.on_mandrel) options.on_mandrel(md);
   PipelineResult r = plan_winding(std::move(md), job, job.winding, options);

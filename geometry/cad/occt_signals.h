@@ -13,6 +13,10 @@
 // - Only the fault signals are taken; every other handler (the output folder's SIGINT/SIGTERM
 //   clean-up, export/files/output_set.h) is left as it was. The previous handlers come back
 //   when the outermost scope ends. Scopes nest; they are meant for the main thread.
+// - The fault handlers run on an alternate stack (1 MB, installed for the scope when the thread
+//   has none or a smaller one), so a stack overflow inside OCCT's recursive readers (a STEP
+//   TRIMMED_CURVE or ORIENTED_EDGE that is its own part: fuzz_cad, issue 28) is caught like any
+//   other fault instead of killing the process; occt_fault_was_stack_overflow() tells which.
 // - After such a jump OCCT's state may hold leaks: the process reports the error and ends.
 
 #include <string>
@@ -27,9 +31,13 @@ class OcctSignalScope {
   OcctSignalScope& operator=(const OcctSignalScope&) = delete;
 };
 
+/// Whether the last fault caught in a scope was at the end of the thread's stack (an overflow).
+bool occt_fault_was_stack_overflow();
+
 /// The message of a Standard_Failure thrown for a signal, as one line for the user: e.g.
 /// "it crashed OpenCASCADE (SIGSEGV, a memory access fault): the file is damaged or truncated"
-/// when `what` names a signal, else "OpenCASCADE: <what>".
+/// when `what` names a signal (for a SIGSEGV that overflowed the stack: "...its recursion
+/// overflowed the stack: the file refers to itself..."), else "OpenCASCADE: <what>".
 std::string occt_failure_text(const std::string& what);
 
 }  // namespace windplan

@@ -103,7 +103,182 @@ double tessellation_edge(double r, const TessellateOptions& t) {
 
 constexpr double kTriangleArea = 0.433;  // sqrt(3) / 4: an equilateral triangle of edge 1
 
+// An implausible combination: the key to name, its value and unit, and the rest of the message
+// ("" key: plausible).
+struct Finding {
+  std::string key;
+  double value = 0.0;
+  std::string unit;
+  std::string text;
+};
+
+// The winding angle alpha (rad, from the axis) of the passes on the largest radius R and the key
+// that sets it ("" for a vessel's default turnaround); NaN when unknown (a mesh or CAD mandrel
+// whose turns are not given: its passes turn around on domes the planner finds).
+double winding_angle(const Job& job, const WindingOptions& w, double r, double l,
+                     std::string* key) {
+  const std::string& src = job.mandrel.source;
+  if (!std::isnan(w.angle)) {
+    *key = "winding.angle";
+    return w.angle * M_PI / 180.0;
+  }
+  if (std::isfinite(w.turnaround)) {
+    *key = "winding.turnaround";
+    return std::asin(std::min(1.0, w.turnaround / r));
+  }
+  const bool parametric_no_domes =
+      src == "pipe" || src == "cone" || src == "bent_tube" || src == "section";
+  if (w.turns_given || parametric_no_domes) {
+    *key = "winding.turns";
+    return std::atan2(2.0 * M_PI * r * w.turns, l);
+  }
+  if (src == "vessel") {  // the planner's default: c = the larger polar opening + half the band
+    key->clear();
+    const double c = std::max(job.mandrel.vessel.dome_start.polar_opening,
+                              job.mandrel.vessel.dome_end.polar_opening) +
+                     0.5 * w.band_width;
+    return std::asin(std::min(1.0, c / r));
+  }
+  return std::nan("");
+}
+
+bool finite_travel(const AxisOptions& a) { return std::isfinite(a.min) && std::isfinite(a.max); }
+
+Finding find_implausible(const Job& job, const WindingOptions& w, double r, double l,
+                         const JobLimits& lim) {
+  const MachineOptions& mc = job.machine;
+  const EnvelopeOptions& env = mc.envelope;
+  const bool lathe = mc.kind == "lathe2" || mc.kind == "lathe4";
+  const std::string mode = env.mode();
+  // The eye grazes the mandrel (a 1 um clearance).
+  if (mode == "clearance" && env.clearance < lim.min_clearance_chords * mc.chord_tolerance) {
+    return {"machine.envelope.clearance", env.clearance, " mm",
+            "is within " + num(lim.min_clearance_chords) +
+                " chord tolerances (machine.chord_tolerance = " + num(mc.chord_tolerance) +
+                " mm) of the mandrel: the resampled eye and fibre paths each stray by up to a "
+                "chord tolerance, so the eye would graze the mandrel and the replay lay the "
+                "fibre elsewhere; use a clearance >= " +
+                num(lim.min_clearance_chords * mc.chord_tolerance) +
+                " mm or a smaller chord_tolerance"};
+  }
+  if (!(r > 0.0) || !(l > 0.0)) return {};
+  // A mesh or CAD mandrel longer than the carriage travels (a mesh in mm read as inches; a
+  // parametric mandrel's length is typed in mm, and may be wound in part between stations).
+  const bool from_file = job.mandrel.source == "mesh" || job.mandrel.source == "cad";
+  if (from_file && lathe && finite_travel(mc.x) && l > mc.x.max - mc.x.min) {
+    return {"machine.axes.X", mc.x.max - mc.x.min, " mm",
+            "of travel (" + num(mc.x.min) + " to " + num(mc.x.max) +
+                " mm) is shorter than the mandrel, " + num(l) +
+                " mm along the axis: check mandrel.units (a mesh in mm read as inches is 25.4 "
+                "times too large) or the machine profile"};
+  }
+  std::string angle_key;
+  const double alpha = winding_angle(job, w, r, l, &angle_key);
+  // The fibre laid: 2 K passes.
+  const double circumference = 2.0 * M_PI * r;
+  const double k = w.circuits > 0 ? w.circuits : std::ceil(circumference / w.band_width);
+  double pass = l;
+  if (angle_key == "winding.turns") {
+    pass = std::hypot(circumference * w.turns, l);
+  } else if (std::isfinite(alpha) && std::cos(alpha) > 1e-3) {
+    pass = l / std::cos(alpha);
+  }
+  const double fibre = 2.0 * k * pass;
+  if (fibre > lim.max_fibre_length) {
+    const bool auto_k = w.circuits == 0;
+    return {auto_k ? "winding.band_width" : "winding.circuits",
+            auto_k ? w.band_width : double(w.circuits), auto_k ? " mm" : "",
+            "makes the plan lay about " + num(fibre / 1e6) + " km of fibre (" + num(k) +
+                " circuits of two " + num(pass / 1e3) + " m passes on a mandrel of radius " +
+                num(r) + " mm, " + num(l) + " mm long), above the bound " +
+                num(lim.max_fibre_length / 1e6) +
+                " km: check mandrel.units (a mesh in mm read as inches is 25.4 times too large), "
+                "or use a wider band"};
+  }
+  if (!std::isfinite(alpha) || !(alpha > 0.0)) return {};
+  // The payout eye's lead along the axis behind the fibre's contact.
+  double c = std::nan("");
+  std::string c_key = "machine.envelope.clearance";
+  double c_value = env.clearance;
+  if (mode == "clearance") {
+    c = env.radius > 0.0 && mc.kind == "lathe2" ? env.radius - r : env.clearance;
+    if (env.radius > 0.0 && mc.kind == "lathe2") {
+      c_key = "machine.envelope.radius";
+      c_value = env.radius;
+    }
+  }
+  double lead = std::nan("");
+  if (mode == "free_length") {
+    lead = env.free_length * std::cos(alpha);
+    c_key = "machine.envelope.free_length";
+    c_value = env.free_length;
+  } else if (c > 0.0) {
+    lead = std::sqrt(c * (2.0 * r + c)) / std::tan(alpha);
+  }
+  const bool x_travel = lathe && finite_travel(mc.x);
+  const double max_lead = x_travel
+                              ? mc.x.max - mc.x.min
+                              : std::max(lim.max_relative_eye_lead * l, lim.min_eye_lead_bound);
+  if (lead > max_lead) {
+    const std::string why =
+        "the payout eye trails the fibre's contact by about " + num(lead) +
+        " mm along the axis (winding angle " + num(alpha * 180.0 / M_PI) + " deg on radius " +
+        num(r) + " mm, eye " +
+        (mode == "free_length" ? num(env.free_length) + " mm along the fibre"
+                               : num(c) + " mm out") +
+        "), beyond " +
+        (x_travel ? "the X axis travel, " + num(max_lead) + " mm"
+                  : "the bound " + num(max_lead) + " mm (" +
+                        (max_lead > lim.min_eye_lead_bound
+                             ? num(lim.max_relative_eye_lead) + " times the mandrel's length, " +
+                                   num(l) + " mm)"
+                             : std::string("the least bound, for mandrels under ") +
+                                   num(lim.min_eye_lead_bound / lim.max_relative_eye_lead) +
+                                   " mm long)"));
+    if (alpha < 10.0 * M_PI / 180.0 && !angle_key.empty()) {
+      const double v = angle_key == "winding.turns"   ? w.turns
+                       : angle_key == "winding.angle" ? w.angle
+                                                      : w.turnaround;
+      const std::string unit = angle_key == "winding.turns"   ? ""
+                               : angle_key == "winding.angle" ? " deg"
+                                                              : " mm";
+      return {angle_key, v, unit,
+              "on a mandrel " + num(l) + " mm long lays the fibre almost along the axis: " + why +
+                  "; use more turns (a steeper winding angle)"};
+    }
+    return {c_key, c_value, " mm", "is too far out: " + why + "; use a smaller clearance"};
+  }
+  // The eye beyond the cross-feed's reach (lathe4: Y is the eye's radius).
+  if (mc.kind == "lathe4" && mode == "clearance" && std::isfinite(mc.y.max) && r + c > mc.y.max) {
+    return {c_key, c_value, " mm",
+            "puts the payout eye at radius " + num(r + c) + " mm (mandrel radius " + num(r) +
+                " mm), beyond the Y axis travel (max " + num(mc.y.max) +
+                " mm): use a smaller clearance, or check mandrel.units"};
+  }
+  return {};
+}
+
 }  // namespace
+
+void check_plausibility(const Job& job, const WindingOptions& w, double radius, double axial,
+                        const JobLimits& limits) {
+  const Finding f = find_implausible(job, w, radius, axial, limits);
+  if (f.key.empty()) return;
+  const std::string file = job.path.empty() ? std::string() : job.path.string() + ": ";
+  throw ConfigError(file + "key '" + f.key + "' = " + num(f.value) + f.unit + " " + f.text);
+}
+
+void check_plausibility(const Job& job, const Mesh& m, const SpindleAxis& axis,
+                        const JobLimits& limits) {
+  if (m.num_faces() == 0) return;
+  double radius = 0.0, lo = INFINITY, hi = -INFINITY;
+  for (const Vec3& p : m.points()) {
+    radius = std::max(radius, axis.radius(p));
+    lo = std::min(lo, axis.axial(p));
+    hi = std::max(hi, axis.axial(p));
+  }
+  check_plausibility(job, job.winding, radius, hi - lo, limits);
+}
 
 MandrelSize parametric_mandrel_size(const MandrelOptions& m) {
   MandrelSize s;
@@ -301,9 +476,14 @@ void check_job_limits(const Job& job, const ConfigNode& root, const JobLimits& l
         std::max(std::fabs(mc.envelope.profile[i][0]), std::fabs(mc.envelope.profile[i][1])));
   }
 
-  // Estimates, when the size is known from the parameters.
+  // Estimates, when the size is known from the parameters (the plausibility of a mesh or CAD
+  // mandrel waits for its size; the clearance against the chord tolerance needs none).
   const MandrelSize s = parametric_mandrel_size(m);
-  if (!(s.size > 0.0)) return;
+  if (!(s.size > 0.0)) {
+    const Finding f = find_implausible(job, w, 0.0, 0.0, l);
+    if (!f.key.empty()) c.fail(f.key, f.value, f.unit, f.text);
+    return;
+  }
   c.length("mandrel", s.size);  // (each dimension is bounded; their sum too)
   try {
     check_tessellation_size(s, m.tessellation, l);
@@ -334,6 +514,8 @@ void check_job_limits(const Job& job, const ConfigNode& root, const JobLimits& l
                " plan points on this mandrel, above the bound " + num(l.max_plan_points) +
                "; use fewer turns or circuits, or a coarser mesh");
   }
+  const Finding f = find_implausible(job, w, s.radius, s.axial, l);
+  if (!f.key.empty()) c.fail(f.key, f.value, f.unit, f.text);
 }
 
 }  // namespace windplan

@@ -39,6 +39,16 @@ struct JobLimits {
   double max_plan_points = 5e6;           ///< estimated dense plan points (all passes)
   double min_relative_deflection = 1e-5;  ///< linear_deflection / mandrel size (dimensionless)
   double max_relative_remesh = 0.1;       ///< remesh / mandrel size (dimensionless)
+  /// Plausibility (check_plausibility): the clearance at least this many chord tolerances
+  /// (dimensionless; 2 measured failing, 4 passing on the pipe).
+  double min_clearance_chords = 4.0;
+  /// The payout eye's lead along the axis at most this many mandrel lengths when the machine's
+  /// X travel is not given (dimensionless).
+  double max_relative_eye_lead = 10.0;
+  /// mm: ... but at least this (a small part may still sit on a machine whose eye is 20 mm out).
+  double min_eye_lead_bound = 1000.0;
+  /// mm: the fibre the plan lays (2 K passes), estimated (10 km; 2e7 replay sub-steps of 0.5 mm).
+  double max_fibre_length = 1e7;
 };
 
 /// Rough size of a mandrel for the estimates (mm, mm^2).
@@ -84,6 +94,29 @@ double estimate_plan_points(const WindingOptions& w, double radius, double axial
 /// points against the bound. \throw ConfigError naming winding.turns and circuits.
 void check_plan_size(const WindingOptions& w, double radius, double axial, double edge,
                      const JobLimits& limits = JobLimits());
+
+/// Plausibility (issue 28): combinations of valid values that no winder can wind, refused before
+/// any long stage with the cause named (each was found before only by minutes of work and a late
+/// replay error, or not at all), on a mandrel of largest radius R and axial length L (mm):
+///  - clearance below min_clearance_chords chord tolerances: the resampled eye and fibre paths
+///    each stray by up to a chord tolerance, so the eye grazes the mandrel;
+///  - the eye's lead along the axis, sqrt(c (2 R + c)) / tan(alpha) for an eye c out along a
+///    tangent at the winding angle alpha (tan alpha = 2 pi R N / L from the turns; sin alpha =
+///    c_t / R from the turnaround or angle), beyond the machine's X travel (when given) or
+///    max(max_relative_eye_lead L, min_eye_lead_bound): names winding.turns (or angle) when alpha
+///    is under 10 deg, else machine.envelope.clearance;
+///  - the eye radius R + c beyond the Y axis travel (lathe4, when given);
+///  - a mesh or CAD mandrel's length beyond the X travel (when given): check mandrel.units;
+///  - the fibre laid, 2 K sqrt((2 pi R N)^2 + L^2) (K auto = 2 pi R / band width), above
+///    max_fibre_length: check mandrel.units, or a wider band.
+/// Parametric mandrels are checked by check_job_limits at load (with the key's line); mesh and
+/// CAD mandrels once built. \throw ConfigError "<job>: key 'k' = v ...".
+void check_plausibility(const Job& job, const WindingOptions& w, double radius, double axial,
+                        const JobLimits& limits = JobLimits());
+
+/// The same for a built mandrel: R and L from its winding surface `wound` about `axis`.
+void check_plausibility(const Job& job, const Mesh& wound, const SpindleAxis& axis,
+                        const JobLimits& limits = JobLimits());
 
 /// The same for a built mandrel (the pipeline, before planning; mesh and CAD mandrels are known
 /// only now): R, L and l from its winding surface `wound` (Mandrel::winding.mesh) about `axis`.

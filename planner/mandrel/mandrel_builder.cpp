@@ -12,6 +12,7 @@
 #include "geometry/cad/parametric_mandrel.h"
 #include "geometry/cad/section_mandrel.h"
 #include "geometry/cad/tessellate.h"
+#include "geometry/mesh/orient_outward.h"
 #include "geometry/mesh/remesh.h"
 #include "geometry/region/centre_line_region.h"
 #include "geometry/region/planar_end_caps.h"
@@ -178,6 +179,15 @@ Mandrel build_mandrel(const MandrelOptions& m, bool require_annulus) {
     check_mandrel_extent({out.mesh.bounding_box().diagonal_length(), 0.0, 0.0, 0.0},
                          "mandrel (" + m.file.string() + ")");
     for (const std::string& c : changes) out.warnings.push_back("repaired: " + c);
+    // Consistently oriented but inward (an open tube exported with its normals flipped, or a
+    // closed mesh read without repair): turned outward here, not found by a late replay error
+    // (issue 28).
+    OrientOutwardResult o = orient_outward(out.mesh);
+    if (o.summary.flipped_faces > 0) {
+      out.warnings.push_back(m.file.string() + ": the faces' normals pointed into the mandrel (" +
+                             o.summary.brief_report() + "); re-oriented outward");
+      out.mesh = std::move(o.mesh);
+    }
   } else if (parametric || m.source == "cad") {
     if (m.source == "cad") {
       CadImportOptions io;

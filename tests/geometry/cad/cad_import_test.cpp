@@ -209,5 +209,40 @@ TEST(CadImport, TruncatedIgesIsRefusedNeverACrash) {
   fs::remove_all(dir);
 }
 
+// Issue 28, found by fuzz_cad: an entity that is its own part (a TRIMMED_CURVE whose basis curve
+// is itself; an ORIENTED_EDGE whose edge is itself) sends OpenCASCADE's STEP translator into
+// endless recursion; the stack overflowed and the process died with SIGSEGV and no message (OCCT's
+// fault handler ran on the overflowed stack). The handler now runs on an alternate stack, so the
+// overflow is an exception like any other fault: OCCT's translator drops the entity, and the file
+// is read without it or refused with the file named. Before the fix both cases died.
+TEST(CadImport, AnEntityThatIsItsOwnPartIsRefusedNeverACrash) {
+  const fs::path dir = temp_dir();
+  auto with_cycle = [&](const std::string& source, const std::string& from, const std::string& to) {
+    std::ifstream in(data(source), std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    const fs::path cyclic = dir / ("cyclic_" + source);
+    std::ofstream(cyclic, std::ios::binary) << text;
+    return cyclic;
+  };
+  // wire_only.step with #30's basis curve #31 -> #30: the curve is dropped (2 of 3 are left), and
+  // the file is refused for what it lacks, not killed.
+  const fs::path curve =
+      with_cycle("wire_only.step", "#30 = TRIMMED_CURVE('',#31,", "#30 = TRIMMED_CURVE('',#30,");
+  expect_error_naming_file(curve, "only 2 curve(s)");
+  // single_face.step with #20's edge #21 -> #20: the face's loop is lost with it.
+  const fs::path edge = with_cycle("single_face.step", "#20 = ORIENTED_EDGE('',*,*,#21,",
+                                   "#20 = ORIENTED_EDGE('',*,*,#20,");
+  try {
+    const CadImport c = import_cad(edge);
+    (void)tessellate(c.shape);
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(edge.string()), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace windplan

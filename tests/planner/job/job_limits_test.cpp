@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "geometry/base/errors.h"
@@ -142,6 +144,136 @@ TEST(JobLimits, ABandWiderThanTheCircumferenceIsNamedUpFront) {
   }
   w.band_width = 6.0;
   EXPECT_NO_THROW(check_plan_size(w, 1.0, 100.0, 0.5, JobLimits{}));
+}
+
+// Issue 28, plausibility before work: combinations of valid values that no winder can wind, each
+// of which ran for 20 s to minutes and then failed the replay (or ran on), are refused at load
+// with the cause named. The figures are the closed forms of job_limits.h: an eye c out along a
+// tangent at the winding angle alpha (tan alpha = 2 pi R N / L) trails the contact by
+// sqrt(c (2 R + c)) / tan alpha along the axis.
+TEST(JobLimits, ImplausibleCombinationsAreRefusedUpFrontWithTheCause) {
+  auto lead = [](double r, double c, double n, double l) {
+    return std::sqrt(c * (2 * r + c)) / (2 * M_PI * r * n / l);
+  };
+  char buf[32];
+  // turns: 0.001 (31 s, then a replay error): the eye would trail 78 m behind.
+  std::string e = test::job_load_error(kPipe + "winding: {turns: 0.001}\n");
+  std::snprintf(buf, sizeof buf, "%.4g", lead(50, 20, 0.001, 500));
+  EXPECT_NE(e.find("/jobs/j.yaml:2: key 'winding.turns' = 0.001 on a mandrel 500 mm long lays the "
+                   "fibre almost along the axis"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find(std::string("about ") + buf + " mm along the axis"), std::string::npos) << e;
+  EXPECT_NE(e.find("beyond the bound 5000 mm"), std::string::npos) << e;
+  // turns: 0.05 (eye 1.56 m behind) plans.
+  EXPECT_EQ(test::job_load_error(kPipe + "winding: {turns: 0.05}\n"), "");
+  // clearance: 100000 (> 240 s).
+  e = test::job_load_error(kPipe + "machine: {envelope: {clearance: 100000}}\n");
+  std::snprintf(buf, sizeof buf, "%.4g", lead(50, 1e5, 2, 500));
+  EXPECT_NE(e.find("key 'machine.envelope.clearance' = 100000 mm is too far out"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find(std::string("about ") + buf + " mm"), std::string::npos) << e;
+  // ... against the X travel when the machine gives it (5000 mm out: 4019 mm behind, under 10
+  // lengths but beyond 3000 mm).
+  e = test::job_load_error(kPipe +
+                           "machine: {envelope: {clearance: 5000}, axes: {X: {min: -1500, "
+                           "max: 1500}}}\n");
+  EXPECT_NE(e.find("beyond the X axis travel, 3000 mm"), std::string::npos) << e;
+  // ... and the eye's radius against the cross-feed's reach (lathe4).
+  e = test::job_load_error(kPipe +
+                           "machine: {kind: lathe4, envelope: {clearance: 1000}, axes: {Y: {min: "
+                           "0, max: 600}}}\n");
+  EXPECT_NE(e.find("puts the payout eye at radius 1050 mm (mandrel radius 50 mm), beyond the Y "
+                   "axis travel (max 600 mm)"),
+            std::string::npos)
+      << e;
+  // A 1 um clearance (a replay error 77 mm off); measured on the pipe: 0.1 mm (2 chord
+  // tolerances) failed the replay, 0.2 mm (4) planned.
+  for (const char* c : {"0.001", "0.1"}) {
+    e = test::job_load_error(kPipe + "machine: {envelope: {clearance: " + c + "}}\n");
+    EXPECT_NE(e.find("key 'machine.envelope.clearance' = " + std::string(c) +
+                     " mm is within 4 chord tolerances (machine.chord_tolerance = 0.05 mm)"),
+              std::string::npos)
+        << e;
+  }
+  EXPECT_EQ(test::job_load_error(kPipe + "machine: {envelope: {clearance: 0.2}}\n"), "");
+  EXPECT_EQ(test::job_load_error(kPipe +
+                                 "machine: {chord_tolerance: 0.01, envelope: {clearance: 0.1}}\n"),
+            "");
+  // A 1 um pipe (was planned with cover factor 0): its band is wider than its circumference.
+  e = test::job_load_error("mandrel: {source: pipe, pipe: {radius: 0.001, length: 1}}\n");
+  EXPECT_NE(e.find("key 'winding.band_width' = 10 mm is wider than the mandrel's circumference, "
+                   "0.006283 mm"),
+            std::string::npos)
+      << e;
+  // A parametric mandrel longer than the X travel loads (its length is typed in mm; the program's
+  // moves are checked against the travel), a mesh one is refused (check_plausibility, below).
+  EXPECT_EQ(test::job_load_error(kPipe + "machine: {axes: {X: {min: -100, max: 100}}}\n"), "");
+  // A small part with the default 20 mm clearance: its eye trails 14 mm behind (the shared
+  // bent-pipe.stl, 0.23 mm in radius, 1 mm long), under the least bound 1 m.
+  Job small;
+  small.mandrel.source = "mesh";
+  small.winding.turns = 1;
+  small.winding.turns_given = true;
+  small.winding.circuits = 4;
+  small.winding.band_width = 1;
+  EXPECT_NO_THROW(check_plausibility(small, small.winding, 0.2318, 1.043));
+}
+
+// Issue 28: the shipped tube mesh (radius 50, 200 mm) read as inches ran 197 s and took 1.7 GB;
+// its size is known once built, and the fibre it would lay, 2 K sqrt((2 pi R N)^2 + L^2) with
+// K = ceil(2 pi R / b), is above 10 km. The same mesh read as mm lays 17 m.
+TEST(JobLimits, AMeshReadInTheWrongUnitsIsRefusedOnceBuilt) {
+  Job job;
+  job.path = "/jobs/tube.yaml";
+  job.mandrel.source = "mesh";
+  WindingOptions& w = job.winding;
+  w.turns = 2;
+  w.turns_given = true;
+  w.band_width = 10;
+  const double r = 50 * 25.4, l = 200 * 25.4;
+  const double k = std::ceil(2 * M_PI * r / 10), pass = std::hypot(2 * M_PI * r * 2, l);
+  try {
+    check_plausibility(job, w, r, l);
+    FAIL();
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "about %.4g km of fibre (%.0f circuits", 2 * k * pass / 1e6, k);
+    EXPECT_EQ(m.rfind("/jobs/tube.yaml: key 'winding.band_width' = 10 mm makes the plan lay", 0),
+              0u)
+        << m;
+    EXPECT_NE(m.find(buf), std::string::npos) << m;
+    EXPECT_NE(m.find("check mandrel.units"), std::string::npos) << m;
+  }
+  EXPECT_NO_THROW(check_plausibility(job, w, 50, 200));
+  // With the machine's X travel given: the mandrel longer than it.
+  job.machine.x.min = -1500;
+  job.machine.x.max = 1500;
+  try {
+    check_plausibility(job, w, r, l);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("key 'machine.axes.X' = 3000 mm of travel (-1500 to "
+                                         "1500 mm) is shorter than the mandrel, 5080 mm along the "
+                                         "axis: check mandrel.units"),
+              std::string::npos)
+        << e.what();
+  }
+  // The same mesh in metres read as mm (radius 0.05 mm): the band is wider than the
+  // circumference, and the message points at the units.
+  try {
+    check_plan_size(w, 0.05, 0.2, 0.01);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("0.3142 mm at its largest radius 0.05 mm"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("check the band width and the mandrel's units"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

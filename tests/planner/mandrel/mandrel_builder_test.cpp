@@ -18,6 +18,7 @@
 #include "planner/job/job.h"
 #include "planner/mandrel/mandrel_builder.h"
 #include "planner/winding/helix.h"
+#include "tests/mesh_fixtures.h"
 #include "tests/test_data.h"
 
 namespace windplan {
@@ -504,6 +505,39 @@ TEST(MandrelBuilder, AZeroAreaMeshNamesTheFile) {
               std::string::npos)
         << e.what();
   }
+  fs::remove_all(dir);
+}
+
+// Issue 28: an open tube whose faces are consistently oriented but point inward was planned and
+// found only by a late replay error. It is re-oriented outward when read, with a warning naming
+// the file. (tests/mesh_fixtures.h's open cylinder, r 50, 200 mm, reversed and written as OBJ.)
+TEST(MandrelBuilder, AnInwardTubeIsTurnedOutwardWithAWarningNamingTheFile) {
+  const fs::path dir = fs::temp_directory_path() / "windplan_mandrel_builder_inward";
+  fs::create_directories(dir);
+  TriangleSoup tube = test::open_cylinder(50.0, 200.0, 36, 8);
+  const std::vector<Tri> outward = tube.triangles;
+  for (Tri& t : tube.triangles) std::swap(t[1], t[2]);
+  write_mesh(dir / "inward.obj", tube);
+  const Mandrel md = build_mandrel(load_job_from_string(
+      "mandrel: {source: mesh, file: " + (dir / "inward.obj").string() + "}\n", "inward.yaml"));
+  bool warned = false;
+  for (const std::string& w : md.warnings) {
+    warned = warned || (w.find("inward.obj: the faces' normals pointed into the mandrel") !=
+                            std::string::npos &&
+                        w.find("re-oriented outward") != std::string::npos);
+  }
+  EXPECT_TRUE(warned);
+  // Every face's normal now points away from the axis (z).
+  for (int f = 0; f < md.mesh.num_faces(); ++f) {
+    const Vec3 c = md.mesh.face_centroid(f);
+    EXPECT_GT(md.mesh.face_normal(f).dot(Vec3(c.x(), c.y(), 0.0)), 0.0) << "face " << f;
+  }
+  // The outward tube is taken as it is, without a word about orientation.
+  tube.triangles = outward;
+  write_mesh(dir / "outward.obj", tube);
+  const Mandrel ok = build_mandrel(load_job_from_string(
+      "mandrel: {source: mesh, file: " + (dir / "outward.obj").string() + "}\n", "ok.yaml"));
+  for (const std::string& w : ok.warnings) EXPECT_EQ(w.find("normals"), std::string::npos) << w;
   fs::remove_all(dir);
 }
 
