@@ -268,15 +268,28 @@ void check_plausibility(const Job& job, const WindingOptions& w, double radius, 
   throw ConfigError(file + "key '" + f.key + "' = " + num(f.value) + f.unit + " " + f.text);
 }
 
+namespace {
+
+// The largest radius and the axial range of a mesh's vertices about the axis (mm).
+struct MeshExtent {
+  double radius, lo, hi;
+};
+MeshExtent mesh_extent(const Mesh& m, const SpindleAxis& axis) {
+  MeshExtent e{0.0, INFINITY, -INFINITY};
+  for (const Vec3& p : m.points()) {
+    e.radius = std::max(e.radius, axis.radius(p));
+    e.lo = std::min(e.lo, axis.axial(p));
+    e.hi = std::max(e.hi, axis.axial(p));
+  }
+  return e;
+}
+
+}  // namespace
+
 void check_plausibility(const Job& job, const Mesh& m, const SpindleAxis& axis,
                         const JobLimits& limits) {
   if (m.num_faces() == 0) return;
-  double radius = 0.0, lo = INFINITY, hi = -INFINITY;
-  for (const Vec3& p : m.points()) {
-    radius = std::max(radius, axis.radius(p));
-    lo = std::min(lo, axis.axial(p));
-    hi = std::max(hi, axis.axial(p));
-  }
+  const auto [radius, lo, hi] = mesh_extent(m, axis);
   check_plausibility(job, job.winding, radius, hi - lo, limits);
 }
 
@@ -406,12 +419,7 @@ void check_plan_size(const WindingOptions& w, double radius, double axial, doubl
 void check_plan_size(const WindingOptions& w, const Mesh& m, const SpindleAxis& axis,
                      const JobLimits& limits) {
   if (m.num_faces() == 0) return;
-  double radius = 0.0, lo = INFINITY, hi = -INFINITY;
-  for (const Vec3& p : m.points()) {
-    radius = std::max(radius, axis.radius(p));
-    lo = std::min(lo, axis.axial(p));
-    hi = std::max(hi, axis.axial(p));
-  }
+  const auto [radius, lo, hi] = mesh_extent(m, axis);
   const double edge = std::sqrt(m.total_area() / (kTriangleArea * m.num_faces()));
   check_plan_size(w, radius, hi - lo, edge, limits);
 }
