@@ -173,11 +173,29 @@ void choose_tube_passes(const WindingSurface& ws, const SpindleAxis& axis, const
     r->laid = "evenly spread helix";
     return;
   }
-  r->laid_why = figures + ": the geodesics are laid; " +
-                (cov.bare_fraction < geo.bare_fraction
-                     ? std::string("more turns lower the slippage the helices need, or a ") +
-                           "higher winding.mu if the fibre and mandrel hold it"
-                     : std::string("more circuits or a wider band"));
+  // A mesh whose facets are wide against the band is flat under a band (k_n ~ 0 across a facet):
+  // what the helices need there is a finer mesh, not more turns. A facet's width is its smallest
+  // altitude (2 area / longest edge): long facets along a straight leg are narrow and exact.
+  double width_sum = 0.0;
+  for (int f = 0; f < ws.mesh.num_faces(); ++f) {
+    const Tri& t = ws.mesh.triangle(f);
+    const Vec3 &a = ws.mesh.position(t[0]), &b = ws.mesh.position(t[1]),
+               &c = ws.mesh.position(t[2]);
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    if (longest > 0.0) width_sum += (b - a).cross(c - a).norm() / longest;
+  }
+  const double mean_width = ws.mesh.num_faces() > 0 ? width_sum / ws.mesh.num_faces() : 0.0;
+  const bool coarse = pm.max_slippage > wo.mu && mean_width > wo.band_width;
+  r->laid_why =
+      figures + ": the geodesics are laid; " +
+      (coarse ? "the mesh is coarse for the band (facets " + format_fixed(mean_width, 1) +
+                    " mm across on average, band " + format_fixed(wo.band_width, 1) +
+                    " mm: flat facets give k_n ~ 0 under a band); remesh it (mandrel.remesh of "
+                    "about the band width)"
+       : cov.bare_fraction < geo.bare_fraction
+           ? std::string("more turns lower the slippage the helices need, or a ") +
+                 "higher winding.mu if the fibre and mandrel hold it"
+           : std::string("more circuits or a wider band"));
 }
 
 }  // namespace

@@ -430,6 +430,37 @@ TEST_F(CliRun, SharedBentPipeWindsBetweenCentreLineStations) {
       << bad.err;
 }
 
+// As shipped, bent-pipe.stl's 700 faces are long flat facets under a 20 mm band (k_n ~ 0 along
+// them): the helices would need |k_g/k_n| in the thousands, the geodesics are laid and leave most
+// sections bare, and the warning says what to change (remesh, not more turns); remeshed at the
+// band width as it says, the same job is a full layer within mu.
+TEST_F(CliRun, SharedBentPipeAsShippedIsToldToRemeshAndThenWinds) {
+  const fs::path mesh = test::shared_mesh("bent-pipe.stl");
+  if (!fs::exists(mesh)) GTEST_SKIP() << mesh << " is absent (../shared not checked out)";
+  const std::string head = "mandrel:\n  source: mesh\n  file: " + mesh.string() +
+                           "\n  units: m\n  repair: true\n"
+                           "  region: {centre_line: {from: 50, to: 970}}\n";
+  const std::string tail =
+      "winding: {turns: 8, pattern: auto, band_width: 20, mu: 0.2, coverage_stations: 24}\n"
+      "machine: {kind: robot}\n";
+  const fs::path job = dir_ / "bent_pipe_coarse.yaml";
+  std::ofstream(job) << head << tail;
+  const Proc r = run({"run", job.string(), "--out", (dir_ / "coarse").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("the mesh is coarse for the band"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("remesh it (mandrel.remesh of about the band width)"), std::string::npos)
+      << r.err;
+  const YAML::Node coarse = YAML::LoadFile((dir_ / "coarse" / "report.json").string());
+  EXPECT_GT(coarse["coverage"]["bare_fraction"].as<double>(), 0.5);
+  std::ofstream(job) << head << "  remesh: 20\n" << tail;
+  const Proc f = run({"run", job.string(), "--out", (dir_ / "fine").string()});
+  ASSERT_EQ(f.code, 0) << f.err;
+  EXPECT_EQ(f.err.find("the mesh is coarse"), std::string::npos) << f.err;
+  const YAML::Node fine = YAML::LoadFile((dir_ / "fine" / "report.json").string());
+  EXPECT_EQ(fine["coverage"]["bare_fraction"].as<double>(), 0.0);
+  EXPECT_LE(fine["summary"]["max_slippage"].as<double>(), 0.2);
+}
+
 // ---- layups (planner/plan_layup.h): the shipped vessel_layup.yaml and bad layer input ----
 
 TEST_F(CliRun, VesselLayupEveryLayerInTheReportAndInOrderInTheProgram) {
