@@ -89,6 +89,7 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
   const std::size_t n = program.targets.size();
   std::vector<Joints> joints(n);
   std::vector<int> statuses(n);
+  std::vector<Vec3> eye_cells(n), flanges(n), wrists(n);
   Joints seed = ro.home;
   for (std::size_t i = 0; i < n; ++i) {
     const RobotProgramTarget& t = program.targets[i];
@@ -105,48 +106,53 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
     const std::string past = joint_limit_violation(ro, q);
     if (!past.empty()) throw InputError(at(t) + ": joint " + past);
     statuses[i] = arm.status(q);
+    // FK: where the eye, the flange and the wrist really are.
+    const Eigen::Isometry3d flange = arm.flange(q);
+    eye_cells[i] = (flange * program.tool).translation();
+    flanges[i] = flange.translation();
+    wrists[i] = arm.wrist_centre(q);
     seed = q;
   }
-  // FK and the flange/last link's clearance of every target, independent per
-  // target: fixed chunks in parallel (each with its own arm, whose KDL solvers
-  // are not shared), every target writing its own slot, so the results do not
-  // depend on the threads.
-  std::vector<Vec3> eye_cells(n);
+  // The flange/last link's clearance of every target, independent per target: fixed chunks,
+  // every target writing its own slot, so the results do not depend on the threads. Run beside
+  // the fibre model below (which does not need it).
   std::vector<double> link_clearance(n);
-  constexpr int kChunk = 256;
-  const int chunks = static_cast<int>((n + kChunk - 1) / kChunk);
-  parallel_for_index(chunks, [&](int c) {
-    const RobotArm chunk_arm(ro);
-    const std::size_t end = std::min(n, static_cast<std::size_t>(c + 1) * kChunk);
-    double prev_best = std::numeric_limits<double>::infinity();
-    Vec3 prev_point = Vec3::Zero(), best_point = Vec3::Zero();
-    for (std::size_t i = static_cast<std::size_t>(c) * kChunk; i < end; ++i) {
-      const Joints& q = joints[i];
-      const Eigen::Isometry3d flange = chunk_arm.flange(q);
-      eye_cells[i] = (flange * program.tool).translation();
-      const Vec3 wrist = chunk_arm.wrist_centre(q);
-      // The minimum over 5 points of the link, each query bounded by the best
-      // so far and by the previous target's minimum plus how far from its point
-      // this one lies (the distance to the mandrel is 1-Lipschitz; 1e-3 mm of
-      // slack for rounding): the same minimum as unbounded queries (a bounded
-      // query gives the same hit when one is nearer), the far points rejected
-      // near the tree's root. The first target of a chunk starts unbounded.
-      double best = std::numeric_limits<double>::infinity();
-      for (int k = 0; k <= 4; ++k) {
-        const Vec3 p =
-            to_mandrel(wrist + (flange.translation() - wrist) * (k / 4.0), program.targets[i].e1);
-        const double bound = std::min(best, prev_best + (p - prev_point).norm() + 1e-3);
-        const ClosestPointQuery::Hit h = query.closest_within(p, bound * bound);
-        if (h.distance < best) {
-          best = h.distance;
-          best_point = p;
-        }
+  auto link_clearances = [&] {
+    constexpr int kChunk = 256;
+    const int chunks = static_cast<int>((n + kChunk - 1) / kChunk);
+    parallel_for_index(chunks, [&](int c) {
+      const std::size_t end = std::min(n, static_cast<std::size_t>(c + 1) * kChunk);
+      double prev_best = std::numeric_limits<double>::infinity();
+      Vec3 prev_point = Vec3::Zero(), best_point = Vec3::Zero();
+      for (std::size_t i = static_cast<std::size_t>(c) * kChunk; i < end; ++i) {
+        // The minimum over 5 points of the link, each query bounded by the best so far and by
+        // the previous target's minimum plus how far from its point this one lies (the distance
+        // to the mandrel is 1-Lipschitz; 1e-3 mm of slack for rounding): the same minimum as
+        // unbounded queries (a bounded query gives the same hit when one is nearer). The first
+        // target of a chunk starts unbounded; a miss (rounding) is redone unbounded.
+        auto link_min = [&](bool bounded) {
+          double best = std::numeric_limits<double>::infinity();
+          for (int k = 0; k <= 4; ++k) {
+            const Vec3 p =
+                to_mandrel(wrists[i] + (flanges[i] - wrists[i]) * (k / 4.0), program.targets[i].e1);
+            const double bound =
+                bounded ? std::min(best, prev_best + (p - prev_point).norm() + 1e-3) : best;
+            const ClosestPointQuery::Hit h = query.closest_within(p, bound * bound);
+            if (h.distance < best) {
+              best = h.distance;
+              best_point = p;
+            }
+          }
+          return best;
+        };
+        double best = link_min(true);
+        if (!(best < std::numeric_limits<double>::infinity())) best = link_min(false);
+        prev_best = best;
+        prev_point = best_point;
+        link_clearance[i] = best;
       }
-      prev_best = best;
-      prev_point = best_point;
-      link_clearance[i] = best;
-    }
-  });
+    });
+  };
   GcodeProgram lathe;
   lathe.inverse_time = true;
   Joints prev_q{};
@@ -159,10 +165,6 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
     const int status = statuses[i];
     if (i > 0 && status != prev_status) ++r.configuration_changes;
     const Vec3& eye_cell = eye_cells[i];
-    if (link_clearance[i] < r.min_link_clearance) {
-      r.min_link_clearance = link_clearance[i];
-      r.min_link_clearance_at = at(t);
-    }
     for (int j = 0; j < 6; ++j) {
       const double margin = std::min(q[j] - ro.joints[j].min, ro.joints[j].max - q[j]);
       if (margin < r.min_joint_margin) {
@@ -245,7 +247,16 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
     a->min = -std::numeric_limits<double>::infinity();
     a->max = std::numeric_limits<double>::infinity();
   }
-  r.fibre = replay_program(lathe, plan, mandrel, as_lathe, options);
+  parallel_for_index(2, [&](int k) {
+    if (k == 0) r.fibre = replay_program(lathe, plan, mandrel, as_lathe, options);
+    if (k == 1) link_clearances();
+  });
+  for (std::size_t i = 0; i < n; ++i) {
+    if (link_clearance[i] < r.min_link_clearance) {
+      r.min_link_clearance = link_clearance[i];
+      r.min_link_clearance_at = at(program.targets[i]);
+    }
+  }
   const int worst = std::max(1, r.fibre.max_deviation_line);
   const RobotProgramTarget& wt = program.targets[std::min<int>(worst, r.targets) - 1];
   r.max_deviation_at = at(wt);
