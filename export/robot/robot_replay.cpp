@@ -9,6 +9,7 @@
 #include "export/machine/kinematics.h"
 #include "export/robot/robot_kinematics.h"
 #include "geometry/base/errors.h"
+#include "geometry/base/parallel.h"
 #include "geometry/mesh/closest_point.h"
 
 namespace windplan {
@@ -78,19 +79,22 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
     };
     const std::size_t lo = near > 20 ? near - 20 : 0;
     double d = search(lo, std::min(path.size(), near + 200));
-    if (d > 5.0) d = search(0, path.size());  // lost (a link, an edited program): everywhere
+    if (d > 5.0) d = search(0,
+                            path.size());  // lost (a link, an edited program): everywhere
     return d;
   };
-  GcodeProgram lathe;
-  lathe.inverse_time = true;
-  Joints seed = ro.home, prev_q{};
-  int prev_status = -1;
-  Vec3 prev_eye = Vec3::Zero();
-  double prev_e1 = 0.0;
-  for (std::size_t i = 0; i < program.targets.size(); ++i) {
+  // The joints of every target, in order: each IK is seeded with the previous
+  // target's joints (so this pass is serial), and the first target out of reach
+  // or past a limit is refused.
+  const std::size_t n = program.targets.size();
+  std::vector<Joints> joints(n);
+  std::vector<int> statuses(n);
+  std::vector<Vec3> eye_cells(n), flanges(n), wrists(n);
+  Joints seed = ro.home;
+  for (std::size_t i = 0; i < n; ++i) {
     const RobotProgramTarget& t = program.targets[i];
     const Eigen::Isometry3d cell_eye = program.base * t.pose;
-    Joints q;
+    Joints& q = joints[i];
     const bool solved = i == 0 ? arm.inverse_near(cell_eye * tool_inv, ro.home, 0.0, 0.0, &q)
                                : arm.inverse(cell_eye * tool_inv, seed, &q);
     if (!solved) {
@@ -101,20 +105,66 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
     }
     const std::string past = joint_limit_violation(ro, q);
     if (!past.empty()) throw InputError(at(t) + ": joint " + past);
-    const int status = arm.status(q);
-    if (i > 0 && status != prev_status) ++r.configuration_changes;
+    statuses[i] = arm.status(q);
     // FK: where the eye, the flange and the wrist really are.
     const Eigen::Isometry3d flange = arm.flange(q);
-    const Vec3 eye_cell = (flange * program.tool).translation();
-    const Vec3 wrist = arm.wrist_centre(q);
-    for (int k = 0; k <= 4; ++k) {
-      const Vec3 p = wrist + (flange.translation() - wrist) * (k / 4.0);
-      const double d = query.closest(to_mandrel(p, t.e1)).distance;
-      if (d < r.min_link_clearance) {
-        r.min_link_clearance = d;
-        r.min_link_clearance_at = at(t);
+    eye_cells[i] = (flange * program.tool).translation();
+    flanges[i] = flange.translation();
+    wrists[i] = arm.wrist_centre(q);
+    seed = q;
+  }
+  // The flange/last link's clearance of every target, independent per target: fixed chunks,
+  // every target writing its own slot, so the results do not depend on the threads. Run beside
+  // the fibre model below (which does not need it).
+  std::vector<double> link_clearance(n);
+  auto link_clearances = [&] {
+    constexpr int kChunk = 256;
+    const int chunks = static_cast<int>((n + kChunk - 1) / kChunk);
+    parallel_for_index(chunks, [&](int c) {
+      const std::size_t end = std::min(n, static_cast<std::size_t>(c + 1) * kChunk);
+      double prev_best = std::numeric_limits<double>::infinity();
+      Vec3 prev_point = Vec3::Zero(), best_point = Vec3::Zero();
+      for (std::size_t i = static_cast<std::size_t>(c) * kChunk; i < end; ++i) {
+        // The minimum over 5 points of the link, each query bounded by the best so far and by
+        // the previous target's minimum plus how far from its point this one lies (the distance
+        // to the mandrel is 1-Lipschitz; 1e-3 mm of slack for rounding): the same minimum as
+        // unbounded queries (a bounded query gives the same hit when one is nearer). The first
+        // target of a chunk starts unbounded; a miss (rounding) is redone unbounded.
+        auto link_min = [&](bool bounded) {
+          double best = std::numeric_limits<double>::infinity();
+          for (int k = 0; k <= 4; ++k) {
+            const Vec3 p =
+                to_mandrel(wrists[i] + (flanges[i] - wrists[i]) * (k / 4.0), program.targets[i].e1);
+            const double bound =
+                bounded ? std::min(best, prev_best + (p - prev_point).norm() + 1e-3) : best;
+            const ClosestPointQuery::Hit h = query.closest_within(p, bound * bound);
+            if (h.distance < best) {
+              best = h.distance;
+              best_point = p;
+            }
+          }
+          return best;
+        };
+        double best = link_min(true);
+        if (!(best < std::numeric_limits<double>::infinity())) best = link_min(false);
+        prev_best = best;
+        prev_point = best_point;
+        link_clearance[i] = best;
       }
-    }
+    });
+  };
+  GcodeProgram lathe;
+  lathe.inverse_time = true;
+  Joints prev_q{};
+  int prev_status = -1;
+  Vec3 prev_eye = Vec3::Zero();
+  double prev_e1 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const RobotProgramTarget& t = program.targets[i];
+    const Joints& q = joints[i];
+    const int status = statuses[i];
+    if (i > 0 && status != prev_status) ++r.configuration_changes;
+    const Vec3& eye_cell = eye_cells[i];
     for (int j = 0; j < 6; ++j) {
       const double margin = std::min(q[j] - ro.joints[j].min, ro.joints[j].max - q[j]);
       if (margin < r.min_joint_margin) {
@@ -147,7 +197,8 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
                             std::fabs(t.e1 - prev_e1) / (ro.e1_max_velocity * t.vel_extax / 100.0));
       }
       if (joint_time < 1e-9) {
-        // No joint moves (a target repeated, as where a circuit ends and the next begins).
+        // No joint moves (a target repeated, as where a circuit ends and the
+        // next begins).
       } else if (duration > 0.0) {
         const double ratio = joint_time / duration;
         if (ratio > r.max_joint_speed_ratio) {
@@ -178,13 +229,13 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
       b.feed = duration > 0.0 ? 60.0 / (duration / pieces) : 1e9;
       lathe.blocks.push_back(b);
     }
-    seed = q;
     prev_q = q;
     prev_status = status;
     prev_eye = c;
     prev_e1 = t.e1;
   }
-  // The fibre model of the G-code replay, on the equivalent 4-axis blocks; A continuous.
+  // The fibre model of the G-code replay, on the equivalent 4-axis blocks; A
+  // continuous.
   for (std::size_t k = 1; k < lathe.blocks.size(); ++k) {
     GcodeBlock& b = lathe.blocks[k];
     b.a -= 360.0 * std::round((b.a - lathe.blocks[k - 1].a) / 360.0);
@@ -196,7 +247,16 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
     a->min = -std::numeric_limits<double>::infinity();
     a->max = std::numeric_limits<double>::infinity();
   }
-  r.fibre = replay_program(lathe, plan, mandrel, as_lathe, options);
+  parallel_for_index(2, [&](int k) {
+    if (k == 0) r.fibre = replay_program(lathe, plan, mandrel, as_lathe, options);
+    if (k == 1) link_clearances();
+  });
+  for (std::size_t i = 0; i < n; ++i) {
+    if (link_clearance[i] < r.min_link_clearance) {
+      r.min_link_clearance = link_clearance[i];
+      r.min_link_clearance_at = at(program.targets[i]);
+    }
+  }
   const int worst = std::max(1, r.fibre.max_deviation_line);
   const RobotProgramTarget& wt = program.targets[std::min<int>(worst, r.targets) - 1];
   r.max_deviation_at = at(wt);
@@ -205,17 +265,20 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
   r.fibre.min_clearance_line = program.targets[cl - 1].line;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   char buf[600];
-  std::snprintf(
-      buf, sizeof buf,
-      "robot replay: %d targets, deviation max %.3f mm (%s) mean %.4f mm, eye path %.3f mm "
-      "(%s), eye clearance "
-      "%.2f mm, flange/last link clearance %.1f mm (%s), joint margin %.1f deg (%s), "
-      "|A5| >= %.1f deg, joint speed ratio %.2f, %d configuration changes, cycle %.1f s",
-      r.targets, r.fibre.max_deviation, r.max_deviation_at.c_str(), r.fibre.mean_deviation,
-      r.max_eye_deviation, r.max_eye_deviation_at.empty() ? "-" : r.max_eye_deviation_at.c_str(),
-      r.fibre.min_clearance, r.min_link_clearance, r.min_link_clearance_at.c_str(),
-      r.min_joint_margin, r.min_joint_margin_joint.c_str(), r.min_wrist_angle,
-      r.max_joint_speed_ratio, r.configuration_changes, r.cycle_time);
+  std::snprintf(buf, sizeof buf,
+                "robot replay: %d targets, deviation max %.3f mm (%s) mean "
+                "%.4f mm, eye path %.3f mm "
+                "(%s), eye clearance "
+                "%.2f mm, flange/last link clearance %.1f mm (%s), joint "
+                "margin %.1f deg (%s), "
+                "|A5| >= %.1f deg, joint speed ratio %.2f, %d configuration "
+                "changes, cycle %.1f s",
+                r.targets, r.fibre.max_deviation, r.max_deviation_at.c_str(),
+                r.fibre.mean_deviation, r.max_eye_deviation,
+                r.max_eye_deviation_at.empty() ? "-" : r.max_eye_deviation_at.c_str(),
+                r.fibre.min_clearance, r.min_link_clearance, r.min_link_clearance_at.c_str(),
+                r.min_joint_margin, r.min_joint_margin_joint.c_str(), r.min_wrist_angle,
+                r.max_joint_speed_ratio, r.configuration_changes, r.cycle_time);
   r.summary = buf;
   return r;
 }
