@@ -115,6 +115,7 @@ int run_run(const std::vector<std::string>& argv) {
     progress.count(done, total, file);
   };
   if (layered) {
+    context.circuit_surfaces = layup_circuit_surfaces(layup);
     context.also_written = layup_file_names(layup, job.output, job.design);
     write_layup_files(layup, job.output, set.staging(), job.design);
   }

@@ -19,6 +19,7 @@
 #include "geometry/base/json.h"
 #include "planner/job/job.h"
 #include "planner/pipeline.h"
+#include "planner/plan_layup.h"
 
 namespace windplan::cli {
 
@@ -96,12 +97,25 @@ int run_simulate(const std::vector<std::string>& argv) {
   const GcodeProgram program = read_gcode(text, job.machine, program_file.string());
 
   PipelineOptions po;
-  const PipelineResult r = plan_job(job, po);
-  const ReplayResult rp = replay_program(program, r.plan, r.mandrel.mesh, job.machine);
+  // A layup (as windplan run plans it: planner/plan_layup.h): every layer, each circuit replayed
+  // on the surface its layer was wound on.
+  const bool layered = !job.layers.empty() || job.design.present;
+  PipelineResult pr;
+  LayupResult layup;
+  if (layered) {
+    layup = plan_layup(job, po);
+  } else {
+    pr = plan_job(job, po);
+  }
+  const WindingPlan& plan = layered ? layup.plan : pr.plan;
+  const Mesh& mesh = layered ? layup.mandrel.mesh : pr.mandrel.mesh;
+  const ReplayResult rp =
+      replay_program(program, plan, mesh, job.machine, {},
+                     layered ? layup_circuit_surfaces(layup) : std::vector<const Mesh*>{});
 
   JsonWriter j(2, 10);
   j.begin_object();
-  j.field("job", r.plan.job_name);
+  j.field("job", plan.job_name);
   j.field("program", program_file.string());
   j.field("dialect", job.machine.gcode.dialect);
   j.field("kind", job.machine.kind);

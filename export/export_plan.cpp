@@ -159,7 +159,8 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
       return;
     }
     const std::string name = "toolpath" + gcode_extension(machine.gcode.dialect);
-    r.replay = replay_program(read_gcode(program, machine, name), plan, mandrel_mesh, machine);
+    r.replay = replay_program(read_gcode(program, machine, name), plan, mandrel_mesh, machine, {},
+                              context.circuit_surfaces);
     r.has_replay = true;
     if (ReplayExcess e; !r.replay.within(machine.replay_tolerance, &e)) {
       throw InputError(e.refused(name));

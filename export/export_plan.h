@@ -53,6 +53,10 @@ struct ExportContext {
   /// Files another writer puts into the directory (a layup's laminate files,
   /// export/files/layup_export.h): listed in ExportResult::files and the reports, before them.
   std::vector<std::string> also_written;
+  /// Per circuit of the plan, the mesh of the surface it was wound on (a layup's layers:
+  /// planner/plan_layup.h layup_circuit_surfaces): the G-code replay walks each circuit on it.
+  /// Empty or null entries: the mandrel mesh.
+  std::vector<const Mesh*> circuit_surfaces;
 };
 
 /// Computes the motion, replays the G-code (export/program/replay.h) and writes the files.

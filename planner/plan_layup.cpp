@@ -163,6 +163,13 @@ RadiusProfile forward_profile(const MeridianPolyline& m) {
   return p;
 }
 
+std::vector<const Mesh*> layup_circuit_surfaces(const LayupResult& result) {
+  std::vector<const Mesh*> out;
+  for (const LayupLayer& L : result.layers)
+    out.insert(out.end(), L.circuits.size(), L.surface.get());
+  return out;
+}
+
 LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
   using clock = std::chrono::steady_clock;
   LayupResult R;
@@ -231,6 +238,7 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
       if (!h.has_range()) std::tie(h.x0, h.x1) = cylinder;
       const HoopLayer hl = plan_hoop_layer(forward_profile(surface), axis, h, what);
       out.circuits = hl.circuits;
+      if (k > 0) out.surface = std::make_shared<const Mesh>(revolve_meridian(surface, axis, edge));
       th = hoop_layer_thickness(surface, hl.x0, hl.x1, hl.pitch, S.band_width, t_band, h.passes);
       S.circuits = h.passes;
       S.angle = hl.angle;
@@ -276,11 +284,13 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
       if (k == 0) {
         pr = plan_winding(md, job, wopt, quiet);
       } else if (R.revolution) {
-        pr = plan_winding(built_mandrel(md, revolve_meridian(surface, axis, edge), true,
-                                        forward_profile(surface)),
-                          job, wopt, quiet);
+        auto mesh = std::make_shared<const Mesh>(revolve_meridian(surface, axis, edge));
+        pr = plan_winding(built_mandrel(md, *mesh, true, forward_profile(surface)), job, wopt,
+                          quiet);
+        out.surface = std::move(mesh);
       } else {
         pr = plan_winding(built_mandrel(md, built.mesh, false, md.profile), job, wopt, quiet);
+        out.surface = std::make_shared<const Mesh>(built.mesh);
       }
       struct {
         std::vector<Circuit> circuits;

@@ -32,6 +32,7 @@
 // summed over all layers, and every layer's warnings prefixed with its name; its profile is the
 // outer surface's on the mandrel profile's stations (the machine clears the finished part). Points
 // of layers wound on a built surface have face -1 (they do not lie on the mandrel's mesh).
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,10 @@ struct LayupLayer {
   LayerSummary summary;                ///< its figures (also in WindingPlan::layers)
   std::vector<double> face_thickness;  ///< per face of the mandrel's winding surface (mm)
   MaterialEstimate material;
+  /// The surface it was wound on when that is not the mandrel (a layer over others: the revolved
+  /// current meridian, or the offset mesh off revolution); null: the mandrel's mesh. The G-code
+  /// replay walks this layer's circuits on it (layup_circuit_surfaces).
+  std::shared_ptr<const Mesh> surface;
 };
 
 struct LayupResult {
@@ -76,6 +81,10 @@ Mesh revolve_meridian(const MeridianPolyline& meridian, const SpindleAxis& axis,
 /// The largest-axial-so-far points of a meridian as a radius profile (a built surface whose
 /// offset runs back along the axis near an opening keeps its forward-running part).
 RadiusProfile forward_profile(const MeridianPolyline& meridian);
+
+/// Per circuit of result.plan (in order), the mesh of the surface it was wound on: a layer's
+/// LayupLayer::surface, null for layers wound on the mandrel (export/program/replay.h).
+std::vector<const Mesh*> layup_circuit_surfaces(const LayupResult& result);
 
 /// Plans every layer of `job` (its `layers:`, or one helical layer of `winding:`).
 /// \throw what the stages throw; InputError naming layers[k] for a hoop range outside the

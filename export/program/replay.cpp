@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 
 #include "export/machine/eye_envelope.h"
 #include "export/machine/kinematics.h"
@@ -234,15 +235,25 @@ int reversals(const std::vector<double>& v) {
 
 ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan,
                             const Mesh& mandrel, const MachineOptions& machine,
-                            const ReplayOptions& options) {
+                            const ReplayOptions& options,
+                            const std::vector<const Mesh*>& circuit_surfaces) {
   const auto t0 = std::chrono::steady_clock::now();
   if (machine.kind == "robot") throw InputError("machine.kind: robot has no G-code to replay");
   if (program.blocks.empty()) throw InputError("the program has no moves");
   if (mandrel.num_faces() == 0) throw InputError("the mandrel mesh is empty");
   std::vector<Vec3> planned, planned_n;
-  std::vector<int> circuit_start;  // index of each circuit's first point in `planned`
-  std::vector<char> held;          // on a turnaround: a pin ring or boss holds the fibre there
-  for (const Circuit& c : plan.circuits) {
+  std::vector<int> circuit_start;       // index of each circuit's first point in `planned`
+  std::vector<const Mesh*> start_mesh;  // the surface of the circuit starting there
+  std::vector<const Mesh*> meshes;      // the distinct surfaces, the mandrel first
+  std::vector<char> held;               // on a turnaround: a pin ring or boss holds the fibre there
+  meshes.push_back(&mandrel);
+  for (std::size_t ci = 0; ci < plan.circuits.size(); ++ci) {
+    const Circuit& c = plan.circuits[ci];
+    const Mesh* cm =
+        ci < circuit_surfaces.size() && circuit_surfaces[ci] ? circuit_surfaces[ci] : &mandrel;
+    if (cm->num_faces() == 0)
+      throw InputError("the mesh under circuit " + std::to_string(ci) + " is empty");
+    if (std::find(meshes.begin(), meshes.end(), cm) == meshes.end()) meshes.push_back(cm);
     std::vector<char> on_turn(c.points.size(), 0);
     for (const CircuitSegment& seg : c.segments) {
       if (seg.kind != CircuitSegment::Kind::Turnaround) continue;
@@ -251,7 +262,10 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
         on_turn[i] = 1;
       }
     }
-    if (!c.points.empty()) circuit_start.push_back(static_cast<int>(planned.size()));
+    if (!c.points.empty()) {
+      circuit_start.push_back(static_cast<int>(planned.size()));
+      start_mesh.push_back(cm);
+    }
     for (std::size_t i = 0; i < c.points.size(); ++i) {
       const FibrePoint& p = c.points[i];
       if (planned.empty() || (p.position - planned.back()).norm() > 1e-12) {
@@ -285,7 +299,16 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
     return Vec3(frame.origin + x * frame.d + r * (std::cos(th) * frame.u + std::sin(th) * frame.v));
   };
 
-  const Surface surf(mandrel);
+  // One walking surface per distinct mesh; `surf` is the one under the circuit at ptr.
+  std::vector<std::unique_ptr<const Surface>> surfaces;
+  for (const Mesh* m : meshes) surfaces.push_back(std::make_unique<const Surface>(*m));
+  auto surface_at = [&](int ptr_index) -> const Surface* {
+    const auto it = std::upper_bound(circuit_start.begin(), circuit_start.end(), ptr_index);
+    const Mesh* m =
+        it == circuit_start.begin() ? &mandrel : start_mesh[it - circuit_start.begin() - 1];
+    return surfaces[std::find(meshes.begin(), meshes.end(), m) - meshes.begin()].get();
+  };
+  const Surface* surf = surface_at(0);
   ReplayResult r;
   r.blocks = static_cast<int>(program.blocks.size());
   r.min_clearance = std::numeric_limits<double>::infinity();
@@ -332,6 +355,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
           ptr = std::min<int>(*next, static_cast<int>(planned.size()) - 1);
           P.p = planned[ptr];
           P.n = planned_n[ptr];
+          surf = surface_at(ptr);
         }
       }
       // Bounded before any sub-stepping (issue 28: a 1e9 mm jump was cut into 2e9 sub-steps):
@@ -365,8 +389,14 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
           P.n = planned_n[j];
           ++r.held_substeps;
         } else {
-          advance(surf, e, &P, &h_guess, 4.0 * options.step);
+          advance(*surf, e, &P, &h_guess, 4.0 * options.step);
           dev = track(planned, planned_s, P.p, options.search_back, options.search_ahead, &ptr);
+        }
+        if (const Surface* s = surface_at(ptr); s != surf) {
+          // The plan moved on to a circuit wound on another surface without a rapid between:
+          // the contact goes onto that surface.
+          surf = s;
+          P = surf->project(P.p, &P.n);
         }
         dev_sum += dev;
         ++r.substeps;
@@ -376,7 +406,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
           r.max_deviation_point = P.p;
         }
       }
-      const double clear = surf.distance(e1);
+      const double clear = surf->distance(e1);
       if (clear < r.min_clearance) {
         r.min_clearance = clear;
         r.min_clearance_line = b.line;
@@ -385,7 +415,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
       // The first position: the fibre is tied on at the plan's first point (no walk: the mesh's
       // normals at a boundary are one-sided).
       const Vec3 e = eye_at(b.a, b.x, v[2]);
-      r.min_clearance = surf.distance(e);
+      r.min_clearance = surf->distance(e);
       r.min_clearance_line = b.line;
     }
     r.wind_time += dur;

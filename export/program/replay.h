@@ -25,7 +25,8 @@
 // catch_distance (10 mm, along the plan) of one, it moves along the planned arc to the first
 // planned point whose free fibre to the eye is tangent ((E - P) . n >= 0 with the plan's normal),
 // and no deviation is counted (held_substeps counts those sub-steps); it leaves the arc at its end,
-// free again.
+// free again. A layup's circuits are walked on the surface each layer was wound on
+// (circuit_surfaces below), not on the bare mandrel.
 //
 // Deviation: the distance of every sub-step's contact point to the planned fibre polyline (all
 // circuits in order), searched in a window of arc length that moves along it.
@@ -96,9 +97,16 @@ struct ReplayExcess {
 /// \param program from read_gcode with the same machine options
 /// \param plan the planned fibre path (and the spindle axis and mandrel radius profile)
 /// \param mandrel the mandrel mesh
+/// \param circuit_surfaces per circuit of plan.circuits, the mesh of the surface it was wound on
+///        (a layup's layers over others: planner/plan_layup.h layup_circuit_surfaces); null
+///        entries, missing entries or an empty list: the mandrel. The contact walks a circuit on
+///        its own surface (the clearance is measured to it too); when the plan moves on to a
+///        circuit on another surface (a rapid G0 between layers ties the tow on again), the
+///        contact is projected onto that surface.
 /// \throw InputError for an empty program or mesh, or a kind with no G-code (robot)
 ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan,
                             const Mesh& mandrel, const MachineOptions& machine,
-                            const ReplayOptions& options = {});
+                            const ReplayOptions& options = {},
+                            const std::vector<const Mesh*>& circuit_surfaces = {});
 
 }  // namespace windplan

@@ -43,6 +43,33 @@ TEST_F(CliSimulate, RunThenSimulateTheProgramWritesTheJson) {
   EXPECT_GT(j["blocks"].as<int>(), 10);
 }
 
+// A layup (two helical layers of thick tows on a pipe): simulate plans it as run does and walks
+// each layer's circuits on the surface that layer was wound on, so both replays agree and stay
+// within 1 mm (before: simulate replayed the layup's program against one layer on the bare
+// mandrel and refused it).
+TEST_F(CliSimulate, ALayupReplaysOnItsOwnSurfacesAsRunDoes) {
+  write(dir_ / "layup.yaml",
+        "name: layup\n"
+        "mandrel: {source: pipe, pipe: {radius: 50, length: 300}}\n"
+        "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
+        "winding: {turns: 2, circuits: auto, band_width: 10}\n"
+        "layers:\n  - {kind: helical, name: inner}\n  - {kind: helical, name: outer}\n"
+        "machine: {replay_tolerance: 1}\n"
+        "output: {ply: false, svg: false, viewer: false}\n");
+  const RunResult w =
+      run({"run", (dir_ / "layup.yaml").string(), "--out", (dir_ / "layup").string()});
+  ASSERT_EQ(w.code, 0) << w.err;
+  const YAML::Node report = YAML::LoadFile((dir_ / "layup" / "report.json").string());
+  const double run_dev = report["motion"]["replay"]["max_deviation_mm"].as<double>();
+  EXPECT_LT(run_dev, 1.0);
+  const RunResult r =
+      run({"simulate", (dir_ / "layup.yaml").string(), (dir_ / "layup" / "toolpath.ngc").string(),
+           "--json", (dir_ / "layup.json").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const YAML::Node j = YAML::LoadFile((dir_ / "layup.json").string());
+  EXPECT_DOUBLE_EQ(j["max_deviation_mm"].as<double>(), run_dev);
+}
+
 TEST_F(CliSimulate, BadProgramsAreExitOneNamingTheLine) {
   write(dir_ / "job.yaml", kJob);
   write(dir_ / "unknown.ngc", "%\nG21 G90 G93\nG0 X0 A0\nG1 X1 A1 Q2 F10\nM2\n%\n");

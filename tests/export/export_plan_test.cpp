@@ -4,7 +4,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <random>
@@ -18,6 +20,7 @@
 #include "geometry/base/errors.h"
 #include "planner/job/job.h"
 #include "planner/pipeline.h"
+#include "planner/plan_layup.h"
 #include "tests/export/gcode_parser.h"
 #include "tests/export/plan_fixtures.h"
 #include "tests/mesh_fixtures.h"
@@ -435,6 +438,53 @@ TEST(ExportPlan, LatheOnABentTubeIsRefusedByItsReplay) {
     EXPECT_NE(what.find("machine.replay_tolerance"), std::string::npos) << what;
     EXPECT_NE(what.find("no program written"), std::string::npos) << what;
   }
+}
+
+// A two-layer layup on a pipe (helical, then helical over it), thick tows so that the second
+// layer is wound millimetres above the mandrel: its program replays within 1 mm when each
+// circuit is walked on the surface its layer was wound on (ExportContext::circuit_surfaces; the
+// inner layer alone, on the mandrel, lays 0.58 mm off where the pins catch the fibre at a pipe
+// end), and far off the plan, in the second layer, when the bare mandrel is walked.
+TEST(ExportPlan, LayupReplaysEachLayerOnTheSurfaceItWasWoundOn) {
+  Job job = load_job_from_string(
+      "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 300}\n"
+      "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
+      "winding: {turns: 2, circuits: auto, band_width: 10}\n"
+      "layers:\n  - kind: helical\n    name: inner\n  - kind: helical\n    name: outer\n"
+      "output: {ply: false, svg: false, viewer: false, csv: false}\n",
+      "/jobs/pipe_layup.yaml");
+  const LayupResult layup = plan_layup(job);
+  ASSERT_EQ(layup.layers.size(), 2u);
+  ASSERT_EQ(layup.layers[0].surface, nullptr);  // the inner layer: on the mandrel
+  ASSERT_NE(layup.layers[1].surface, nullptr);
+  const double t = layup.plan.layers[0].thickness_cylinder;
+  ASSERT_GT(t, 2.0);  // mm: the outer layer is wound well above the mandrel
+  const std::vector<const Mesh*> under = layup_circuit_surfaces(layup);
+  ASSERT_EQ(under.size(), layup.plan.circuits.size());
+  ExportContext ctx;
+  ctx.circuit_surfaces = under;
+  // On each layer's own surface: within 1 mm (export_plan refuses a program beyond it).
+  job.machine.replay_tolerance = 1.0;
+  const fs::path a = temp_dir("layup_own");
+  const ExportResult own =
+      export_plan(layup.plan, layup.mandrel.mesh, job.machine, job.output, a, ctx);
+  ASSERT_TRUE(own.has_replay);
+  std::printf("own surfaces: %s\n", own.replay.summary.c_str());
+  EXPECT_LT(own.replay.max_deviation, 1.0);
+  // The outer layer's program starts after its "(layer 2 of 2" comment.
+  const std::string g = read_text_file(a / "toolpath.ngc");
+  const auto at = g.find("(layer 2 of 2");
+  ASSERT_NE(at, std::string::npos);
+  const int outer_line = 1 + static_cast<int>(std::count(g.begin(), g.begin() + at, '\n'));
+  // On the bare mandrel (before): the outer layer lands at least about its height off the plan.
+  job.machine.replay_tolerance = 0;
+  const fs::path b = temp_dir("layup_bare");
+  const ExportResult bare = export_plan(layup.plan, layup.mandrel.mesh, job.machine, job.output, b);
+  std::printf("bare mandrel: %s\n", bare.replay.summary.c_str());
+  EXPECT_GT(bare.replay.max_deviation, 0.9 * t);
+  EXPECT_GT(bare.replay.max_deviation_line, outer_line);
+  // The same program either way: only the replay differs.
+  EXPECT_EQ(read_text_file(b / "toolpath.ngc"), g);
 }
 
 }  // namespace

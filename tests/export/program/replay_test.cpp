@@ -1,5 +1,6 @@
 #include "export/program/replay.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -55,6 +56,55 @@ TEST(Replay, HandMadeHelixProgramOnACylinderLaysTheHelix) {
   EXPECT_NEAR(r.min_clearance, Re - R, 0.01);
   EXPECT_EQ(r.carriage_reversals, 0);
   EXPECT_EQ(r.spindle_reversals, 0);
+}
+
+// Two layers by hand: a helix on the mandrel cylinder R, then (after a G0 that ties the tow on
+// again) a helix at another angle on the cylinder R2 = R + 5 the first layer built. Each block
+// follows the closed form of its own cylinder (helix_program's lead: beta = acos(R / R_e)).
+TEST(Replay, EachCircuitIsWalkedOnTheSurfaceItWasWoundOn) {
+  const double R = 50, R2 = 55, Re = 75, turns = 2;
+  const double a1 = 60, a2 = 45;  // deg
+  WindingPlan plan = test::helix_plan(R, a1, turns, 2000);
+  Circuit outer = test::helix_plan(R2, a2, turns, 2000).circuits.front();
+  outer.index = 1;
+  plan.circuits.push_back(outer);
+  const double c1 = R / std::tan(a1 * M_PI / 180), c2 = R2 / std::tan(a2 * M_PI / 180);
+  const double len = std::max(c1, c2) * turns * 2 * M_PI + 100;
+  const Mesh mandrel(test::open_cylinder(R, len, 512, 200));
+  const Mesh built(test::open_cylinder(R2, len, 512, 200));
+  std::string text = "%\n(two layers)\nG21 G90 G93\n";
+  int outer_line = 0;
+  for (int layer = 0; layer < 2; ++layer) {
+    const double r = layer == 0 ? R : R2, c = layer == 0 ? c1 : c2;
+    const double beta = std::acos(r / Re);
+    if (layer == 1) outer_line = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+    for (int i = 0; i < 1500; ++i) {
+      const double phi = turns * 2 * M_PI * i / 1499;
+      char buf[128];
+      std::snprintf(buf, sizeof buf, "%s X%.4f A%.4f%s\n", i == 0 ? "G0" : "G1",
+                    c * phi + c * std::tan(beta), -(phi + beta) * 180 / M_PI,
+                    i == 0 ? "" : " F600");
+      text += buf;
+    }
+  }
+  text += "M2\n%\n";
+  const MachineOptions m = lathe2(Re);
+  const GcodeProgram p = read_gcode(text, m, "layers.ngc");
+  // Each circuit on its own surface: both helices laid as planned.
+  const ReplayResult own = replay_program(p, plan, mandrel, m, {}, {nullptr, &built});
+  std::printf("own surfaces: %s\n", own.summary.c_str());
+  EXPECT_LT(own.max_deviation, 0.05);
+  EXPECT_NEAR(own.min_clearance, Re - R2, 0.01);  // the eye over the outer layer's surface
+  // The bare mandrel under both (the default): the outer layer is laid on R, at least R2 - R from
+  // its plan.
+  const ReplayResult bare = replay_program(p, plan, mandrel, m);
+  std::printf("bare mandrel: %s\n", bare.summary.c_str());
+  EXPECT_GE(bare.max_deviation, R2 - R - 1e-6);
+  EXPECT_GE(bare.max_deviation_line, outer_line);
+  // A list shorter than the circuits, or null entries, is the mandrel: the same replay.
+  const ReplayResult none = replay_program(p, plan, mandrel, m, {}, {nullptr});
+  EXPECT_EQ(none.max_deviation, bare.max_deviation);
+  EXPECT_EQ(none.substeps, bare.substeps);
 }
 
 TEST(Replay, OneMillimetreCarriageFaultIsCaught) {
