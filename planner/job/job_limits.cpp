@@ -258,11 +258,27 @@ Finding find_implausible(const Job& job, const WindingOptions& w, double r, doub
   return {};
 }
 
+// find_implausible for `w`, then for each helical entry of the job's `layers:` (its keys named
+// "layers[k].key"): every layer the job winds is held to the same bounds.
+Finding find_implausible_with_layers(const Job& job, const WindingOptions& w, double r, double l,
+                                     const JobLimits& lim) {
+  Finding f = find_implausible(job, w, r, l, lim);
+  for (std::size_t k = 0; f.key.empty() && k < job.layers.size(); ++k) {
+    if (job.layers[k].kind != LayerKind::Helical) continue;
+    f = find_implausible(job, job.layers[k].winding, r, l, lim);
+    const std::string prefix = "winding.";
+    if (f.key.rfind(prefix, 0) == 0) {
+      f.key = "layers[" + std::to_string(k) + "]." + f.key.substr(prefix.size());
+    }
+  }
+  return f;
+}
+
 }  // namespace
 
 void check_plausibility(const Job& job, const WindingOptions& w, double radius, double axial,
                         const JobLimits& limits) {
-  const Finding f = find_implausible(job, w, radius, axial, limits);
+  const Finding f = find_implausible_with_layers(job, w, radius, axial, limits);
   if (f.key.empty()) return;
   const std::string file = job.path.empty() ? std::string() : job.path.string() + ": ";
   throw ConfigError(file + "key '" + f.key + "' = " + num(f.value) + f.unit + " " + f.text);
@@ -488,7 +504,7 @@ void check_job_limits(const Job& job, const ConfigNode& root, const JobLimits& l
   // mandrel waits for its size; the clearance against the chord tolerance needs none).
   const MandrelSize s = parametric_mandrel_size(m);
   if (!(s.size > 0.0)) {
-    const Finding f = find_implausible(job, w, 0.0, 0.0, l);
+    const Finding f = find_implausible_with_layers(job, w, 0.0, 0.0, l);
     if (!f.key.empty()) c.fail(f.key, f.value, f.unit, f.text);
     return;
   }
@@ -522,7 +538,7 @@ void check_job_limits(const Job& job, const ConfigNode& root, const JobLimits& l
                " plan points on this mandrel, above the bound " + num(l.max_plan_points) +
                "; use fewer turns or circuits, or a coarser mesh");
   }
-  const Finding f = find_implausible(job, w, s.radius, s.axial, l);
+  const Finding f = find_implausible_with_layers(job, w, s.radius, s.axial, l);
   if (!f.key.empty()) c.fail(f.key, f.value, f.unit, f.text);
 }
 

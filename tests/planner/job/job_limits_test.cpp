@@ -67,6 +67,23 @@ TEST(JobLimits, MessageGivesTheLineOfTheKey) {
   EXPECT_EQ(e.rfind("/jobs/j.yaml:4: key 'winding.meridians' = 1000000", 0), 0u) << e;
 }
 
+// Every helical entry of `layers:` is held to the same plausibility bounds as `winding:`, named
+// by its own key and line (before: a layer with turns 0.001 planned, then its replay was refused
+// 89.8 mm off).
+TEST(JobLimits, EachLayerIsCheckedForPlausibilityUnderItsOwnKey) {
+  const std::string e =
+      test::job_load_error(kPipe +
+                           "winding: {band_width: 10}\nlayers:\n  - kind: hoop\n  - kind: helical\n"
+                           "    turns: 0.001\n");
+  EXPECT_NE(e.find("/jobs/j.yaml:6: key 'layers[1].turns' = 0.001 on a mandrel 500 mm long lays "
+                   "the fibre almost along the axis"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(test::job_load_error(kPipe + "winding: {band_width: 10}\nlayers:\n  - kind: hoop\n"
+                                         "  - kind: helical\n    turns: 2\n"),
+            "");
+}
+
 TEST(JobLimits, ShippedConfigsAreWithinEveryBound) {
   for (const auto& e : std::filesystem::directory_iterator(test::source_dir() / "configs")) {
     if (e.path().extension() != ".yaml") continue;
