@@ -31,22 +31,11 @@ Vec3 closest_side_normal(const Mesh& mesh, const SurfacePoint& sp) {
     const int he = 3 * f + (k + 1) % 3;  // the edge opposite corner k
     const int tw = mesh.twin(he);
     if (mesh.is_boundary_halfedge(tw)) return Vec3::Zero();
-    return mesh.face_normal(f) + mesh.face_normal(mesh.face(tw));
+    return (mesh.face_normal(f) + mesh.face_normal(mesh.face(tw))).normalized();
   }
   const int v = mesh.triangle(f)[nonzero];
   if (mesh.is_boundary_vertex(v)) return Vec3::Zero();
-  Vec3 n = Vec3::Zero();
-  for (int h : mesh.outgoing_halfedges(v)) {
-    const int g = mesh.face(h);
-    if (g < 0) continue;
-    const Vec3 a = mesh.position(mesh.to(h)) - mesh.position(v);
-    const Vec3 c = mesh.position(mesh.from(mesh.prev(h))) - mesh.position(v);
-    const double an = a.norm(), cn = c.norm();
-    if (!(an > 0.0) || !(cn > 0.0)) continue;
-    const double angle = std::acos(std::clamp(a.dot(c) / (an * cn), -1.0, 1.0));
-    n += angle * mesh.face_normal(g);
-  }
-  return n;
+  return mesh.vertex_normal(v);
 }
 
 }  // namespace
