@@ -11,6 +11,7 @@
 #include "planner/mandrel/tube_spine.h"
 #include "planner/winding/coverage.h"
 #include "planner/winding/tube_coverage.h"
+#include "planner/winding/tube_friction_within_mu.h"
 
 namespace windplan {
 
@@ -128,8 +129,8 @@ TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const Win
     }
     ends[e] = sum / std::max<std::size_t>(1, md.winding.loops[e].vertices.size());
   }
-  return plan_tube_friction(line, std::min(ends[0], ends[1]), std::max(ends[0], ends[1]),
-                            md.winding.mesh, md.winding.face_map, md.axis, wo);
+  return plan_tube_friction_within_mu(line, std::min(ends[0], ends[1]), std::max(ends[0], ends[1]),
+                                      md.winding.mesh, md.winding.face_map, md.axis, wo);
 }
 
 // The coverage measurement of the job's bands at its stations, on the sections normal to

@@ -163,7 +163,7 @@ class Planner {
             "fit between the stations " + format_fixed(apex_[0], 1) + " and " +
             format_fixed(apex_[1], 1) + " mm of the centre line (each half needs about " +
             format_fixed(half_, 1) + " mm at this angle): a longer region, a higher " +
-            "slippage (<= mu) or a lower angle");
+            "slippage (<= mu) or a higher angle");
       }
       if (out) out->resize(keep_from);
       double l_pass = 0.0, l_turn = 0.0;
@@ -420,7 +420,8 @@ std::string TubeFrictionSummary::brief_report() const {
 
 TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, double s1,
                                        const Mesh& annulus, const std::vector<int>& face_map,
-                                       const SpindleAxis& axis, const WindingOptions& o) {
+                                       const SpindleAxis& axis, const WindingOptions& o,
+                                       double turnaround_slippage) {
   TubeFrictionWinding w;
   if (std::isnan(o.angle) && !o.turns_given) {
     throw ConfigError(
@@ -457,7 +458,7 @@ TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, do
         format_fixed(std::abs(w.required_theta_deg), 1) +
         " deg from the outside), above winding.slippage " + format_turns(o.slippage) + " (mu " +
         format_turns(o.mu) + "): a slippage of " + format_fixed(d.slippage, 3) +
-        (d.slippage <= o.mu ? "" : " with a mu to match") + ", a lower angle or a gentler bend");
+        (d.slippage <= o.mu ? "" : " with a mu to match") + ", a higher angle or a gentler bend");
   }
   const double B = o.band_width, r = line.tube_radius();
   const std::array<double, 2> apex = {s0 + 0.5 * B, s1 - 0.5 * B};
@@ -475,7 +476,7 @@ TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, do
     return w;
   }
   const int K = w.K;
-  const double lambda = o.slippage;
+  const double lambda = std::isnan(turnaround_slippage) ? o.slippage : turnaround_slippage;
   w.slippage = lambda;
   const Planner planner(line, a0, lambda, apex);
   // The advance of one circuit entering at theta with the far apex moved in by delta: shorter

@@ -45,6 +45,7 @@
 // tube.
 // Units: mm, radians unless a field says deg.
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,9 @@ struct TubeFrictionWinding {
   double projection_max = 0.0;  ///< largest move of a planned point onto the mesh (mm)
   int pins = 0;                 ///< pins per end ring (0: friction turnarounds)
   std::array<double, 2> dwell_deg = {0.0, 0.0};  ///< pins: least and most far dwell (deg)
+  /// Max |k_g / k_n| measured on the laid points and its station (mm), filled by
+  /// planner/winding/tube_friction_within_mu.h (0 when planned without it).
+  double measured = 0.0, measured_s = 0.0;
   TubeFrictionSummary summary;
 };
 
@@ -111,8 +115,11 @@ double tube_angle_for_turns(const TubeCentreLine& line, double s0, double s1,
 ///        slippage than winding.slippage (with the figure and where) or the fibre would bridge;
 ///        naming winding.slippage when the turnarounds do not fit in [s0, s1] (with the lengths)
 ///        or a circuit would need its far apex more than a quarter of the region inward.
+/// \param turnaround_slippage lambda of the friction turnarounds (NaN: winding.slippage; below
+///        it when the laid turnarounds measure above mu, planner/winding/tube_friction_within_mu.h)
 TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, double s1,
                                        const Mesh& annulus, const std::vector<int>& face_map,
-                                       const SpindleAxis& axis, const WindingOptions& options);
+                                       const SpindleAxis& axis, const WindingOptions& options,
+                                       double turnaround_slippage = std::nan(""));
 
 }  // namespace windplan
