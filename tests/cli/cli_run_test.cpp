@@ -519,6 +519,48 @@ TEST_F(CliRun, VesselLayupEveryLayerInTheReportAndInOrderInTheProgram) {
   EXPECT_NE(r.out.find("laminate"), std::string::npos) << r.out;
 }
 
+// Bad input for a friction layer on a bent tube (issue 25's "Shown by"): a slippage above mu,
+// an angle friction cannot hold on a 3r bend (with the figure), pins that do not fit or sit off
+// the tube, a region end that is no section of the tube, a pass that measures above mu once laid:
+// each one error line naming the key and the figure, exit 1, no fibre path written.
+TEST_F(CliRun, BadTubeFrictionInputIsOneLineExitOne) {
+  const fs::path job = dir_ / "elbow.yaml";
+  struct Case {
+    std::string region, bend_radius, winding, says;
+  };
+  const std::vector<Case> cases = {
+      {"", "250", "  angle: 55\n  slippage: 0.25\n", "slippage 0.25 exceeds mu 0.2"},
+      {"", "150", "  angle: 55\n  slippage: 0.19\n",
+       "winding.angle 55 deg needs |k_g/k_n| up to 0.328"},
+      {"", "250", "  angle: 55\n  slippage: 0.19\n  pins: {count: 60, diameter: 4}\n",
+       "winding.pins: 60 pins of 4.0 mm do not fit around the 314.2 mm section (at most 39"},
+      {"", "250", "  angle: 55\n  slippage: 0.19\n  pins: {count: 24, diameter: 4, offset: 1}\n",
+       "winding.pins: offset 1.0 mm puts the pin circles off the tube's ends"},
+      {"  region: {start: -200, end: 200}\n", "250", "  angle: 55\n  slippage: 0.19\n",
+       "mandrel.region: the wound region's start edge is no section of the tube"},
+      {"", "250", "  angle: 53.2\n  slippage: 0.2\n  circuits: 23\n",
+       "on a pass held at 53.20 deg"}};
+  for (const Case& c : cases) {
+    std::ofstream(job) << "name: elbow\nmandrel:\n  source: bent_tube\n"
+                          "  linear_deflection: 0.25\n  angular_deflection: 5\n"
+                       << c.region
+                       << "  bent_tube:\n    radius: 50\n    segments: [100, 100]\n"
+                          "    bends:\n      - {angle: 90, radius: "
+                       << c.bend_radius << ", plane_angle: 0}\nwinding:\n  mu: 0.2\n"
+                       << "  band_width: 12\n"
+                       << c.winding;
+    const fs::path out = dir_ / "o";
+    const Proc v = run({"run", job.string(), "--out", out.string()});
+    EXPECT_EQ(v.code, 1) << c.winding << v.err;
+    EXPECT_NE(v.err.find(c.says), std::string::npos) << v.err;
+    std::istringstream lines(v.err);
+    int errors = 0;
+    for (std::string l; std::getline(lines, l);) errors += l.find("error:") != std::string::npos;
+    EXPECT_EQ(errors, 1) << v.err;
+    EXPECT_FALSE(fs::exists(out / "fibre_path.csv")) << c.says;
+  }
+}
+
 TEST_F(CliRun, BadLayerInputIsExitOneWithTheKey) {
   const std::string pipe = "mandrel:\n  source: pipe\n  pipe: {radius: 30, length: 100}\n";
   const std::string vessel =
