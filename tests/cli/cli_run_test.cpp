@@ -403,6 +403,9 @@ TEST_F(CliRun, SharedBentPipeWindsBetweenCentreLineStations) {
   EXPECT_EQ(rep["coverage"]["stations"].size(), 24u);
   EXPECT_EQ(rep["coverage"]["bare_fraction"].as<double>(), 0.0);
   EXPECT_LE(rep["summary"]["max_slippage"].as<double>(), 0.2);
+  // pattern: auto on a mesh never lays fewer circuits than its measured coverage needs.
+  EXPECT_GE(rep["summary"]["circuits"].as<int>(),
+            rep["summary"]["circuits_for_coverage"].as<int>());
   // Every laid point's |k_g/k_n| column within mu (the last column of fibre_path.csv).
   std::ifstream csv(dir_ / "bp" / "fibre_path.csv");
   std::string line;
