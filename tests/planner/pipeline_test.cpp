@@ -403,6 +403,31 @@ TEST(Pipeline, ElbowRobotIsAFullLayerWithinMu) {
   EXPECT_GT(job.machine.replay_tolerance, 0.0);
 }
 
+// The shared aerobar's arm with rounded edges (its mesh has square ones, refused): a rounded
+// rectangle 32 x 10 mm, corner radius 3, one turn, band 2, pattern auto. Coverage on sections
+// normal to the centre line, every pass within mu, K no fewer than the coverage needs.
+TEST(Pipeline, RoundedAerobarArmIsAFullLayerWithinMu) {
+  const Job job = load_job_from_string(
+      "name: aerobar_round\n"
+      "mandrel:\n"
+      "  source: section\n"
+      "  section: {shape: rounded_rectangle, width: 32, height: 10, corner_radius: 3, "
+      "length: 60}\n"
+      "winding: {turns: 1, pattern: auto, band_width: 2, mu: 0.2, coverage_stations: 12}\n",
+      "/tmp/aerobar_round.yaml");
+  const PipelineResult r = plan_job(job);
+  const PlanMetrics& m = r.plan.metrics;
+  EXPECT_FALSE(r.tube.centre_line.spine.empty());
+  EXPECT_EQ(m.coverage.stations.size(), 12u);
+  EXPECT_EQ(m.coverage.bare_fraction, 0.0) << m.coverage.brief_report();
+  EXPECT_LE(m.max_slippage, 0.2);
+  EXPECT_GE(static_cast<int>(r.plan.circuits.size()), m.circuits_for_coverage);
+  // The sections are the rounded rectangle: 2 (32 + 10) - (8 - 2 pi) 3 = 80.85 mm around.
+  for (const StationCoverage& s : m.coverage.stations) {
+    EXPECT_NEAR(s.loop_length, 2.0 * (32 + 10) - (8.0 - 2.0 * M_PI) * 3.0, 0.5);
+  }
+}
+
 // Where the evenly spread helices would need more friction than mu, the geodesics are laid and
 // the warning gives both sets of figures and what to change.
 TEST(Pipeline, BentTubeHelicesAboveMuAreNotLaid) {
