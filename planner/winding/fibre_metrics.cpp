@@ -127,7 +127,9 @@ void add_stability_warnings(PlanMetrics* metrics, double pass_slip_length,
     pm.warnings.push_back("slippage: max |k_g/k_n| = " + fmt(pm.max_slippage) +
                           " exceeds mu = " + fmt(options.mu) + " on " + fmt(pass_slip_length, 1) +
                           " mm (" + fmt(100.0 * pm.slip_fraction, 2) +
-                          "% of the pass length): the fibre may slip there (lower beta)");
+                          "% of the pass length): the fibre may slip there" +
+                          // beta shapes the passes only when it is above 0
+                          (options.beta > 0.0 ? " (lower beta)" : ""));
   }
   if (pm.bridging_length > 0.0) {
     pm.warnings.push_back("bridging: " + fmt(pm.bridging_length, 1) +
