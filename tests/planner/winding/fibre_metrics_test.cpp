@@ -377,3 +377,43 @@ TEST(TurnaroundStability, ConeParallelWarnsOnlyWhenMuIsBelowTanB) {
 
 }  // namespace
 }  // namespace windplan
+
+namespace windplan {
+namespace {
+
+// A wavy hoop on a cylinder of radius 50 (z = 30 sin theta): |k_g/k_n| reaches about
+// 30 / 50 = 0.6 where it runs round. The passes' warning names beta as the remedy only when the
+// job uses it (beta > 0).
+TEST(FibreMetrics, SlippageWarningSuggestsBetaOnlyWhenItIsUsed) {
+  Circuit c;
+  const int n = 400;
+  for (int i = 0; i <= n; ++i) {
+    const double t = 2.0 * M_PI * i / n;
+    FibrePoint p;
+    p.position = Vec3(50.0 * std::cos(t), 50.0 * std::sin(t), 30.0 * std::sin(t));
+    p.normal = Vec3(std::cos(t), std::sin(t), 0.0);
+    c.points.push_back(p);
+  }
+  const SpindleAxis axis;
+  annotate_fibre_points(&c.points, axis, 12.0);
+  c.segments.push_back({CircuitSegment::Kind::Pass, 0, n});
+  WindingOptions o;
+  o.mu = 0.2;
+  o.band_width = 12.0;
+  auto slip_warning = [&](double beta) {
+    o.beta = beta;
+    const PlanMetrics m = circuit_plan_metrics({c}, axis, o);
+    EXPECT_GT(m.max_slippage, 0.4);
+    for (const std::string& w : m.warnings) {
+      if (w.rfind("slippage:", 0) == 0) return w;
+    }
+    return std::string("(none)");
+  };
+  const std::string at0 = slip_warning(0.0), at05 = slip_warning(0.5);
+  EXPECT_NE(at0.find("the fibre may slip there"), std::string::npos) << at0;
+  EXPECT_EQ(at0.find("beta"), std::string::npos) << at0;
+  EXPECT_NE(at05.find("(lower beta)"), std::string::npos) << at05;
+}
+
+}  // namespace
+}  // namespace windplan
