@@ -52,6 +52,7 @@
 #include "geometry/region/axis.h"
 #include "planner/plan/plan.h"
 #include "planner/winding/tube_centre_line.h"
+#include "planner/winding/tube_surface.h"
 #include "planner/winding/winding_options.h"
 
 namespace windplan {
@@ -92,15 +93,15 @@ struct TubeFrictionWinding {
 /// Mean turns of the section per pass (apex to apex, both apexes on their unmoved stations) of
 /// circuits at angle a0 (rad) entering at 8 evenly spread angles.
 /// \throw ConfigError when the turnarounds do not fit
-double tube_turns_per_pass(const TubeCentreLine& line, double s0, double s1, double a0,
-                           double lambda, double band_width);
+double tube_turns_per_pass(const TubeSurface& line, double s0, double s1, double a0, double lambda,
+                           double band_width);
 
 /// The angle a0 (rad) whose passes make winding.turns: the highest such angle in [5, 80] deg
 /// (turns are not monotone: at low angles the turnarounds wrap more), scanned down in 5 deg
 /// steps and refined by regula falsi on tube_turns_per_pass at lambda = winding.slippage. The
 /// closing apex moves then shorten passes a little: the plan reports the turns it made.
 /// \throw ConfigError naming winding.turns with the range that can be made
-double tube_angle_for_turns(const TubeCentreLine& line, double s0, double s1,
+double tube_angle_for_turns(const TubeSurface& line, double s0, double s1,
                             const WindingOptions& options);
 
 /// The planned layer (see the header comment) on the stations [s0, s1] of `line`. Points are
@@ -111,7 +112,7 @@ double tube_angle_for_turns(const TubeCentreLine& line, double s0, double s1,
 ///        slippage than winding.slippage (with the figure and where) or the fibre would bridge;
 ///        naming winding.slippage when the turnarounds do not fit in [s0, s1] (with the lengths)
 ///        or a circuit would need its far apex more than a quarter of the region inward.
-TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, double s1,
+TubeFrictionWinding plan_tube_friction(const TubeSurface& line, double s0, double s1,
                                        const Mesh& annulus, const std::vector<int>& face_map,
                                        const SpindleAxis& axis, const WindingOptions& options);
 
