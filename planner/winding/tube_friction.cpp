@@ -66,40 +66,101 @@ double bisect_step(const TubeSurface& line, const State& y, const Law& law, int 
   return hi;
 }
 
-// Traces from y until event(y) changes sign (located by bisection on the last step); appends
-// the states after y to `out` when given. Returns the end state; `length` adds the fibre. A step
-// that would cross the end of a bend is cut to end on it (so that a step never mixes two
+// One step of a trace from y: 1 mm, cut to end on a piece's end (so that a step never mixes two
 // pieces' rates: the path is then smooth in its start, which the pattern's root finding needs).
+struct Step {
+  State y, n;  // from, to
+  double h = 0.0;
+  int piece = -1;
+};
+
+Step next_step(const TubeSurface& line, const State& y, const Law& law,
+               const std::vector<double>& edges) {
+  Step st;
+  st.y = y;
+  st.piece = line.piece_at(y.s + (std::cos(y.a) >= 0.0 ? 1e-9 : -1e-9));
+  st.h = kStep;
+  st.n = rk4(line, y, st.h, law, st.piece);
+  for (double edge : edges) {
+    if ((y.s - edge) * (st.n.s - edge) < 0.0) {
+      st.h = bisect_step(line, y, law, st.piece, st.h, y.s < edge,
+                         [edge](const State& q) { return q.s - edge; });
+      st.n = rk4(line, y, st.h, law, st.piece);
+    }
+  }
+  return st;
+}
+
+// The step `st` ended past the event: the part of it up to the event (bisection).
+State last_step(const TubeSurface& line, const Step& st, const Law& law, bool neg0,
+                const std::function<double(const State&)>& event, double* h) {
+  *h = bisect_step(line, st.y, law, st.piece, st.h, neg0, event);
+  return rk4(line, st.y, *h, law, st.piece);
+}
+
+constexpr char kNoEnd[] = "winding.slippage: a friction path never met its end in 100 m of fibre";
+
+// Traces from y until event(y) changes sign (located by bisection on the last step); appends
+// the states after y to `out` when given. Returns the end state; `length` adds the fibre.
 State trace(const TubeSurface& line, State y, const Law& law,
             const std::function<double(const State&)>& event, std::vector<State>* out,
             double* length) {
   const bool neg0 = event(y) < 0.0;
   const std::vector<double> edges = line.piece_ends();
   for (double l = 0.0; l < 1e5;) {
-    const int b = line.piece_at(y.s + (std::cos(y.a) >= 0.0 ? 1e-9 : -1e-9));
-    double h = kStep;
-    State n = rk4(line, y, h, law, b);
-    for (double edge : edges) {
-      if ((y.s - edge) * (n.s - edge) < 0.0) {
-        h = bisect_step(line, y, law, b, h, y.s < edge,
-                        [edge](const State& q) { return q.s - edge; });
-        n = rk4(line, y, h, law, b);
-      }
-    }
-    if ((event(n) < 0.0) != neg0) {
-      h = bisect_step(line, y, law, b, h, neg0, event);
-      n = rk4(line, y, h, law, b);
+    const Step st = next_step(line, y, law, edges);
+    if ((event(st.n) < 0.0) != neg0) {
+      double h = 0.0;
+      const State n = last_step(line, st, law, neg0, event, &h);
       if (out) out->push_back(n);
       *length += h;
       return n;
     }
-    if (out) out->push_back(n);
-    *length += h;
-    l += h;
-    y = n;
+    if (out) out->push_back(st.n);
+    *length += st.h;
+    l += st.h;
+    y = st.n;
   }
-  throw ConfigError("winding.slippage: a friction path never met its end in 100 m of fibre");
+  throw ConfigError(kNoEnd);
 }
+
+// A pass (held at its angle) from y0, its steps kept: traced to a station `leave` again and
+// again (the shooting for a turnaround's apex) it is stepped once; the same steps, so the same
+// states, as trace() would take.
+class HeldPass {
+ public:
+  HeldPass(const TubeSurface& line, const State& y0)
+      : line_(line), y0_(y0), edges_(line.piece_ends()) {}
+  State to_station(double leave, std::vector<State>* out, double* length) {
+    auto event = [leave](const State& y) { return y.s - leave; };
+    const bool neg0 = event(y0_) < 0.0;
+    double l = 0.0;
+    for (std::size_t i = 0;; ++i) {
+      if (i == steps_.size()) {
+        if (l >= 1e5) throw ConfigError(kNoEnd);
+        steps_.push_back(next_step(line_, i == 0 ? y0_ : steps_.back().n, kHold, edges_));
+      }
+      const Step& st = steps_[i];
+      if ((event(st.n) < 0.0) != neg0) {
+        double h = 0.0;
+        const State n = last_step(line_, st, kHold, neg0, event, &h);
+        if (out) out->push_back(n);
+        *length += h;
+        return n;
+      }
+      if (out) out->push_back(st.n);
+      *length += st.h;
+      l += st.h;
+    }
+  }
+
+ private:
+  static constexpr Law kHold{true, 1, 0.0};
+  const TubeSurface& line_;
+  State y0_;
+  std::vector<double> edges_;
+  std::vector<Step> steps_;
+};
 
 // One circuit, apex to apex.
 struct OneCircuit {
@@ -162,6 +223,7 @@ class Planner {
     const int sigma = end == 1 ? 1 : -1;
     double leave = target - dir * half_, prev_leave = leave, prev_err = 0.0;
     const std::size_t keep_from = out ? out->size() : 0;
+    HeldPass pass(line_, y0);
     for (int it = 0;; ++it) {
       if (dir * (leave - y0.s) < 0.0) {
         throw ConfigError(
@@ -173,8 +235,7 @@ class Planner {
       }
       if (out) out->resize(keep_from);
       double l_pass = 0.0, l_turn = 0.0;
-      const State at = trace(
-          line_, y0, {true, 1, 0.0}, [leave](const State& y) { return y.s - leave; }, out, &l_pass);
+      const State at = pass.to_station(leave, out, &l_pass);
       const State apex =
           trace(line_, at, {false, sigma, lambda_}, angle_event(0.5 * M_PI), out, &l_turn);
       const double err = apex.s - target;
