@@ -1,6 +1,8 @@
 #pragma once
-// Friction (semi-geodesic) winding of a circular tube that is no shape of revolution (a bent tube
-// or elbow), in the tube coordinates of planner/winding/tube_centre_line.h: a layer at a constant
+// Friction (semi-geodesic) winding of a tube that is no shape of revolution, on a TubeSurface
+// (planner/winding/tube_surface.h: a bent tube or elbow's closed forms in
+// planner/winding/tube_centre_line.h, or the smooth fit of any mesh, CAD or oval tube in
+// planner/winding/mesh_tube_surface.h; formulas below for the circular tube): a layer at a constant
 // winding angle a0 to the centre line (winding.angle, or the angle whose passes make
 // winding.turns: tube_angle_for_turns), held by friction where the bend asks for it, turning
 // around by friction inside the wound region.
@@ -32,7 +34,10 @@
 // k, entering at theta_k = k A, has its far apex moved inward by the delta_k (>= 0, found by
 // regula falsi) at which it advances by exactly A: the starts are spread exactly evenly,
 // p k / K of a turn, and the chain closes after K circuits (theta_K = K A = 2 pi (K m + p)).
-// p: winding's skip, or the largest advance's p coprime to K.
+// p: winding's skip, or the largest advance's p coprime to K. Where the section is no circle
+// (TubeSurface::even_is_theta false) advances are measured in the even angle (the fraction of
+// the loop's length) of the outgoing pass at mid-region, so those passes lie evenly along the
+// loop; the return passes follow the far turnarounds, which an oval spreads unevenly.
 // Pins (winding.pins: {count N, diameter d, offset x}): a ring of N pins on the section circle
 // at x (default B / 2 + d) inside each end instead of friction turnarounds. The passes run at a0
 // between the pin circles and dwell along them (Turnaround segments, held by the pins; the pins'
