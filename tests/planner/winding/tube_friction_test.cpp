@@ -371,6 +371,34 @@ TEST(TubeFriction, OvalSectionLaysAClosedPatternEvenlyAlongTheLoop) {
   }
 }
 
+// A rounded rectangle's flat sides have k_n = 0 at every angle (and the fitted series ripples
+// below it): refused, one line naming the bridge, before anything is traced.
+TEST(TubeFriction, RoundedRectangleSectionIsRefusedNamingTheBridge) {
+  const std::string yaml =
+      "name: rr\n"
+      "mandrel:\n"
+      "  source: section\n"
+      "  section:\n"
+      "    shape: rounded_rectangle\n"
+      "    width: 160\n"
+      "    height: 100\n"
+      "    corner_radius: 30\n"
+      "    length: 400\n"
+      "    ends: {type: flat}\n"
+      "winding:\n"
+      "  angle: 55\n"
+      "  slippage: 0.15\n"
+      "  band_width: 12\n";
+  try {
+    plan_job(load_job_from_string(yaml, "/tmp/rr.yaml"));
+    FAIL() << "a rounded rectangle was planned";
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("winding.angle 55 deg: the fibre would bridge"), std::string::npos) << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  }
+}
+
 // The shared bent-pipe.stl (units m, r 185, remeshed at 20 mm, region on centre-line stations):
 // 55 deg needs more than winding.slippage 0.15 on its bend; the refusal names the figure, found on
 // the fitted surface of the mesh, before anything is traced.
