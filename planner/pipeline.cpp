@@ -10,6 +10,7 @@
 #include "planner/job/job_limits.h"
 #include "planner/mandrel/tube_spine.h"
 #include "planner/winding/coverage.h"
+#include "planner/winding/mesh_tube_surface.h"
 #include "planner/winding/tube_coverage.h"
 #include "planner/winding/tube_friction_within_mu.h"
 
@@ -70,36 +71,52 @@ std::string turn_limit_warning(const ClairautLimit& lim, const WindingOptions& w
 constexpr double kSharpEdgeDeg = 60.0;
 
 // Off a shape of revolution, winding.slippage and winding.angle ask for a friction layer at a
-// constant angle to the centre line (planner/winding/tube_friction.h): planned on a parametric
-// bent tube, whose centre line is known exactly (the tube's TubeSpine::exact, which *centre_line
-// receives); refused elsewhere, and refused where the keys it does not use are set (they would
-// be silently ignored).
+// constant angle to the centre line (planner/winding/tube_friction.h), planned on a tube surface
+// (planner/winding/tube_surface.h): a parametric bent tube's exact one (TubeSpine::exact), or
+// the smooth fit of any other tube-shaped wound region around its centre line
+// (planner/winding/mesh_tube_surface.h: meshes, CAD, oval and rounded sections). *tube receives
+// the centre line and the surface. Refused where the region is no tube and where the keys it
+// does not use are set (they would be silently ignored).
 TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const WindingOptions& wo,
-                                    TubeSpine* centre_line) {
+                                    TubeResult* tube) {
   const std::string keys = wo.slippage > 0.0 ? "winding.slippage" : "winding.angle";
-  if (job.mandrel.source != "bent_tube") {
-    throw ConfigError(keys + ": friction paths off a shape of revolution are planned on a " +
-                      "parametric bent_tube (mandrel.source: bent_tube, its exact centre line) " +
-                      "only, and this mandrel (source " + job.mandrel.source + ") is none; " +
-                      "remove winding.slippage and winding.angle to plan geodesic helices");
-  }
+  const bool exact = job.mandrel.source == "bent_tube";
   if (!(wo.slippage > 0.0)) {
     throw ConfigError(
-        "winding.angle " + format_turns(wo.angle) + " deg on a bent tube: a geodesic cannot " +
-        "hold a constant angle to the centre line through the bend; give winding.slippage (<= " +
-        "mu) to hold it by friction, or remove winding.angle for geodesic helices");
+        "winding.angle " + format_turns(wo.angle) + " deg off a shape of revolution: a geodesic " +
+        "cannot hold a constant angle to the centre line through a bend or around an oval; give " +
+        "winding.slippage (<= mu) to hold it by friction, or remove winding.angle for geodesic "
+        "helices");
   }
   if (wo.beta > 0.0) {
-    throw ConfigError("winding.beta: a friction layer holds a constant angle on a bent tube; " +
+    throw ConfigError("winding.beta: a friction layer holds a constant angle on a tube; " +
                       std::string("beta must be 0 with winding.slippage"));
   }
   if (wo.has_start_station() || wo.has_end_station()) {
     throw ConfigError("winding.start_station/end_station: stations along the spindle axis are " +
-                      std::string("no sections of a bent tube; bound the region with its ends"));
+                      std::string("no sections of a tube; bound the region with its ends ") +
+                      "(mandrel.region: {centre_line: ...})");
   }
-  const BentTubeParams& bt = job.mandrel.bent_tube;
-  *centre_line = mandrel_tube_spine(md, job.mandrel);
-  const TubeCentreLine& line = *centre_line->exact;
+  tube->centre_line = mandrel_tube_spine(md, job.mandrel);
+  double radius = 0.0;
+  if (exact) {
+    tube->surface = tube->centre_line.exact;
+    radius = job.mandrel.bent_tube.radius;
+  } else {
+    if (tube->centre_line.spine.empty()) {
+      throw ConfigError(keys + ": friction layers off a shape of revolution need a wound " +
+                        "region that is a tube, and this one has no centre line (" +
+                        tube->centre_line.why + "); bound it by sections of a tube " +
+                        "(mandrel.region: {centre_line: ...}) or remove winding.slippage and " +
+                        "winding.angle to plan geodesic helices");
+    }
+    MeshTubeSurfaceResult fit =
+        mesh_tube_surface(md.winding.mesh, tube->centre_line.spine, md.axis);
+    tube->surface = fit.surface;
+    tube->surface_report = fit.summary.brief_report();
+    radius = fit.summary.mean_radius;
+  }
+  const TubeSurface& line = *tube->surface;
   // The region's ends: each boundary loop must be a section of the tube (one station).
   std::array<double, 2> ends{};
   for (int e = 0; e < 2; ++e) {
@@ -110,17 +127,17 @@ TubeFrictionWinding plan_tube_layer(const Mandrel& md, const Job& job, const Win
       lo = std::min(lo, s);
       hi = std::max(hi, s);
       sum += s;
-      off = std::max(off, std::abs(d - bt.radius));
+      off = std::max(off, std::abs(d - radius));
     }
     // The surface must be the bare tube (a layup's outer layers are wound on a thicker one,
     // which the centre line's radius does not describe).
-    if (off > 0.02 * bt.radius) {
+    if (exact && off > 0.02 * radius) {
       throw ConfigError("winding.slippage: the wound surface lies " + format_fixed(off, 2) +
-                        " mm off the bent tube's radius " + format_fixed(bt.radius, 1) +
+                        " mm off the bent tube's radius " + format_fixed(radius, 1) +
                         " mm: friction layers on a bent tube are planned on the bare mandrel " +
                         "only (not as an outer layer of a layup)");
     }
-    if (hi - lo > 0.05 * bt.radius) {
+    if (hi - lo > 0.05 * radius) {
       throw ConfigError(std::string("mandrel.region: the wound region's ") +
                         (e == 0 ? "start" : "end") + " edge is no section of the tube (it spans " +
                         format_fixed(hi - lo, 1) + " mm of centre line, " + format_fixed(lo, 1) +
@@ -271,15 +288,15 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     r.clairaut = r.revolution.planned;
   }
   if (wo.pin_count > 0 && !tube_layer) {
-    throw ConfigError("winding.pins: pins are planned for friction layers on a bent tube only " +
-                      std::string("(winding.slippage and winding.angle or turns on a bent_tube)"));
+    throw ConfigError("winding.pins: pins are planned for friction layers on a tube only " +
+                      std::string("(winding.slippage and winding.angle or turns off revolution)"));
   }
   if (!md.revolution && !tube_layer) r.tube.centre_line = mandrel_tube_spine(md, job.mandrel);
   const Spine* spine = r.tube.centre_line.spine.empty() ? nullptr : &r.tube.centre_line.spine;
   int auto_circuits = 0;  // circuits: auto off revolution, from the sections (below)
   std::vector<double> rho;
   if (tube_layer) {
-    r.tube.layer = plan_tube_layer(md, job, wo, &r.tube.centre_line);
+    r.tube.layer = plan_tube_layer(md, job, wo, &r.tube);
     r.tube.friction = true;
   } else if (!r.clairaut) {
     if (wo.beta > 0.0) rho = density_from_girth(ws.mesh, r.face_girth, wo.beta);
@@ -432,7 +449,10 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
                    " mm per circuit to close the pattern), no pins") +
         "; the chain of circuits turns " + std::to_string(tw.n) + " times and " +
         (tw.summary.closed ? "closes" : "does not close") + " (starts within " +
-        format_fixed(tw.spread_deg, 3) + " deg of even spacing)";
+        format_fixed(tw.spread_deg, 3) + " deg of even spacing)" +
+        (r.tube.surface_report.empty()
+             ? std::string()
+             : "; planned on the wound mesh's fitted tube surface (" + r.tube.surface_report + ")");
     r.passes = circuit_pass_reports(plan.circuits, md.axis, "friction");
   } else {
     plan.circuits = build_circuits(ws.mesh, r.helices, ws.face_map, md.axis, wo);
@@ -454,10 +474,13 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
     const TubeFrictionWinding& tw = r.tube.layer;
     // (pins: a band width inside the pin circles, off the dwells)
     const double in = tw.pins > 0 ? wo.band_width : 0.0;
-    pm.coverage = measure_tube_coverage(
-        *r.tube.centre_line.exact, plan.circuits, wo.band_width,
-        tw.apex_s[0] + 0.5 * tw.turnaround_span[0] + in,
-        tw.apex_s[1] - tw.apex_moved[1] - 0.5 * tw.turnaround_span[1] - in, wo.coverage_stations);
+    const double c0 = tw.apex_s[0] + 0.5 * tw.turnaround_span[0] + in,
+                 c1 = tw.apex_s[1] - tw.apex_moved[1] - 0.5 * tw.turnaround_span[1] - in;
+    pm.coverage = r.tube.centre_line.exact
+                      ? measure_tube_coverage(*r.tube.centre_line.exact, plan.circuits,
+                                              wo.band_width, c0, c1, wo.coverage_stations)
+                      : measure_tube_coverage(*r.tube.surface, plan.circuits, wo.band_width, c0, c1,
+                                              wo.coverage_stations);
   } else {
     pm.coverage = measure_coverage(ws.mesh, md.axis, plan.circuits, co);
   }

@@ -53,6 +53,10 @@ struct TubeResult {
   /// layer plans and measures on its `exact` line); empty spine, with `why`, when the region is
   /// not a tube.
   TubeSpine centre_line;
+  /// A friction layer's surface: centre_line.exact on a parametric bent tube, else the fit of
+  /// the wound mesh around the centre line (planner/winding/mesh_tube_surface.h).
+  std::shared_ptr<const TubeSurface> surface;
+  std::string surface_report;  ///< the fit's brief_report (empty on a bent tube)
 };
 
 struct PipelineResult {

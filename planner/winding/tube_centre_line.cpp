@@ -193,6 +193,36 @@ void TubeCentreLine::locate(const Vec3& p, double* s_out, double* theta_out,
   *distance = best;
 }
 
+int TubeCentreLine::piece_at(double s) const {
+  for (std::size_t i = 0; i < spans_.size(); ++i) {
+    if (s >= spans_[i].s0 && s < spans_[i].s1) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::vector<double> TubeCentreLine::piece_ends() const {
+  std::vector<double> e;
+  for (const BendSpan& b : spans_) {
+    e.push_back(b.s0);
+    e.push_back(b.s1);
+  }
+  return e;
+}
+
+TubeSurface::Rates TubeCentreLine::rates(int piece, double, double theta, double a) const {
+  const BendSpan* b = piece < 0 ? nullptr : &spans_[piece];
+  Rates q;
+  q.ds = std::cos(a) / stretch(b, theta);
+  q.dth = std::sin(a) / r_;
+  q.k_n = normal_curvature(b, theta, a);
+  q.w = -geodesic_turn(b, theta, a);
+  return q;
+}
+
+ConstantAngleDemand TubeCentreLine::demand(double s0, double s1, double a) const {
+  return constant_angle_demand(*this, s0, s1, a);
+}
+
 double constant_angle_slippage(const TubeCentreLine& line, double s, double theta, double a) {
   const double kn = line.normal_curvature(s, theta, a);
   if (!(kn > 0.0)) return std::numeric_limits<double>::infinity();

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "geometry/mesh/mesh.h"
+#include "planner/winding/tube_surface.h"
 
 namespace windplan {
 
@@ -46,20 +47,20 @@ struct TubeFrame {
   double toward = 0.0;     ///< angle (rad) in (u, v) of the direction to the bend centre
 };
 
-class TubeCentreLine {
+class TubeCentreLine : public TubeSurface {
  public:
   /// The centre line of parametric_mandrel's bent tube: segments[i] straight (mm, >= 0), then
   /// bends[i]; bends.size() == segments.size() - 1.
   /// \throw InputError for a radius <= 0, a bend radius <= the tube radius or a size mismatch
   TubeCentreLine(double tube_radius, const std::vector<double>& segments,
                  const std::vector<TubeBend>& bends);
-  double length() const { return length_; }
+  double length() const override { return length_; }
   double tube_radius() const { return r_; }
   /// The frame at s (beyond [0, length()] the end pieces continue straight).
   TubeFrame frame(double s) const;
   /// Surface point and unit outward normal at (s, theta).
-  Vec3 point(double s, double theta) const;
-  Vec3 normal(double s, double theta) const;
+  Vec3 point(double s, double theta) const override;
+  Vec3 normal(double s, double theta) const override;
   /// Stretch h and its theta derivative at (s, theta) (see the header comment).
   double stretch(double s, double theta) const;
   double stretch_theta(double s, double theta) const;
@@ -75,7 +76,7 @@ class TubeCentreLine {
   std::vector<Vec3> polyline(int per_bend) const;
   /// Nearest centre-line station of p (mm, clamped to [0, length()]), its theta and the distance
   /// of p from that centre-line point (mm).
-  void locate(const Vec3& p, double* s, double* theta, double* distance) const;
+  void locate(const Vec3& p, double* s, double* theta, double* distance) const override;
   /// [s0, s1) of each bend (mm) with its curvature.
   struct BendSpan {
     double s0 = 0.0, s1 = 0.0, kappa = 0.0, toward = 0.0;
@@ -89,6 +90,15 @@ class TubeCentreLine {
   double stretch_theta(const BendSpan* b, double theta) const;
   double normal_curvature(const BendSpan* b, double theta, double a) const;
   double geodesic_turn(const BendSpan* b, double theta, double a) const;
+  /// TubeSurface: the pieces are the bends (index into bends(); -1 on a straight piece), their
+  /// ends the bends' ends; rates from the closed forms (w = -geodesic_turn, e1 = t).
+  int piece_at(double s) const override;
+  std::vector<double> piece_ends() const override;
+  Rates rates(int piece, double s, double theta, double a) const override;
+  using TubeSurface::rates;
+  double section_radius() const override { return r_; }
+  /// constant_angle_demand (below).
+  ConstantAngleDemand demand(double s0, double s1, double a) const override;
 
  private:
   struct Piece {
@@ -109,13 +119,8 @@ class TubeCentreLine {
 double constant_angle_slippage(const TubeCentreLine& line, double s, double theta, double a);
 
 /// The worst of constant_angle_slippage over the stations [s0, s1] and every theta (sampled at
-/// 0.05 deg; within a bend it does not depend on s): the value, where, and the least k_n.
-struct ConstantAngleDemand {
-  double slippage = 0.0;       ///< max |k_g / k_n| (inf where k_n <= 0 somewhere)
-  double s = 0.0;              ///< station of the worst (mm)
-  double theta_outside = 0.0;  ///< its angle from the outside of the bend (rad, in (-pi, pi])
-  double min_k_n = 0.0;        ///< least k_n over the region (1/mm)
-};
+/// 0.05 deg; within a bend it does not depend on s): the value, where (theta_outside from the
+/// outside of the bend), and the least k_n.
 ConstantAngleDemand constant_angle_demand(const TubeCentreLine& line, double s0, double s1,
                                           double a);
 

@@ -12,12 +12,21 @@
 
 #include "planner/plan/plan.h"
 #include "planner/winding/tube_centre_line.h"
+#include "planner/winding/tube_surface.h"
 
 namespace windplan {
 
 /// Coverage at `stations` (>= 2) stations evenly from s0 to s1 (mm along the centre line).
 /// Overlaps and spacing are not measured (0).
 CoverageReport measure_tube_coverage(const TubeCentreLine& line,
+                                     const std::vector<Circuit>& circuits, double band_width,
+                                     double s0, double s1, int stations);
+
+/// The same on any tube surface (planner/winding/tube_surface.h), for the fitted mesh tubes: the
+/// section at s is the loop P(s, theta) in 3600 bins of theta, each as long as its chord; a
+/// band's trace is B / |T . nu| long (nu the loop's in-surface normal), laid bin by bin both ways
+/// from the crossing; bare fractions and gaps are lengths along the loop.
+CoverageReport measure_tube_coverage(const TubeSurface& surface,
                                      const std::vector<Circuit>& circuits, double band_width,
                                      double s0, double s1, int stations);
 

@@ -28,21 +28,17 @@ struct Law {
   double lambda = 0.0;
 };
 
-using Bend = TubeCentreLine::BendSpan;
-
-// The rates with the piece `b` fixed over a step (its formulas are smooth beyond its ends).
-State rate(const TubeCentreLine& line, const State& y, const Law& law, const Bend* b) {
-  const double r = line.tube_radius();
+// The rates with the piece `pc` fixed over a step (its formulas are smooth beyond its ends).
+State rate(const TubeSurface& line, const State& y, const Law& law, int pc) {
+  const TubeSurface::Rates q = line.rates(pc, y.s, y.th, y.a);
   State d;
-  d.s = std::cos(y.a) / line.stretch(b, y.th);
-  d.th = std::sin(y.a) / r;
-  d.a = law.hold ? 0.0
-                 : line.geodesic_turn(b, y.th, y.a) +
-                       law.sigma * law.lambda * line.normal_curvature(b, y.th, y.a);
+  d.s = q.ds;
+  d.th = q.dth;
+  d.a = law.hold ? 0.0 : -q.w + law.sigma * law.lambda * q.k_n;
   return d;
 }
 
-State rk4(const TubeCentreLine& line, const State& y, double h, const Law& law, const Bend* b) {
+State rk4(const TubeSurface& line, const State& y, double h, const Law& law, int b) {
   auto add = [](const State& a, const State& c, double t) {
     return State{a.s + t * c.s, a.th + t * c.th, a.a + t * c.a};
   };
@@ -60,8 +56,8 @@ State rk4(const TubeCentreLine& line, const State& y, double h, const Law& law, 
 // The largest step in (lo, hi] whose end keeps g(end) on the side of `neg` (bisection): where
 // g changes sign within the step, to ~1e-15 of it.
 template <typename G>
-double bisect_step(const TubeCentreLine& line, const State& y, const Law& law, const Bend* b,
-                   double hi, bool neg, G g) {
+double bisect_step(const TubeSurface& line, const State& y, const Law& law, int b, double hi,
+                   bool neg, G g) {
   double lo = 0.0;
   for (int it = 0; it < 55; ++it) {
     const double mid = 0.5 * (lo + hi);
@@ -70,41 +66,101 @@ double bisect_step(const TubeCentreLine& line, const State& y, const Law& law, c
   return hi;
 }
 
-// Traces from y until event(y) changes sign (located by bisection on the last step); appends
-// the states after y to `out` when given. Returns the end state; `length` adds the fibre. A step
-// that would cross the end of a bend is cut to end on it (so that a step never mixes two
+// One step of a trace from y: 1 mm, cut to end on a piece's end (so that a step never mixes two
 // pieces' rates: the path is then smooth in its start, which the pattern's root finding needs).
-State trace(const TubeCentreLine& line, State y, const Law& law,
+struct Step {
+  State y, n;  // from, to
+  double h = 0.0;
+  int piece = -1;
+};
+
+Step next_step(const TubeSurface& line, const State& y, const Law& law,
+               const std::vector<double>& edges) {
+  Step st;
+  st.y = y;
+  st.piece = line.piece_at(y.s + (std::cos(y.a) >= 0.0 ? 1e-9 : -1e-9));
+  st.h = kStep;
+  st.n = rk4(line, y, st.h, law, st.piece);
+  for (double edge : edges) {
+    if ((y.s - edge) * (st.n.s - edge) < 0.0) {
+      st.h = bisect_step(line, y, law, st.piece, st.h, y.s < edge,
+                         [edge](const State& q) { return q.s - edge; });
+      st.n = rk4(line, y, st.h, law, st.piece);
+    }
+  }
+  return st;
+}
+
+// The step `st` ended past the event: the part of it up to the event (bisection).
+State last_step(const TubeSurface& line, const Step& st, const Law& law, bool neg0,
+                const std::function<double(const State&)>& event, double* h) {
+  *h = bisect_step(line, st.y, law, st.piece, st.h, neg0, event);
+  return rk4(line, st.y, *h, law, st.piece);
+}
+
+constexpr char kNoEnd[] = "winding.slippage: a friction path never met its end in 100 m of fibre";
+
+// Traces from y until event(y) changes sign (located by bisection on the last step); appends
+// the states after y to `out` when given. Returns the end state; `length` adds the fibre.
+State trace(const TubeSurface& line, State y, const Law& law,
             const std::function<double(const State&)>& event, std::vector<State>* out,
             double* length) {
   const bool neg0 = event(y) < 0.0;
+  const std::vector<double> edges = line.piece_ends();
   for (double l = 0.0; l < 1e5;) {
-    const Bend* b = line.bend_at(y.s + (std::cos(y.a) >= 0.0 ? 1e-9 : -1e-9));
-    double h = kStep;
-    State n = rk4(line, y, h, law, b);
-    for (const Bend& sp : line.bends()) {
-      for (double edge : {sp.s0, sp.s1}) {
-        if ((y.s - edge) * (n.s - edge) < 0.0) {
-          h = bisect_step(line, y, law, b, h, y.s < edge,
-                          [edge](const State& q) { return q.s - edge; });
-          n = rk4(line, y, h, law, b);
-        }
-      }
-    }
-    if ((event(n) < 0.0) != neg0) {
-      h = bisect_step(line, y, law, b, h, neg0, event);
-      n = rk4(line, y, h, law, b);
+    const Step st = next_step(line, y, law, edges);
+    if ((event(st.n) < 0.0) != neg0) {
+      double h = 0.0;
+      const State n = last_step(line, st, law, neg0, event, &h);
       if (out) out->push_back(n);
       *length += h;
       return n;
     }
-    if (out) out->push_back(n);
-    *length += h;
-    l += h;
-    y = n;
+    if (out) out->push_back(st.n);
+    *length += st.h;
+    l += st.h;
+    y = st.n;
   }
-  throw ConfigError("winding.slippage: a friction path never met its end in 100 m of fibre");
+  throw ConfigError(kNoEnd);
 }
+
+// A pass (held at its angle) from y0, its steps kept: traced to a station `leave` again and
+// again (the shooting for a turnaround's apex) it is stepped once; the same steps, so the same
+// states, as trace() would take.
+class HeldPass {
+ public:
+  HeldPass(const TubeSurface& line, const State& y0)
+      : line_(line), y0_(y0), edges_(line.piece_ends()) {}
+  State to_station(double leave, std::vector<State>* out, double* length) {
+    auto event = [leave](const State& y) { return y.s - leave; };
+    const bool neg0 = event(y0_) < 0.0;
+    double l = 0.0;
+    for (std::size_t i = 0;; ++i) {
+      if (i == steps_.size()) {
+        if (l >= 1e5) throw ConfigError(kNoEnd);
+        steps_.push_back(next_step(line_, i == 0 ? y0_ : steps_.back().n, kHold, edges_));
+      }
+      const Step& st = steps_[i];
+      if ((event(st.n) < 0.0) != neg0) {
+        double h = 0.0;
+        const State n = last_step(line_, st, kHold, neg0, event, &h);
+        if (out) out->push_back(n);
+        *length += h;
+        return n;
+      }
+      if (out) out->push_back(st.n);
+      *length += st.h;
+      l += st.h;
+    }
+  }
+
+ private:
+  static constexpr Law kHold{true, 1, 0.0};
+  const TubeSurface& line_;
+  State y0_;
+  std::vector<double> edges_;
+  std::vector<Step> steps_;
+};
 
 // One circuit, apex to apex.
 struct OneCircuit {
@@ -117,10 +173,21 @@ struct OneCircuit {
 
 class Planner {
  public:
-  Planner(const TubeCentreLine& line, double a0, double lambda, std::array<double, 2> apex)
+  Planner(const TubeSurface& line, double a0, double lambda, std::array<double, 2> apex)
       : line_(line), a0_(a0), lambda_(lambda), apex_(apex) {
     // The straight-leg closed form of a turnaround half's centre line (the first guess).
-    half_ = line.tube_radius() * (1.0 / std::sin(a0) - 1.0) / lambda;
+    half_ = line.section_radius() * (1.0 / std::sin(a0) - 1.0) / lambda;
+  }
+
+  // The even angle at the station s_ref of the pass that leaves the start apex at theta (the
+  // pass continued at a0 past its far turnaround when s_ref lies beyond it).
+  double phase(double theta, double s_ref) const {
+    State y{apex_[0], theta, 0.5 * M_PI};
+    double len = 0.0;
+    y = trace(line_, y, {false, -1, lambda_}, angle_event(a0_), nullptr, &len);
+    y = trace(
+        line_, y, {true, 1, 0.0}, [s_ref](const State& q) { return q.s - s_ref; }, nullptr, &len);
+    return line_.even_angle(s_ref, y.th);
   }
 
   // The circuit from the start apex at theta with the far apex moved inward by delta.
@@ -154,8 +221,9 @@ class Planner {
                       double* turn, double* span) const {
     const double dir = end == 1 ? 1.0 : -1.0;
     const int sigma = end == 1 ? 1 : -1;
-    double leave = target - dir * half_;
+    double leave = target - dir * half_, prev_leave = leave, prev_err = 0.0;
     const std::size_t keep_from = out ? out->size() : 0;
+    HeldPass pass(line_, y0);
     for (int it = 0;; ++it) {
       if (dir * (leave - y0.s) < 0.0) {
         throw ConfigError(
@@ -167,8 +235,7 @@ class Planner {
       }
       if (out) out->resize(keep_from);
       double l_pass = 0.0, l_turn = 0.0;
-      const State at = trace(
-          line_, y0, {true, 1, 0.0}, [leave](const State& y) { return y.s - leave; }, out, &l_pass);
+      const State at = pass.to_station(leave, out, &l_pass);
       const State apex =
           trace(line_, at, {false, sigma, lambda_}, angle_event(0.5 * M_PI), out, &l_turn);
       const double err = apex.s - target;
@@ -178,11 +245,21 @@ class Planner {
         *span += dir * (apex.s - at.s);
         return apex;
       }
-      leave -= err;
+      // The apex moves about as much as the leaving point (exactly so on a circular straight
+      // leg, where the first step lands); elsewhere (a bend, an oval section) by the secant's
+      // slope, so the shooting converges where the plain step would oscillate.
+      double next = leave - err;
+      if (it > 0 && leave != prev_leave) {
+        const double slope = (err - prev_err) / (leave - prev_leave);
+        if (slope > 0.05 && slope < 20.0) next = leave - err / slope;
+      }
+      prev_leave = leave;
+      prev_err = err;
+      leave = next;
     }
   }
 
-  const TubeCentreLine& line_;
+  const TubeSurface& line_;
   double a0_ = 0.0, lambda_ = 0.0, half_ = 0.0;
   std::array<double, 2> apex_;
 };
@@ -190,10 +267,10 @@ class Planner {
 // Ends on rings of pins (winding.pins): the passes run at a0 between the pin circles and dwell
 // along them (Kind::Turnaround segments, held by the pins): the far dwell of circuit k is chosen
 // (regula falsi) so that the circuit advances by exactly A, the start dwell is one pin pitch.
-void plan_pinned(const TubeCentreLine& line, double s0, double s1, double a0, const Mesh& annulus,
+void plan_pinned(const TubeSurface& line, double s0, double s1, double a0, const Mesh& annulus,
                  const std::vector<int>& face_map, const SpindleAxis& axis, const WindingOptions& o,
                  TubeFrictionWinding* w) {
-  const double r = line.tube_radius(), B = o.band_width, d = o.pin_diameter;
+  const double r = line.section_radius(), B = o.band_width, d = o.pin_diameter;
   const int N = o.pin_count, K = w->K;
   const double offset = std::isnan(o.pin_offset) ? 0.5 * B + d : o.pin_offset;
   const double pitch = 2.0 * M_PI / N;
@@ -236,9 +313,12 @@ void plan_pinned(const TubeCentreLine& line, double s0, double s1, double a0, co
     c.end = State{ring[0], b.th + pitch, a0};
     return c;
   };
-  auto advance = [&](double theta, double phi) {
+  // Advances are measured in the even angle at the start ring (planner/winding/tube_surface.h:
+  // theta itself on a circular section), so the circuits' starts are spread evenly along it.
+  auto advance = [&](double psi, double phi) {
     ++w->summary.evaluations;
-    return circuit(theta, phi, false).end.th - theta;
+    const double theta = line.from_even_angle(ring[0], psi);
+    return line.even_angle(ring[0], circuit(theta, phi, false).end.th) - psi;
   };
   double most = -1e300, least = 1e300;
   for (int j = 0; j < 48; ++j) {
@@ -312,7 +392,7 @@ void plan_pinned(const TubeCentreLine& line, double s0, double s1, double a0, co
   const double window = o.curvature_window > 0.0 ? o.curvature_window : o.band_width;
   theta = 0.0;
   for (int k = 0; k < K; ++k) {
-    w->starts_deg.push_back(theta * 180.0 / M_PI);
+    w->starts_deg.push_back(line.even_angle(ring[0], theta) * 180.0 / M_PI);
     const Run c = circuit(theta, phis[k], true);
     Circuit circ;
     circ.index = k;
@@ -348,8 +428,8 @@ void plan_pinned(const TubeCentreLine& line, double s0, double s1, double a0, co
 
 }  // namespace
 
-double tube_turns_per_pass(const TubeCentreLine& line, double s0, double s1, double a0,
-                           double lambda, double band_width) {
+double tube_turns_per_pass(const TubeSurface& line, double s0, double s1, double a0, double lambda,
+                           double band_width) {
   const Planner planner(line, a0, lambda, {s0 + 0.5 * band_width, s1 - 0.5 * band_width});
   double sum = 0.0;
   const int n = 8;
@@ -360,7 +440,7 @@ double tube_turns_per_pass(const TubeCentreLine& line, double s0, double s1, dou
   return sum / n / (4.0 * M_PI);
 }
 
-double tube_angle_for_turns(const TubeCentreLine& line, double s0, double s1,
+double tube_angle_for_turns(const TubeSurface& line, double s0, double s1,
                             const WindingOptions& o) {
   // Turns grow with the angle; an angle whose turnarounds do not fit turns too little.
   auto turns = [&](double a) {
@@ -418,7 +498,7 @@ std::string TubeFrictionSummary::brief_report() const {
          " circuit traces: " + termination;
 }
 
-TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, double s1,
+TubeFrictionWinding plan_tube_friction(const TubeSurface& line, double s0, double s1,
                                        const Mesh& annulus, const std::vector<int>& face_map,
                                        const SpindleAxis& axis, const WindingOptions& o,
                                        double turnaround_slippage) {
@@ -442,14 +522,23 @@ TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, do
                                                       format_fixed(angle_deg, 2) + " deg)"
                                                 : "winding.angle " + format_turns(o.angle) + " deg";
   w.bound = o.slippage;
-  const ConstantAngleDemand d = constant_angle_demand(line, s0, s1, a0);
+  const ConstantAngleDemand d = line.demand(s0, s1, a0);
   w.required = d.slippage;
   w.required_s = d.s;
   w.required_theta_deg = d.theta_outside * 180.0 / M_PI;
   if (!(d.min_k_n > 0.0)) {
-    throw ConfigError(asked + ": on the inside of the bend the fibre would bridge (k_n " +
-                      format_fixed(d.min_k_n * 1000.0, 3) +
-                      " /m <= 0): friction cannot hold it; use a higher angle");
+    if (line.even_is_theta()) {
+      throw ConfigError(asked + ": on the inside of the bend the fibre would bridge (k_n " +
+                        format_fixed(d.min_k_n * 1000.0, 3) +
+                        " /m <= 0): friction cannot hold it; use a higher angle");
+    }
+    // A fitted section: flat sides (a rounded rectangle's, where the fitted series ripples
+    // below 0) or concave ones, or the inside of a bend.
+    throw ConfigError(asked + ": the fibre would bridge where the tube is flat or concave across " +
+                      "it (k_n " + format_fixed(d.min_k_n * 1000.0, 3) +
+                      " /m <= 0 on the fitted surface: the inside of a bend, or a flat or " +
+                      "concave side of the section): friction cannot hold it; use a higher " +
+                      "angle, a gentler bend or a section with no flat sides");
   }
   if (d.slippage > o.slippage) {
     throw ConfigError(
@@ -460,7 +549,7 @@ TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, do
         format_turns(o.mu) + "): a slippage of " + format_fixed(d.slippage, 3) +
         (d.slippage <= o.mu ? "" : " with a mu to match") + ", a higher angle or a gentler bend");
   }
-  const double B = o.band_width, r = line.tube_radius();
+  const double B = o.band_width, r = line.section_radius();
   const std::array<double, 2> apex = {s0 + 0.5 * B, s1 - 0.5 * B};
   w.apex_s = apex;
   w.K = o.circuits > 0 ? o.circuits
@@ -481,9 +570,19 @@ TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, do
   const Planner planner(line, a0, lambda, apex);
   // The advance of one circuit entering at theta with the far apex moved in by delta: shorter
   // passes turn less, about 2 delta tan(a0) / r per circuit.
-  auto advance = [&](double theta, double delta) {
+  // Measured in the phase of a start: theta on a circular tube; on any other section the even
+  // angle (planner/winding/tube_surface.h) at mid-region of the pass that leaves it (where the
+  // turnarounds, longer where the section is flatter, no longer shift the passes), so the
+  // passes are spread evenly along the section loops rather than their starts in theta.
+  const bool even_theta = line.even_is_theta();
+  const double s_ref = 0.5 * (s0 + s1);
+  auto phase = [&](double theta) { return even_theta ? theta : planner.phase(theta, s_ref); };
+  auto advance_from = [&](double theta, double phase_theta, double delta) {
     ++w.summary.evaluations;
-    return planner.circuit(theta, delta, false).end.th - theta;
+    return phase(planner.circuit(theta, delta, false).end.th) - phase_theta;
+  };
+  auto advance = [&](double theta, double delta) {
+    return advance_from(theta, phase(theta), delta);
   };
   double least = std::numeric_limits<double>::infinity(), most = 0.0;
   for (int j = 0; j < 48; ++j) {
@@ -509,8 +608,10 @@ TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, do
   const double per_mm = 2.0 * std::tan(a0) / r;  // rad of advance per mm of delta
   const double limit = 0.25 * (s1 - s0);
   std::vector<double> deltas(K, 0.0);
-  double theta = 0.0;
+  double theta = 0.0, phase_k = phase(theta);
   for (int k = 0; k < K; ++k) {
+    // (phase_k: circuit k's target phase; theta its start, where the chain puts it)
+    auto advance = [&](double th, double delta) { return advance_from(th, phase_k, delta); };
     const double f0 = advance(theta, 0.0) - A;
     double delta = 0.0;
     if (f0 > 1e-10) {
@@ -548,14 +649,20 @@ TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, do
       }
     }
     deltas[k] = delta;
-    theta += A;
+    if (even_theta) {
+      theta += A;
+      phase_k = theta;
+    } else {
+      theta = planner.circuit(theta, delta, false).end.th;
+      phase_k += A;
+    }
   }
   // The circuits, chained: each starts where the last ended.
   std::vector<OneCircuit> chain;
   theta = 0.0;
   for (int k = 0; k < K; ++k) {
     chain.push_back(planner.circuit(theta, deltas[k], true));
-    w.starts_deg.push_back(theta * 180.0 / M_PI);
+    w.starts_deg.push_back((phase(theta) - phase(0.0)) * 180.0 / M_PI);
     theta = chain.back().end.th;
     w.turnaround_length += chain.back().turn;
     w.fibre_length += chain.back().turn + chain.back().len;

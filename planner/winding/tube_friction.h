@@ -1,6 +1,8 @@
 #pragma once
-// Friction (semi-geodesic) winding of a circular tube that is no shape of revolution (a bent tube
-// or elbow), in the tube coordinates of planner/winding/tube_centre_line.h: a layer at a constant
+// Friction (semi-geodesic) winding of a tube that is no shape of revolution, on a TubeSurface
+// (planner/winding/tube_surface.h: a bent tube or elbow's closed forms in
+// planner/winding/tube_centre_line.h, or the smooth fit of any mesh, CAD or oval tube in
+// planner/winding/mesh_tube_surface.h; formulas below for the circular tube): a layer at a constant
 // winding angle a0 to the centre line (winding.angle, or the angle whose passes make
 // winding.turns: tube_angle_for_turns), held by friction where the bend asks for it, turning
 // around by friction inside the wound region.
@@ -32,7 +34,10 @@
 // k, entering at theta_k = k A, has its far apex moved inward by the delta_k (>= 0, found by
 // regula falsi) at which it advances by exactly A: the starts are spread exactly evenly,
 // p k / K of a turn, and the chain closes after K circuits (theta_K = K A = 2 pi (K m + p)).
-// p: winding's skip, or the largest advance's p coprime to K.
+// p: winding's skip, or the largest advance's p coprime to K. Where the section is no circle
+// (TubeSurface::even_is_theta false) advances are measured in the even angle (the fraction of
+// the loop's length) of the outgoing pass at mid-region, so those passes lie evenly along the
+// loop; the return passes follow the far turnarounds, which an oval spreads unevenly.
 // Pins (winding.pins: {count N, diameter d, offset x}): a ring of N pins on the section circle
 // at x (default B / 2 + d) inside each end instead of friction turnarounds. The passes run at a0
 // between the pin circles and dwell along them (Turnaround segments, held by the pins; the pins'
@@ -53,6 +58,7 @@
 #include "geometry/region/axis.h"
 #include "planner/plan/plan.h"
 #include "planner/winding/tube_centre_line.h"
+#include "planner/winding/tube_surface.h"
 #include "planner/winding/winding_options.h"
 
 namespace windplan {
@@ -96,15 +102,15 @@ struct TubeFrictionWinding {
 /// Mean turns of the section per pass (apex to apex, both apexes on their unmoved stations) of
 /// circuits at angle a0 (rad) entering at 8 evenly spread angles.
 /// \throw ConfigError when the turnarounds do not fit
-double tube_turns_per_pass(const TubeCentreLine& line, double s0, double s1, double a0,
-                           double lambda, double band_width);
+double tube_turns_per_pass(const TubeSurface& line, double s0, double s1, double a0, double lambda,
+                           double band_width);
 
 /// The angle a0 (rad) whose passes make winding.turns: the highest such angle in [5, 80] deg
 /// (turns are not monotone: at low angles the turnarounds wrap more), scanned down in 5 deg
 /// steps and refined by regula falsi on tube_turns_per_pass at lambda = winding.slippage. The
 /// closing apex moves then shorten passes a little: the plan reports the turns it made.
 /// \throw ConfigError naming winding.turns with the range that can be made
-double tube_angle_for_turns(const TubeCentreLine& line, double s0, double s1,
+double tube_angle_for_turns(const TubeSurface& line, double s0, double s1,
                             const WindingOptions& options);
 
 /// The planned layer (see the header comment) on the stations [s0, s1] of `line`. Points are
@@ -117,7 +123,7 @@ double tube_angle_for_turns(const TubeCentreLine& line, double s0, double s1,
 ///        or a circuit would need its far apex more than a quarter of the region inward.
 /// \param turnaround_slippage lambda of the friction turnarounds (NaN: winding.slippage; below
 ///        it when the laid turnarounds measure above mu, planner/winding/tube_friction_within_mu.h)
-TubeFrictionWinding plan_tube_friction(const TubeCentreLine& line, double s0, double s1,
+TubeFrictionWinding plan_tube_friction(const TubeSurface& line, double s0, double s1,
                                        const Mesh& annulus, const std::vector<int>& face_map,
                                        const SpindleAxis& axis, const WindingOptions& options,
                                        double turnaround_slippage = std::nan(""));

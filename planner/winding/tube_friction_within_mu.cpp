@@ -20,7 +20,7 @@ struct Worst {
 
 // The largest measured |k_g / k_n| of the laid points (pins: of the Pass segments only), where
 // it is and whether the fibre there runs at a0 (a pass) or turns (a turnaround).
-Worst worst_point(const TubeCentreLine& line, const TubeFrictionWinding& w, double a0) {
+Worst worst_point(const TubeSurface& line, const TubeFrictionWinding& w, double a0) {
   Worst out;
   for (const Circuit& c : w.circuits) {
     for (const CircuitSegment& seg : c.segments) {
@@ -30,7 +30,10 @@ Worst worst_point(const TubeCentreLine& line, const TubeFrictionWinding& w, doub
         if (!(q.slippage > out.slippage)) continue;
         double s = 0.0, th = 0.0, d = 0.0;
         line.locate(q.position, &s, &th, &d);
-        const double ang = std::acos(std::min(1.0, std::abs(q.tangent.dot(line.frame(s).t))));
+        // The direction the angle is measured from: the surface's e1, along P_s (on a bent tube
+        // the centre line's tangent).
+        const Vec3 e1 = (line.point(s + 0.5, th) - line.point(s - 0.5, th)).normalized();
+        const double ang = std::acos(std::min(1.0, std::abs(q.tangent.dot(e1))));
         out = {q.slippage, s, std::abs(ang - a0) * 180.0 / M_PI < kOnPassDeg};
       }
     }
@@ -40,7 +43,7 @@ Worst worst_point(const TubeCentreLine& line, const TubeFrictionWinding& w, doub
 
 }  // namespace
 
-TubeFrictionWinding plan_tube_friction_within_mu(const TubeCentreLine& line, double s0, double s1,
+TubeFrictionWinding plan_tube_friction_within_mu(const TubeSurface& line, double s0, double s1,
                                                  const Mesh& annulus,
                                                  const std::vector<int>& face_map,
                                                  const SpindleAxis& axis, const WindingOptions& o) {

@@ -1,5 +1,5 @@
 #pragma once
-// A friction layer on a bent tube (planner/winding/tube_friction.h) whose laid points, measured
+// A friction layer on a tube (planner/winding/tube_friction.h, any tube_surface) whose laid points, measured
 // as an independent reader measures them (planner/winding/fibre_metrics.h: finite differences
 // over the curvature window on the points placed on the mesh), stay within winding.mu.
 //
@@ -26,7 +26,7 @@
 
 #include "geometry/mesh/mesh.h"
 #include "geometry/region/axis.h"
-#include "planner/winding/tube_centre_line.h"
+#include "planner/winding/tube_surface.h"
 #include "planner/winding/tube_friction.h"
 #include "planner/winding/winding_options.h"
 
@@ -37,7 +37,7 @@ namespace windplan {
 /// lambda laid) and summary say what was done.
 /// \throw ConfigError naming winding.slippage with the measured figure and its station when no
 ///        lambda keeps the laid points within mu; whatever plan_tube_friction throws
-TubeFrictionWinding plan_tube_friction_within_mu(const TubeCentreLine& line, double s0, double s1,
+TubeFrictionWinding plan_tube_friction_within_mu(const TubeSurface& line, double s0, double s1,
                                                  const Mesh& annulus,
                                                  const std::vector<int>& face_map,
                                                  const SpindleAxis& axis,

@@ -57,5 +57,28 @@ TEST(TubeCoverage, SyntheticBandsAndAHalfBandShift) {
   EXPECT_NEAR(bad.widest_gap, gap, 0.2);
 }
 
+// The same bands through the loop-length measure of any tube surface (the overload for fitted
+// mesh tubes: bins along the loop, traces B / |T . nu|): the same figures on the circle.
+TEST(TubeCoverage, LoopLengthMeasureAgreesOnTheCircle) {
+  const TubeCentreLine line(50, {400}, {});
+  const TubeSurface& surface = line;
+  const int K = 10;
+  const double a = M_PI / 4, r = 50;
+  const double B = 1.02 * 2 * M_PI * r * std::cos(a) / K;
+  const CoverageReport ok = measure_tube_coverage(surface, helices(line, K, a, 0.0), B, 50, 350, 8);
+  ASSERT_EQ(ok.stations.size(), 8u);
+  EXPECT_EQ(ok.bare_fraction, 0.0);
+  for (const StationCoverage& st : ok.stations) {
+    EXPECT_NEAR(st.loop_length, 2 * M_PI * r, 0.01);
+    EXPECT_NEAR(st.cover_factor, 1.02, 1e-3);
+  }
+  const double trace = B / std::cos(a);
+  const CoverageReport bad =
+      measure_tube_coverage(surface, helices(line, K, a, 0.5 * trace / r), B, 50, 350, 8);
+  const double gap = (0.5 - 0.02 * 1.0 / 1.02 * 1.0) * trace;
+  EXPECT_NEAR(bad.bare_fraction, gap / (2 * M_PI * r), 0.002);
+  EXPECT_NEAR(bad.widest_gap, gap, 0.3);
+}
+
 }  // namespace
 }  // namespace windplan

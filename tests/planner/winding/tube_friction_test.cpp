@@ -9,12 +9,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "geometry/base/errors.h"
 #include "planner/job/job.h"
 #include "planner/pipeline.h"
+#include "tests/test_data.h"
 
 namespace windplan {
 namespace {
@@ -300,6 +302,131 @@ TEST(TubeFriction, RefusesWhatItCannotHonour) {
     FAIL() << "pins on an oval geodesic job were ignored";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("winding.pins"), std::string::npos) << e.what();
+  }
+}
+
+// Off a bent tube: a straight tube of elliptical section (80 x 50, mandrel.source: section) is
+// planned on the fitted mesh surface (planner/winding/mesh_tube_surface.h). Read back with the
+// ellipse's own arc length: the outgoing passes cross the mid station evenly along the loop
+// (the pattern is closed on the even angle, not on theta), every laid point is within mu, and
+// the coverage is measured on the section loops.
+TEST(TubeFriction, OvalSectionLaysAClosedPatternEvenlyAlongTheLoop) {
+  const std::string yaml =
+      "name: oval\n"
+      "mandrel:\n"
+      "  source: section\n"
+      "  linear_deflection: 0.25\n"
+      "  angular_deflection: 5\n"
+      "  section:\n"
+      "    shape: ellipse\n"
+      "    semi_axes: [80, 50]\n"
+      "    length: 400\n"
+      "    ends: {type: flat}\n"
+      "winding:\n"
+      "  angle: 55\n"
+      "  slippage: 0.15\n"
+      "  band_width: 12\n"
+      "  mu: 0.2\n";
+  const PipelineResult r = plan_job(load_job_from_string(yaml, "/tmp/oval.yaml"));
+  ASSERT_TRUE(r.tube.friction);
+  ASSERT_TRUE(r.tube.surface);
+  const TubeFrictionWinding& w = r.tube.layer;
+  EXPECT_TRUE(w.summary.closed) << w.summary.brief_report();
+  EXPECT_LT(w.required, 0.01);  // developable: the passes are geodesics
+  // K = ceil(girth cos 55 / 12): the ellipse's girth is 413.9 mm.
+  EXPECT_EQ(w.K, 20);
+  EXPECT_LE(r.plan.metrics.max_slippage, 0.2);
+  const CoverageReport& cov = r.plan.metrics.coverage;
+  ASSERT_TRUE(cov.measured());
+  ASSERT_GE(cov.stations.size(), 12u);
+  for (const StationCoverage& st : cov.stations) {
+    EXPECT_NEAR(st.loop_length, 413.9, 0.5);
+    EXPECT_LT(st.family_bare[0], 0.005) << st.station;  // the evenly spread family covers
+  }
+  // The + family at z = 200, by the ellipse's arc length (Simpson, independent of the planner).
+  auto arc = [](double t) {
+    auto f = [](double u) { return std::hypot(80.0 * std::sin(u), 50.0 * std::cos(u)); };
+    const int n = 4000;
+    double sum = f(0.0) + f(t);
+    for (int i = 1; i < n; ++i) sum += (i % 2 ? 4.0 : 2.0) * f(t * i / n);
+    return sum * t / n / 3.0;
+  };
+  const double girth = arc(2.0 * M_PI);
+  std::vector<double> at;
+  for (const Circuit& c : r.plan.circuits) {
+    for (std::size_t i = 0; i + 1 < c.points.size(); ++i) {
+      const Vec3 a = c.points[i].position, b = c.points[i + 1].position;
+      if (!(a.z() < 200.0 && b.z() >= 200.0)) continue;
+      const Vec3 p = a + (200.0 - a.z()) / (b.z() - a.z()) * (b - a);
+      double t = std::atan2(p.y() / 50.0, p.x() / 80.0);
+      if (t < 0.0) t += 2.0 * M_PI;
+      at.push_back(arc(t));
+    }
+  }
+  ASSERT_EQ(at.size(), 20u);
+  std::sort(at.begin(), at.end());
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    const double gap = i + 1 < at.size() ? at[i + 1] - at[i] : at[0] + girth - at[i];
+    EXPECT_NEAR(gap, girth / 20.0, 0.5) << i;
+  }
+}
+
+// A rounded rectangle's flat sides have k_n = 0 at every angle (and the fitted series ripples
+// below it): refused, one line naming the bridge, before anything is traced.
+TEST(TubeFriction, RoundedRectangleSectionIsRefusedNamingTheBridge) {
+  const std::string yaml =
+      "name: rr\n"
+      "mandrel:\n"
+      "  source: section\n"
+      "  section:\n"
+      "    shape: rounded_rectangle\n"
+      "    width: 160\n"
+      "    height: 100\n"
+      "    corner_radius: 30\n"
+      "    length: 400\n"
+      "    ends: {type: flat}\n"
+      "winding:\n"
+      "  angle: 55\n"
+      "  slippage: 0.15\n"
+      "  band_width: 12\n";
+  try {
+    plan_job(load_job_from_string(yaml, "/tmp/rr.yaml"));
+    FAIL() << "a rounded rectangle was planned";
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("winding.angle 55 deg: the fibre would bridge"), std::string::npos) << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  }
+}
+
+// The shared bent-pipe.stl (units m, r 185, remeshed at 20 mm, region on centre-line stations):
+// 55 deg needs more than winding.slippage 0.15 on its bend; the refusal names the figure, found on
+// the fitted surface of the mesh, before anything is traced.
+TEST(TubeFriction, BentPipeMeshRefusesAnAngleFrictionCannotHold) {
+  WINDPLAN_REQUIRE_SHARED_MESH(path, "bent-pipe.stl");
+  const std::string yaml =
+      "name: bentpipe\n"
+      "mandrel:\n"
+      "  source: mesh\n"
+      "  file: " +
+      path.string() +
+      "\n"
+      "  units: m\n"
+      "  remesh: 20\n"
+      "  region:\n"
+      "    centre_line: {from: 50, to: 970}\n"
+      "winding:\n"
+      "  angle: 55\n"
+      "  slippage: 0.15\n"
+      "  band_width: 20\n"
+      "  mu: 0.2\n";
+  try {
+    plan_job(load_job_from_string(yaml, "/tmp/bentpipe.yaml"));
+    FAIL() << "55 deg on bent-pipe.stl was planned within slippage 0.15";
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("winding.angle 55 deg needs |k_g/k_n| up to 0.19"), std::string::npos) << m;
+    EXPECT_NE(m.find("above winding.slippage 0.15"), std::string::npos) << m;
   }
 }
 
