@@ -65,9 +65,9 @@ double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
 double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
 double norm(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 
-// One cache line: the walk along an edge's windows (Search::compete) reads h's neighbours'
-// b0, b1, next and state, one window after another at random places in memory (measured:
-// 7.4 windows visited per new window at 100K faces, most of them not overlapping it).
+// One cache line: the walk along an edge's windows (Search::compete) reads the b0, b1, next
+// and state of one listed window after another, at random places in memory (7.4 windows per
+// new window at 100K faces, most not overlapping it: bench/README.md, session 9).
 struct alignas(64) Window {
   int h;          // its edge's length is WindowMesh::frame[3 h] (Search::length)
   int parent;     // window propagated into this one; < 0: lit by vertex -(parent + 1)
