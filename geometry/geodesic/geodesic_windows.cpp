@@ -399,11 +399,12 @@ class Search {
   void push_window(const Window& w, double order, double bound) {
     if (!(bound < best_)) return;
     const int index = static_cast<int>(windows_.size());
-    int& first = head(w.h);
+    int& first = insert_after_ >= 0 ? windows_[insert_after_].next : head(w.h);
+    const int next = first;
+    first = index;
     windows_.push_back(w);
     windows_.back().bound = bound;
-    windows_.back().next = first;
-    first = index;
+    windows_.back().next = next;
     push({order, index});
     if (options_.max_windows > 0 && static_cast<long>(windows_.size()) > options_.max_windows)
       aborted_ = true;
@@ -456,6 +457,7 @@ class Search {
   bool compete(Window* w) {
     const double len = length(*w), tol = 1e-12 * len;
     const int sides[2] = {w->h, mesh_.twin(w->h)};
+    insert_after_ = -1;
     for (int side = 0; side < 2; ++side) {
       HalfedgeRecord& r = scratch_.halfedges[sides[side]];
       if (r.stamp != scratch_.stamp) continue;
@@ -466,6 +468,10 @@ class Search {
           *link = o.next;
           continue;
         }
+        // A halfedge's list is kept in the order of b0 (new windows are inserted there; a cut
+        // may move a b0 up and leave the order a little off, which only costs a cut missed):
+        // past w's end nothing overlaps it.
+        if (side == 0 ? o.b0 >= w->b1 : o.b0 >= len - w->b0) break;
         // o (queued: the others leave the list above) in w's frame.
         const bool same = side == 0;
         const double ob0 = same ? o.b0 : len - o.b1, ob1 = same ? o.b1 : len - o.b0;
@@ -532,10 +538,12 @@ class Search {
             o.b1 = len - c0;
           }
         }
-        if (o_beaten)
+        if (o_beaten) {
           *link = o.next;
-        else
+        } else {
+          if (side == 0 && o.b0 <= w->b0) insert_after_ = *link;
           link = &o.next;
+        }
       }
     }
     return true;
@@ -679,6 +687,7 @@ class Search {
   std::vector<double> corner_;
   std::vector<char> continues_;
   double best_;
+  int insert_after_ = -1;  // compete's place for w in its halfedge's list (-1: the head)
   const bool distance_order_;
   long vertex_events_ = 0;
   bool aborted_ = false;
