@@ -65,19 +65,34 @@ double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
 double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
 double norm(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 
-struct Window {
-  int h;  // its edge's length is WindowMesh::frame[3 h] (Search::length)
+// One cache line: the walk along an edge's windows (Search::compete) reads the b0, b1, next
+// and state of one listed window after another, at random places in memory (7.4 windows per
+// new window at 100K faces, most not overlapping it: bench/README.md, session 9).
+struct alignas(64) Window {
+  int h;          // its edge's length is WindowMesh::frame[3 h] (Search::length)
+  int parent;     // window propagated into this one; < 0: lit by vertex -(parent + 1)
+  int next = -1;  // the next window on the same edge (Scratch::head), -1: last
+  char state = kQueued;
   double b0, b1;
   Vec2 source;         // I in h's frame
   double sigma;        // distance of the pseudo-source from the source
-  int pseudo;          // pseudo-source vertex
-  int parent;          // window propagated into this one (-1: lit by `pseudo` directly)
   double bound = 0.0;  // lower bound of the paths to the target through the window (A* key)
-  int next = -1;       // the next window on the same edge (Scratch::head), -1: last
-  char state = kQueued;
 
   static constexpr char kQueued = 0, kPropagated = 1, kDead = 2;
 };
+static_assert(sizeof(Window) == 64, "a window fills one cache line");
+
+// A window lit by `parent` (>= 0), or by vertex -(parent + 1) directly.
+Window make_window(int h, double b0, double b1, Vec2 source, double sigma, int parent) {
+  Window w;
+  w.h = h;
+  w.parent = parent;
+  w.b0 = b0;
+  w.b1 = b1;
+  w.source = source;
+  w.sigma = sigma;
+  return w;
+}
 
 struct Event {
   double key;
@@ -113,9 +128,9 @@ struct HalfedgeRecord {
   double target_x, target_y;  // the target in h's frame (target_in_frame); NaN: not yet
 };
 
-// Per-thread buffers reused across queries (32 bytes per vertex, 40 per halfedge, plus about
-// 90 per window of the largest search so far): the records are valid when their stamp is the
-// query's (no O(V) clearing per query).
+// Per-thread buffers reused across queries (32 bytes per vertex, 40 per halfedge, plus 64 per
+// window and 16 per queue entry of the largest search so far): the records are valid when their
+// stamp is the query's (no O(V) clearing per query).
 struct Scratch {
   unsigned stamp = 0;
   std::vector<VertexRecord> vertices;
@@ -293,7 +308,7 @@ class Search {
       if (!(len > 0.0)) continue;
       const double x = (pv - a).dot(b - a) / len;
       const double y = -std::sqrt(std::max(0.0, (pv - a).squaredNorm() - x * x));
-      add_window({h, 0.0, len, {x, y}, d, v, -1});
+      add_window(make_window(h, 0.0, len, {x, y}, d, -(v + 1)));
     }
   }
 
@@ -384,11 +399,12 @@ class Search {
   void push_window(const Window& w, double order, double bound) {
     if (!(bound < best_)) return;
     const int index = static_cast<int>(windows_.size());
-    int& first = head(w.h);
+    int& first = insert_after_ >= 0 ? windows_[insert_after_].next : head(w.h);
+    const int next = first;
+    first = index;
     windows_.push_back(w);
     windows_.back().bound = bound;
-    windows_.back().next = first;
-    first = index;
+    windows_.back().next = next;
     push({order, index});
     if (options_.max_windows > 0 && static_cast<long>(windows_.size()) > options_.max_windows)
       aborted_ = true;
@@ -441,6 +457,7 @@ class Search {
   bool compete(Window* w) {
     const double len = length(*w), tol = 1e-12 * len;
     const int sides[2] = {w->h, mesh_.twin(w->h)};
+    insert_after_ = -1;
     for (int side = 0; side < 2; ++side) {
       HalfedgeRecord& r = scratch_.halfedges[sides[side]];
       if (r.stamp != scratch_.stamp) continue;
@@ -451,6 +468,10 @@ class Search {
           *link = o.next;
           continue;
         }
+        // A halfedge's list is kept in the order of b0 (new windows are inserted there; a cut
+        // may move a b0 up and leave the order a little off, which only costs a cut missed):
+        // past w's end nothing overlaps it.
+        if (side == 0 ? o.b0 >= w->b1 : o.b0 >= len - w->b0) break;
         // o (queued: the others leave the list above) in w's frame.
         const bool same = side == 0;
         const double ob0 = same ? o.b0 : len - o.b1, ob1 = same ? o.b1 : len - o.b0;
@@ -517,10 +538,12 @@ class Search {
             o.b1 = len - c0;
           }
         }
-        if (o_beaten)
+        if (o_beaten) {
           *link = o.next;
-        else
+        } else {
+          if (side == 0 && o.b0 <= w->b0) insert_after_ = *link;
           link = &o.next;
+        }
       }
     }
     return true;
@@ -576,7 +599,7 @@ class Search {
         const Vec2 p0{s0 * cx, s0 * cy};
         const bool beaten = dist(mesh_.to(h)) + norm(p0 - B) < w.sigma + norm(p0 - I);
         if (s1 > s0 && !beaten)
-          add_window({g, s0 * lac, s1 * lac, {dot(I, e), cross(e, I)}, w.sigma, w.pseudo, index});
+          add_window(make_window(g, s0 * lac, s1 * lac, {dot(I, e), cross(e, I)}, w.sigma, index));
       }
     }
     // Rays through [max(b0, xc), b1] leave through C -> B: the child on twin(next(h)), frame C.
@@ -592,7 +615,7 @@ class Search {
         const Vec2 p1{cx + s1 * (len - cx), cy - s1 * cy};
         const bool beaten = dist(mesh_.from(h)) + norm(p1 - A) < w.sigma + norm(p1 - I);
         if (s1 > s0 && !beaten)
-          add_window({g, s0 * lcb, s1 * lcb, {dot(r, e), cross(e, r)}, w.sigma, w.pseudo, index});
+          add_window(make_window(g, s0 * lcb, s1 * lcb, {dot(r, e), cross(e, r)}, w.sigma, index));
       }
     }
   }
@@ -613,7 +636,7 @@ class Search {
         for (int w = scratch_.vertices[u].provider_window; w >= 0; w = windows_[w].parent)
           chain.push_back(w);
         std::reverse(chain.begin(), chain.end());
-        v = windows_[chain.front()].pseudo;
+        v = -(windows_[chain.front()].parent + 1);
         for (const int w : chain) {
           const Window& x = windows_[w];
           leg.halfedges.push_back(mesh_.twin(x.h));
@@ -664,6 +687,7 @@ class Search {
   std::vector<double> corner_;
   std::vector<char> continues_;
   double best_;
+  int insert_after_ = -1;  // compete's place for w in its halfedge's list (-1: the head)
   const bool distance_order_;
   long vertex_events_ = 0;
   bool aborted_ = false;
