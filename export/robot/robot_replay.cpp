@@ -97,8 +97,11 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
     };
     const std::size_t lo = near > 20 ? near - 20 : 0;
     double d = search(lo, std::min(path.size(), near + 200));
-    if (d > 5.0) d = search(0,
-                            path.size());  // lost (a link, an edited program): everywhere
+    // Lost (a link, an edited program, or a path that comes back on itself, as a hoop layer's
+    // tie-on turn closes its circle: the window had followed the circle's end and put the targets
+    // of its middle 4.95 mm off, just under the 5 mm this used to wait for): everywhere. 0.1 mm is
+    // under every tolerance; a program on its plan (0.0001 mm) never searches.
+    if (d > 0.1) d = search(0, path.size());
     return d;
   };
   // The joints of every target, in order: each IK is seeded with the previous
