@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <vector>
 
 #include "cli/args.h"
 #include "cli/commands.h"
@@ -53,18 +54,44 @@ void write_simulate_report(const Args& args, const std::filesystem::path& progra
   std::cout << summary << "\n  report: " << out.string() << "\n";
 }
 
+/// The job planned as windplan run plans it: a layup (planner/plan_layup.h: every layer, each
+/// circuit on the surface its layer was wound on) or one layer.
+struct PlannedJob {
+  bool layered = false;
+  PipelineResult single;
+  LayupResult layup;
+  const WindingPlan& plan() const { return layered ? layup.plan : single.plan; }
+  const Mesh& mesh() const { return layered ? layup.mandrel.mesh : single.mandrel.mesh; }
+  /// Per circuit, the surface it was wound on (empty: the mandrel under all).
+  std::vector<const Mesh*> surfaces() const {
+    return layered ? layup_circuit_surfaces(layup) : std::vector<const Mesh*>{};
+  }
+};
+
+PlannedJob plan_as_run(const Job& job) {
+  PipelineOptions po;
+  PlannedJob p;
+  p.layered = !job.layers.empty() || job.design.present;
+  if (p.layered) {
+    p.layup = plan_layup(job, po);
+  } else {
+    p.single = plan_job(job, po);
+  }
+  return p;
+}
+
 /// A robot cell's program (export/robot/robot_replay.h).
 int simulate_robot(const Job& job, const std::filesystem::path& program_file, const Args& args) {
   const RobotProgram program = read_robot_program(program_file, job.machine.robot.dialect);
-  PipelineOptions po;
-  const PipelineResult r = plan_job(job, po);
+  const PlannedJob pj = plan_as_run(job);
+  const std::vector<const Mesh*> surfaces = pj.surfaces();
   // The planned motion: the eye path the targets are measured against.
-  const Motion planned = compute_motion(r.plan, job.machine, &r.mandrel.mesh);
+  const Motion planned = compute_motion(pj.plan(), job.machine, &pj.mesh(), surfaces);
   const RobotReplayResult rp =
-      replay_robot_program(program, r.plan, r.mandrel.mesh, job.machine, &planned);
+      replay_robot_program(program, pj.plan(), pj.mesh(), job.machine, &planned, {}, surfaces);
   JsonWriter j(2, 10);
   j.begin_object();
-  j.field("job", r.plan.job_name);
+  j.field("job", pj.plan().job_name);
   j.field("program", program_file.string());
   j.field("dialect", job.machine.robot.dialect);
   j.field("kind", job.machine.kind);
@@ -96,22 +123,10 @@ int run_simulate(const std::vector<std::string>& argv) {
   const std::string text = read_input_file(program_file, kProgramFileCap, "a G-code program");
   const GcodeProgram program = read_gcode(text, job.machine, program_file.string());
 
-  PipelineOptions po;
-  // A layup (as windplan run plans it: planner/plan_layup.h): every layer, each circuit replayed
-  // on the surface its layer was wound on.
-  const bool layered = !job.layers.empty() || job.design.present;
-  PipelineResult pr;
-  LayupResult layup;
-  if (layered) {
-    layup = plan_layup(job, po);
-  } else {
-    pr = plan_job(job, po);
-  }
-  const WindingPlan& plan = layered ? layup.plan : pr.plan;
-  const Mesh& mesh = layered ? layup.mandrel.mesh : pr.mandrel.mesh;
-  const ReplayResult rp =
-      replay_program(program, plan, mesh, job.machine, {},
-                     layered ? layup_circuit_surfaces(layup) : std::vector<const Mesh*>{});
+  // A layup: every layer, each circuit replayed on the surface its layer was wound on.
+  const PlannedJob pj = plan_as_run(job);
+  const WindingPlan& plan = pj.plan();
+  const ReplayResult rp = replay_program(program, plan, pj.mesh(), job.machine, {}, pj.surfaces());
 
   JsonWriter j(2, 10);
   j.begin_object();

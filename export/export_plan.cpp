@@ -125,7 +125,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
   r.directory = dir;
   r.machine = machine;
   r.timings = output.timings;
-  r.motion = compute_motion(plan, machine, &mandrel_mesh);
+  r.motion = compute_motion(plan, machine, &mandrel_mesh, context.circuit_surfaces);
   const bool robot = machine.kind == "robot";
   std::string program;
   std::vector<ProgramFile> robot_files;
@@ -149,7 +149,7 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
       for (const ProgramFile& f : robot_files) texts[f.name] = f.text;
       r.robot_replay =
           replay_robot_program(read_robot_program(texts, r.robot_main, machine.robot.dialect), plan,
-                               mandrel_mesh, machine, &r.motion);
+                               mandrel_mesh, machine, &r.motion, {}, context.circuit_surfaces);
       r.has_robot_replay = true;
       r.replay = r.robot_replay.fibre;
       r.has_replay = true;

@@ -54,8 +54,9 @@ struct ExportContext {
   /// export/files/layup_export.h): listed in ExportResult::files and the reports, before them.
   std::vector<std::string> also_written;
   /// Per circuit of the plan, the mesh of the surface it was wound on (a layup's layers:
-  /// planner/plan_layup.h layup_circuit_surfaces): the G-code replay walks each circuit on it.
-  /// Empty or null entries: the mandrel mesh.
+  /// planner/plan_layup.h layup_circuit_surfaces): the G-code and robot replays walk each
+  /// circuit on it, and a robot's eye keeps its clearance from it (compute_motion). Empty or null
+  /// entries: the mandrel mesh.
   std::vector<const Mesh*> circuit_surfaces;
 };
 

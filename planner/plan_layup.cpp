@@ -124,14 +124,20 @@ RadiusProfile envelope_profile(const RadiusProfile& surface, const RadiusProfile
 
 Mesh revolve_meridian(const MeridianPolyline& m, const SpindleAxis& axis, double edge) {
   if (!(edge > 0.0)) throw InputError("revolve: edge length must be > 0 mm");
-  std::vector<int> rings{0};
-  for (int i = 1; i + 1 < static_cast<int>(m.points.size()); ++i) {
-    if (m.s[i] - m.s[rings.back()] >= edge && m.s.back() - m.s[i] >= 0.5 * edge) rings.push_back(i);
-  }
-  rings.push_back(static_cast<int>(m.points.size()) - 1);
   double rmax = 0.0;
   for (const Vec2& p : m.points) rmax = std::max(rmax, p.y());
-  const int n = std::clamp(static_cast<int>(std::ceil(2.0 * M_PI * rmax / edge)), 48, 512);
+  const int n_edge = static_cast<int>(std::ceil(2.0 * M_PI * rmax / edge));
+  const int n = std::clamp(n_edge, 48, 512);
+  // Rings no farther apart than the spacing around when `edge` is longer than that: a pipe's
+  // mesh has triangles from end to end (edge 150 mm and more), and rings that far apart made
+  // the built surface a double cone, 1.2 mm under the laminate at the ends.
+  const double along = n_edge < 48 ? 2.0 * M_PI * rmax / 48 : edge;
+  std::vector<int> rings{0};
+  for (int i = 1; i + 1 < static_cast<int>(m.points.size()); ++i) {
+    if (m.s[i] - m.s[rings.back()] >= along && m.s.back() - m.s[i] >= 0.5 * along)
+      rings.push_back(i);
+  }
+  rings.push_back(static_cast<int>(m.points.size()) - 1);
   const Vec3 d = axis.direction.normalized();
   const Vec3 e1 = (std::abs(d.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(d).normalized();
   const Vec3 e2 = d.cross(e1);

@@ -73,7 +73,9 @@ struct LayupResult {
 };
 
 /// A surface of revolution meshed from a meridian: rings about `edge` mm apart along it (the
-/// ends kept), `edge` mm apart around it (48 to 512 per ring), each quad split in two, outward
+/// ends kept; no farther apart than the spacing around when `edge` needs fewer than 48 per ring:
+/// a pipe's mesh edges run end to end), `edge` mm apart around it (48 to 512 per ring), each
+/// quad split in two, outward
 /// normals. The winding surface is the whole mesh (an annulus).
 /// \throw InputError for edge <= 0.
 Mesh revolve_meridian(const MeridianPolyline& meridian, const SpindleAxis& axis, double edge);

@@ -192,7 +192,8 @@ void count_circuit_reversals(const Circuit& c, const std::vector<MachineState>& 
 
 }  // namespace
 
-Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const Mesh* mandrel) {
+Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const Mesh* mandrel,
+                      const std::vector<const Mesh*>& circuit_surfaces) {
   std::string why;
   if (!opts.is_valid(&why)) throw ConfigError("machine: " + why);
   Motion m;
@@ -217,6 +218,32 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
   const int n_axes = driven_axes(opts);
   std::unique_ptr<ClosestPointQuery> query;
   if (mandrel && mandrel->num_faces() > 0) query = std::make_unique<ClosestPointQuery>(*mandrel);
+  // A robot's eye on a layup keeps its clearance from the surface of the layer in work (each
+  // circuit's entry of circuit_surfaces; null or missing: the mandrel): one query per distinct
+  // surface, built once. Lathes measure on the mandrel (their envelope is the finished part's).
+  std::vector<const Mesh*> surface_meshes;
+  std::vector<std::unique_ptr<ClosestPointQuery>> surface_queries;
+  std::vector<int> surface_of(plan.circuits.size(), -1);  // -1: the mandrel and `query`
+  if (true_distance) {
+    for (std::size_t ci = 0; ci < plan.circuits.size() && ci < circuit_surfaces.size(); ++ci) {
+      const Mesh* sm = circuit_surfaces[ci];
+      if (!sm || sm == mandrel) continue;
+      if (sm->num_faces() == 0)
+        throw InputError("the surface under circuit " + std::to_string(ci) + " is empty");
+      auto it = std::find(surface_meshes.begin(), surface_meshes.end(), sm);
+      if (it == surface_meshes.end()) {
+        surface_meshes.push_back(sm);
+        surface_queries.push_back(std::make_unique<ClosestPointQuery>(*sm));
+        it = surface_meshes.end() - 1;
+      }
+      surface_of[ci] = static_cast<int>(it - surface_meshes.begin());
+    }
+    if (!surface_meshes.empty()) {
+      m.envelope =
+          "true distance " + num(opts.envelope.clearance) +
+          " mm from the surface of the layer in work (robot: the eye follows the laminate)";
+    }
+  }
   m.required_clearance = env.fixed_length ? 0.0 : opts.envelope.clearance;
   double min_clearance = std::numeric_limits<double>::infinity();
 
@@ -310,6 +337,9 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     const int n = static_cast<int>(c.points.size());
     if (n == 0) return;
     CircuitMotion& cm = per_circuit[ordinal];
+    const int so = surface_of[ordinal];
+    const Mesh* surface = so < 0 ? mandrel : surface_meshes[so];
+    const ClosestPointQuery* surface_query = so < 0 ? query.get() : surface_queries[so].get();
     try {
       std::vector<Vec3> fibre(n), eyes(n), raw_t(n);
       std::vector<double> s(n), kappa(n);
@@ -347,8 +377,8 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
         }
         try {
           if (true_distance) {
-            const ClearanceEye ce = solve_clearance_eye(*mandrel, *query, fibre[i], tangent[i],
-                                                        opts.envelope.clearance);
+            const ClearanceEye ce = solve_clearance_eye(*surface, *surface_query, fibre[i],
+                                                        tangent[i], opts.envelope.clearance);
             sol[i].eye = ce.eye;
             sol[i].free_length = ce.free_length;
             sol[i].iterations = ce.iterations;
@@ -367,19 +397,20 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
       int n_eyes = n;
       std::vector<int> first_of;  // dense index -> its entry in the (augmented) arrays
       if (true_distance) {
-        n_eyes = insert_corner_eyes(*mandrel, *query, opts.envelope.clearance, s, &fibre, &eyes,
-                                    &cm, &first_of);
+        n_eyes = insert_corner_eyes(*surface, *surface_query, opts.envelope.clearance, s, &fibre,
+                                    &eyes, &cm, &first_of);
       }
       if (query) {
-        cm.clearance = check_clearance(*query, eyes);
+        cm.clearance = check_clearance(*surface_query, eyes);
         if (cm.clearance.min_distance < m.required_clearance - opts.chord_tolerance) {
           const Vec3& e = cm.clearance.worst_eye;
-          throw InputError("machine.envelope: circuit " + std::to_string(c.index) + ", point " +
-                           std::to_string(cm.clearance.worst) + ": the eye at (" + num(e.x()) +
-                           ", " + num(e.y()) + ", " + num(e.z()) + ") mm is " +
-                           num(cm.clearance.min_distance) +
-                           " mm from the mandrel, less than the clearance " +
-                           num(m.required_clearance) + " mm (" + env.description + ")");
+          throw InputError(
+              "machine.envelope: circuit " + std::to_string(c.index) + ", point " +
+              std::to_string(cm.clearance.worst) + ": the eye at (" + num(e.x()) + ", " +
+              num(e.y()) + ", " + num(e.z()) + ") mm is " + num(cm.clearance.min_distance) +
+              (so < 0 ? " mm from the mandrel" : " mm from the surface it is wound on") +
+              ", less than the clearance " + num(m.required_clearance) + " mm (" + env.description +
+              ")");
         }
       }
       std::vector<int> forced;

@@ -8,7 +8,8 @@
 // chosen per machine kind (export/machine/eye_envelope.h: a cylinder for lathe2, the true-distance
 // clearance envelope for lathe4 and robots, or an explicit profile; or a fixed free length).
 // A robot with the mandrel mesh (kind robot, envelope.clearance) has no envelope of revolution:
-// its eye is the first point of the tangent line at the true clearance from the mesh
+// its eye is the first point of the tangent line at the true clearance from the mesh (a layup's
+// circuit: from the surface of its layer, circuit_surfaces below)
 // (export/machine/clearance_eye.h), with eyes inserted where the tangent turns by more than 2 deg
 // between two dense points, and its targets resampled in (X, Y, angle) as well (the cell's
 // interpolation), so that the eye keeps the clearance between them. The
@@ -158,10 +159,16 @@ int driven_axes(const MachineOptions& opts);
 
 /// Computes eye, axes, times and feeds of a plan. Circuits with no points are skipped.
 /// \param mandrel the mandrel mesh for the clearance check (nullptr: not checked)
+/// \param circuit_surfaces per circuit of plan.circuits, the mesh of the surface it was wound on
+///        (a layup: planner/plan_layup.h layup_circuit_surfaces, as export/program/replay.h takes
+///        it); null, missing entries or an empty list: the mandrel. A robot's true-distance eye
+///        (and its clearance check) is measured from the circuit's own surface, the layer in
+///        work; lathes measure on the mandrel (their envelope already clears the finished part).
 /// \throw InputError for an envelope inside the mandrel, a tangent that never leaves the
 ///        envelope, an eye closer to the mandrel than the clearance, or a machine value outside
 ///        an axis's travel limits (naming the axis, the value and the point as circuit/index).
 Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts,
-                      const Mesh* mandrel = nullptr);
+                      const Mesh* mandrel = nullptr,
+                      const std::vector<const Mesh*>& circuit_surfaces = {});
 
 }  // namespace windplan

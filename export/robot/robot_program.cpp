@@ -83,13 +83,18 @@ std::vector<ProgramFile> krl(const RobotMotion& m, const std::string& job, const
   dat += "ENDDAT\n";
   files.push_back({base + ".src", src});
   files.push_back({base + ".dat", dat});
+  // $VEL_EXTAX[1] holds from one part to the next (a system variable; the main program sets it
+  // to 100 before the first part): a part whose first move wants the value the previous part
+  // left writes nothing, any other writes it (before: every part assumed 100, and a part after
+  // one that ended at 0.000001% ran its first move at that, 1.8e6 s for 3.3 deg of E1).
+  std::string last_extax = "100.000000";
   for (std::size_t p = 0; p < parts.size(); ++p) {
     const std::string name = part_name(base, int(p) + 1);
     std::string s = "&ACCESS RVP\n&REL 1\nDEF " + name + "( )\n";
     s += "; targets " + std::to_string(parts[p].first + 1) + " to " +
          std::to_string(parts[p].second) + " of " + std::to_string(m.targets.size()) + "\n";
     std::string d = "&ACCESS RVP\n&REL 1\nDEFDAT " + name + " PUBLIC\n";
-    std::string last_vel, last_extax = "100.000000";
+    std::string last_vel;
     for (int i = parts[p].first; i < parts[p].second; ++i) {
       const RobotTarget& t = m.targets[i];
       const std::string var = "XP" + std::to_string(i + 1);

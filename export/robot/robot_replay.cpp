@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 
 #include "export/machine/kinematics.h"
 #include "export/robot/robot_kinematics.h"
@@ -24,7 +25,8 @@ std::string at(const RobotProgramTarget& t) { return t.file + ":" + std::to_stri
 
 RobotReplayResult replay_robot_program(const RobotProgram& program, const WindingPlan& plan,
                                        const Mesh& mandrel, const MachineOptions& machine,
-                                       const Motion* planned, const ReplayOptions& options) {
+                                       const Motion* planned, const ReplayOptions& options,
+                                       const std::vector<const Mesh*>& circuit_surfaces) {
   const auto t0 = std::chrono::steady_clock::now();
   const RobotOptions& ro = machine.robot;
   if (!ro.has_arm()) throw ConfigError("machine.robot.arm: replaying a robot program needs an arm");
@@ -35,7 +37,23 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
   const Eigen::Isometry3d positioner_inv = positioner.inverse();
   const Eigen::Isometry3d tool_inv = program.tool.inverse();
   const AxisFrame frame = make_axis_frame(plan.axis);
-  const ClosestPointQuery query(mandrel);
+  // The surfaces the links are measured to: the mandrel first, then every other surface a
+  // circuit was wound on (a layup's layers), each with its query.
+  std::vector<const Mesh*> meshes{&mandrel};
+  std::vector<int> circuit_mesh(plan.circuits.size(), 0);  // per circuit: its entry of `meshes`
+  for (std::size_t ci = 0; ci < plan.circuits.size() && ci < circuit_surfaces.size(); ++ci) {
+    const Mesh* m = circuit_surfaces[ci] ? circuit_surfaces[ci] : &mandrel;
+    auto it = std::find(meshes.begin(), meshes.end(), m);
+    if (it == meshes.end()) {
+      if (m->num_faces() == 0)
+        throw InputError("the mesh under circuit " + std::to_string(ci) + " is empty");
+      meshes.push_back(m);
+      it = meshes.end() - 1;
+    }
+    circuit_mesh[ci] = static_cast<int>(it - meshes.begin());
+  }
+  std::vector<std::unique_ptr<const ClosestPointQuery>> queries;
+  for (const Mesh* m : meshes) queries.push_back(std::make_unique<const ClosestPointQuery>(*m));
 
   RobotReplayResult r;
   r.targets = static_cast<int>(program.targets.size());
@@ -79,8 +97,11 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
     };
     const std::size_t lo = near > 20 ? near - 20 : 0;
     double d = search(lo, std::min(path.size(), near + 200));
-    if (d > 5.0) d = search(0,
-                            path.size());  // lost (a link, an edited program): everywhere
+    // Lost (a link, an edited program, or a path that comes back on itself, as a hoop layer's
+    // tie-on turn closes its circle: the window had followed the circle's end and put the targets
+    // of its middle 4.95 mm off, just under the 5 mm this used to wait for): everywhere. 0.1 mm is
+    // under every tolerance; a program on its plan (0.0001 mm) never searches.
+    if (d > 0.1) d = search(0, path.size());
     return d;
   };
   // The joints of every target, in order: each IK is seeded with the previous
@@ -90,6 +111,10 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
   std::vector<Joints> joints(n);
   std::vector<int> statuses(n);
   std::vector<Vec3> eye_cells(n), flanges(n), wrists(n);
+  // Per target, the entry of `meshes` of the layer in work: the circuit of the nearest planned
+  // eye (-1 without a planned motion: the links are measured to every surface, the nearest
+  // counts).
+  std::vector<int> target_mesh(n, meshes.size() == 1 ? 0 : -1);
   Joints seed = ro.home;
   for (std::size_t i = 0; i < n; ++i) {
     const RobotProgramTarget& t = program.targets[i];
@@ -124,7 +149,14 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
       const std::size_t end = std::min(n, static_cast<std::size_t>(c + 1) * kChunk);
       double prev_best = std::numeric_limits<double>::infinity();
       Vec3 prev_point = Vec3::Zero(), best_point = Vec3::Zero();
+      int prev_mesh = -2;
       for (std::size_t i = static_cast<std::size_t>(c) * kChunk; i < end; ++i) {
+        // The surface of the layer in work (all of them, the nearest counting, when unknown);
+        // the previous target's bound holds on the same surface only.
+        if (target_mesh[i] != prev_mesh) prev_best = std::numeric_limits<double>::infinity();
+        prev_mesh = target_mesh[i];
+        const std::size_t m_lo = target_mesh[i] < 0 ? 0 : target_mesh[i];
+        const std::size_t m_hi = target_mesh[i] < 0 ? meshes.size() : m_lo + 1;
         // The minimum over 5 points of the link, each query bounded by the best so far and by
         // the previous target's minimum plus how far from its point this one lies (the distance
         // to the mandrel is 1-Lipschitz; 1e-3 mm of slack for rounding): the same minimum as
@@ -137,10 +169,13 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
                 to_mandrel(wrists[i] + (flanges[i] - wrists[i]) * (k / 4.0), program.targets[i].e1);
             const double bound =
                 bounded ? std::min(best, prev_best + (p - prev_point).norm() + 1e-3) : best;
-            const ClosestPointQuery::Hit h = query.closest_within(p, bound * bound);
-            if (h.distance < best) {
-              best = h.distance;
-              best_point = p;
+            for (std::size_t mi = m_lo; mi < m_hi; ++mi) {
+              const double b = std::min(bound, best);
+              const ClosestPointQuery::Hit h = queries[mi]->closest_within(p, b * b);
+              if (h.distance < best) {
+                best = h.distance;
+                best_point = p;
+              }
             }
           }
           return best;
@@ -176,10 +211,21 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
     // The eye in the positioner frame, in the lathe model's axes.
     const Vec3 c = positioner_inv * eye_cell;
     if (!path.empty()) {
-      const double d = eye_deviation(to_mandrel(eye_cell, t.e1));
+      const Vec3 e = to_mandrel(eye_cell, t.e1);
+      const double d = eye_deviation(e);
       if (d > r.max_eye_deviation) {
         r.max_eye_deviation = d;
         r.max_eye_deviation_at = at(t);
+      }
+      if (meshes.size() > 1) {
+        // The nearer end of the nearest planned segment (a layer's first target lies on the
+        // segment from the previous layer's last eye).
+        std::size_t k = near;
+        if (k + 1 < path.size() && (e - path[k + 1]).norm() < (e - path[k]).norm()) ++k;
+        const int ordinal = planned->states[k].ordinal;
+        target_mesh[i] = ordinal >= 0 && ordinal < static_cast<int>(circuit_mesh.size())
+                             ? circuit_mesh[ordinal]
+                             : 0;
       }
     }
     double duration = 0.0;
@@ -248,7 +294,7 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
     a->max = std::numeric_limits<double>::infinity();
   }
   parallel_for_index(2, [&](int k) {
-    if (k == 0) r.fibre = replay_program(lathe, plan, mandrel, as_lathe, options);
+    if (k == 0) r.fibre = replay_program(lathe, plan, mandrel, as_lathe, options, circuit_surfaces);
     if (k == 1) link_clearances();
   });
   for (std::size_t i = 0; i < n; ++i) {

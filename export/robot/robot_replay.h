@@ -10,12 +10,13 @@
 // its axial position less the offset, Y = its distance from the axis). PTP / MoveJ tie the tow on
 // again (as a G0). Checked and reported: the largest deviation from the plan (and its file and
 // line), the eye's and the flange's and last link's (wrist centre to flange) smallest distance to
-// the mandrel, joint margins and the smallest |A5|, joint and E1 speeds against their limits,
-// configuration changes (Status) and the cycle time: KRL LIN max(TCP distance / $VEL.CP, |dE1| /
-// (E1 max velocity x $VEL_EXTAX[1] / 100)), RAPID \T, PTP / MoveJ the slowest joint at its
-// max_velocity. Errors (InputError naming the file and line): a target out of reach, a joint past
-// its limit.
+// the mandrel (a layup: to the surface of the layer in work, circuit_surfaces below), joint margins
+// and the smallest |A5|, joint and E1 speeds against their limits, configuration changes (Status)
+// and the cycle time: KRL LIN max(TCP distance / $VEL.CP, |dE1| / (E1 max velocity x $VEL_EXTAX[1]
+// / 100)), RAPID \T, PTP / MoveJ the slowest joint at its max_velocity. Errors (InputError naming
+// the file and line): a target out of reach, a joint past its limit.
 #include <string>
+#include <vector>
 
 #include "export/machine/kinematics.h"
 #include "export/program/replay.h"
@@ -49,9 +50,17 @@ struct RobotReplayResult {
 
 /// \throw InputError for an empty program or mesh, a target out of reach or past a joint limit
 /// \param planned the planned motion (nullptr: the eye path is not measured)
+/// \param circuit_surfaces per circuit of plan.circuits, the mesh of the surface it was wound on
+///        (a layup: planner/plan_layup.h layup_circuit_surfaces), handed to the G-code replay's
+///        fibre model as is (export/program/replay.h: each circuit walked, and the eye's
+///        clearance measured, on its own surface); null, missing entries or an empty list: the
+///        mandrel. The flange's and last link's clearance of a target is measured to the surface
+///        of the layer in work: that of the circuit of the nearest planned eye (without
+///        `planned`: the nearest of all the surfaces).
 RobotReplayResult replay_robot_program(const RobotProgram& program, const WindingPlan& plan,
                                        const Mesh& mandrel, const MachineOptions& machine,
                                        const Motion* planned = nullptr,
-                                       const ReplayOptions& options = {});
+                                       const ReplayOptions& options = {},
+                                       const std::vector<const Mesh*>& circuit_surfaces = {});
 
 }  // namespace windplan

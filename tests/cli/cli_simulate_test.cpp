@@ -70,6 +70,36 @@ TEST_F(CliSimulate, ALayupReplaysOnItsOwnSurfacesAsRunDoes) {
   EXPECT_DOUBLE_EQ(j["max_deviation_mm"].as<double>(), run_dev);
 }
 
+// A robot layup (two helical layers of thick tows on a pipe in the KR 16 cell): run writes a KRL
+// program whose replay walks each layer on its own surface, and simulate plans the job as run does
+// (before: it planned one layer on the bare mandrel, and the second layer's targets were refused
+// as off the plan), so both replays agree.
+TEST_F(CliSimulate, ARobotLayupReplaysOnItsOwnSurfacesAsRunDoes) {
+  write(dir_ / "rlayup.yaml",
+        "name: rlayup\n"
+        "mandrel: {source: pipe, angular_deflection: 3, pipe: {radius: 50, length: 200}}\n"
+        "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
+        "winding: {turns: 1, circuits: auto, band_width: 16}\n"
+        "layers:\n  - {kind: helical, name: inner}\n  - {kind: helical, name: outer}\n"
+        "machine: {profile: " +
+            (source_dir() / "configs" / "machines" / "robot_cell_kr16.yaml").string() +
+            ", replay_tolerance: 0.5}\n"
+            "output: {ply: false, svg: false, viewer: false}\n");
+  const RunResult w =
+      run({"run", (dir_ / "rlayup.yaml").string(), "--out", (dir_ / "rlayup").string()});
+  ASSERT_EQ(w.code, 0) << w.err;
+  const YAML::Node report = YAML::LoadFile((dir_ / "rlayup" / "report.json").string());
+  const double run_dev = report["motion"]["replay"]["max_deviation_mm"].as<double>();
+  EXPECT_LT(run_dev, 0.5);
+  const RunResult r = run({"simulate", (dir_ / "rlayup.yaml").string(),
+                           (dir_ / "rlayup" / "wp_rlayup.src").string(), "--json",
+                           (dir_ / "rlayup.json").string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const YAML::Node j = YAML::LoadFile((dir_ / "rlayup.json").string());
+  EXPECT_DOUBLE_EQ(j["max_deviation_mm"].as<double>(), run_dev);
+  EXPECT_GT(j["min_eye_clearance_mm"].as<double>(), 19.0);  // 20 mm off the layer in work
+}
+
 TEST_F(CliSimulate, BadProgramsAreExitOneNamingTheLine) {
   write(dir_ / "job.yaml", kJob);
   write(dir_ / "unknown.ngc", "%\nG21 G90 G93\nG0 X0 A0\nG1 X1 A1 Q2 F10\nM2\n%\n");

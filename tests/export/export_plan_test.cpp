@@ -476,12 +476,18 @@ TEST(ExportPlan, LayupReplaysEachLayerOnTheSurfaceItWasWoundOn) {
   const auto at = g.find("(layer 2 of 2");
   ASSERT_NE(at, std::string::npos);
   const int outer_line = 1 + static_cast<int>(std::count(g.begin(), g.begin() + at, '\n'));
-  // On the bare mandrel (before): the outer layer lands at least about its height off the plan.
+  // On the bare mandrel (before): the outer layer lands below its plan. The replay's tracker
+  // (the nearest planned point in a window along the whole plan) can meet the inner layer's path,
+  // which lies on the mandrel, and measure part of the outer layer against it (mean 0.37 mm where
+  // half the fibre laid t below its plan would give over 1.8), so the figure stays under t:
+  // 1.96 mm for t = 3.68 mm (3.86 mm while the outer layer was planned on a double cone, before
+  // revolve_meridian kept its rings close on a pipe's long-edged mesh).
   job.machine.replay_tolerance = 0;
   const fs::path b = temp_dir("layup_bare");
   const ExportResult bare = export_plan(layup.plan, layup.mandrel.mesh, job.machine, job.output, b);
   std::printf("bare mandrel: %s\n", bare.replay.summary.c_str());
-  EXPECT_GT(bare.replay.max_deviation, 0.9 * t);
+  EXPECT_GT(bare.replay.max_deviation, 0.4 * t);
+  EXPECT_GT(bare.replay.max_deviation, 2 * own.replay.max_deviation);
   EXPECT_GT(bare.replay.max_deviation_line, outer_line);
   // The same program either way: only the replay differs.
   EXPECT_EQ(read_text_file(b / "toolpath.ngc"), g);

@@ -125,6 +125,36 @@ TEST(Layup, RevolvedMeridianIsAnAnnulusOnTheMeridian) {
   }
 }
 
+// A pipe's laminate: 52.4 mm on the cylinder, tapering to 51.1 mm over the last 15 mm at each
+// end, revolved with the long edge of a pipe mesh (its triangles run end to end: 200 mm). The
+// rings stay as close along the meridian as around it (2 pi 52.4 / 48 = 6.9 mm), so every point
+// of the meridian lies on the mesh within the 48-gon's sag (0.11 mm) plus a ring chord across
+// the taper's knee (1.3 / 15 x 6.9 / 4 = 0.15 mm); with rings 200 mm apart the surface was a
+// double cone, 1.2 mm under the laminate at the ends.
+TEST(Layup, RevolvedMeridianKeepsItsTaperWithLongMeshEdges) {
+  std::vector<Vec2> pts;
+  for (int i = 0; i <= 600; ++i) {
+    const double x = 0.5 * i, e = std::min(x, 300.0 - x);
+    pts.emplace_back(x, e < 15.0 ? 51.1 + 1.3 * e / 15.0 : 52.4);
+  }
+  const MeridianPolyline m = MeridianPolyline::from_points(pts);
+  const Mesh mesh = revolve_meridian(m, SpindleAxis{}, 200.0);
+  const ClosestPointQuery q(mesh);
+  double worst = 0.0;
+  for (const Vec2& p : pts) {
+    for (double t : {0.0, 0.7, 2.1}) {
+      worst = std::max(worst,
+                       q.closest(Vec3(p.y() * std::cos(t), p.y() * std::sin(t), p.x())).distance);
+    }
+  }
+  EXPECT_LT(worst, 52.4 * (1 - std::cos(M_PI / 48)) + 1.3 / 15 * 6.9 / 4);
+  // A fine edge keeps its rings `edge` apart as before (vessel_layup's meshes): 2 mm on the
+  // 300 mm meridian, ceil(2 pi 52.4 / 2) = 165 around.
+  const Mesh fine = revolve_meridian(m, SpindleAxis{}, 2.0);
+  EXPECT_EQ(fine.num_vertices() % 165, 0);
+  EXPECT_NEAR(fine.num_vertices() / 165, 151, 1);
+}
+
 Job bent_tube_job(const std::string& layers) {
   return load_job_from_string(
       "mandrel:\n  source: bent_tube\n"

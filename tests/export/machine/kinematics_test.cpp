@@ -7,6 +7,7 @@
 
 #include "geometry/base/errors.h"
 #include "tests/export/plan_fixtures.h"
+#include "tests/mesh_fixtures.h"
 
 namespace windplan {
 namespace {
@@ -293,6 +294,56 @@ TEST(Kinematics, TravelLimitNamesAxisValueAndPoint) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("axes.A"), std::string::npos) << e.what();
   }
+}
+
+// A robot's layup: a helix on the mandrel cylinder R, then one on the cylinder R2 = R + 5 its layer
+// built. With the per-circuit surfaces the true-distance eye keeps the clearance from the layer in
+// work: on a cylinder the tangent line reaches it at radius R + clearance, then R2 + clearance
+// (the closed form: the eye leads the point by acos(R / R_e) about the axis). On the bare mandrel
+// the outer circuit's eye is measured from R: at R + clearance, only clearance - 5 mm from its
+// own layer.
+TEST(Kinematics, RobotEyeKeepsTheClearanceFromTheLayerInWork) {
+  const double R = 50, R2 = 55, clearance = 20;
+  WindingPlan plan = test::helix_plan(R, 60, 2, 2000);
+  Circuit outer = test::helix_plan(R2, 55, 2, 2000).circuits.front();
+  outer.index = 1;
+  plan.circuits.push_back(outer);
+  const Mesh mandrel(test::open_cylinder(R, 900, 512, 200));  // chord sag 0.001 mm
+  const Mesh built(test::open_cylinder(R2, 900, 512, 200));
+  MachineOptions m;
+  m.kind = "robot";
+  m.tangent_window = 0.0;
+  m.envelope.clearance = clearance;
+  const AxisFrame f = make_axis_frame(plan.axis);
+  auto worst = [&](const Motion& mo, int ordinal, double radius) {
+    double w = 0.0;
+    int n = 0;
+    for (const MachineState& s : mo.states) {
+      if (s.ordinal != ordinal) continue;
+      w = std::max(w, std::fabs(f.radius(s.eye) - radius));
+      // The eye leads its point by acos(R_s / R_e) about the axis (R_s its point's radius).
+      const double lead = std::acos(f.radius(s.position) / f.radius(s.eye));
+      const double turned =
+          std::fabs(std::remainder(f.angle(s.eye) - f.angle(s.position), 2 * M_PI));
+      w = std::max(w, std::fabs(turned - lead) * radius);
+      ++n;
+    }
+    EXPECT_GT(n, 10);
+    return w;
+  };
+  const Motion own = compute_motion(plan, m, &mandrel, {nullptr, &built});
+  EXPECT_LT(worst(own, 0, R + clearance), 0.01);
+  EXPECT_LT(worst(own, 1, R2 + clearance), 0.01);
+  EXPECT_NEAR(own.min_clearance, clearance, 0.01);
+  EXPECT_NE(own.envelope.find("layer in work"), std::string::npos) << own.envelope;
+  const Motion bare = compute_motion(plan, m, &mandrel);
+  EXPECT_LT(worst(bare, 1, R + clearance), 0.01);
+  // A lathe measures on the mandrel whatever the surfaces (its envelope is the finished part's).
+  MachineOptions lathe;
+  lathe.kind = "lathe4";
+  const Motion l1 = compute_motion(plan, lathe, &mandrel, {nullptr, &built});
+  const Motion l0 = compute_motion(plan, lathe, &mandrel);
+  EXPECT_EQ(l1.min_clearance, l0.min_clearance);
 }
 
 TEST(Kinematics, FixedFreeLengthMode) {
