@@ -251,7 +251,12 @@ class Planner {
       double next = leave - err;
       if (it > 0 && leave != prev_leave) {
         const double slope = (err - prev_err) / (leave - prev_leave);
-        if (slope > 0.05 && slope < 20.0) next = leave - err / slope;
+        // A secant step at most twice the plain one: where the apex barely moves with the
+        // leaving point (a turnaround below the bend's demand turns back a little) a flat
+        // slope would throw the pass out of the region.
+        if (slope > 0.05 && slope < 20.0 && std::abs(err / slope) <= 2.0 * std::abs(err)) {
+          next = leave - err / slope;
+        }
       }
       prev_leave = leave;
       prev_err = err;
