@@ -50,6 +50,9 @@ struct ReplayOptions {
   double search_ahead = 40.0;
   /// mm: a contact this close (along the plan) to a turnaround is caught by its pins or boss.
   double catch_distance = 10.0;
+  /// mm: a point of a straight fibre this close to the surface lies on it (a flat face: the eye in
+  /// its plane, or below it): the contact moves on to where the fibre leaves the face; 0: never.
+  double touch = 1e-3;
 };
 
 struct ReplayExcess;
@@ -58,6 +61,7 @@ struct ReplayResult {
   int blocks = 0;
   int substeps = 0;
   int held_substeps = 0;       ///< sub-steps on turnarounds (pins or boss lay the fibre)
+  int straight_substeps = 0;   ///< sub-steps that laid a straight fibre on a flat face (touch)
   double max_deviation = 0.0;  ///< mm, contact point to the planned path
   int max_deviation_line = 0;  ///< program line of the block where it is largest
   Vec3 max_deviation_point = Vec3::Zero();
