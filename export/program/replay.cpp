@@ -478,18 +478,20 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
         if (held[ptr] && ptr < last) {
           // On a turnaround the pins or the boss lay the fibre along the plan: the contact moves
           // along the planned arc to the first point whose free fibre to the eye is tangent.
-          // The surface's interpolated normal at the planned point (the plan's own is a facet's,
-          // degrees off it), on the side of a rim the plan's normal is on.
+          // The tangency on the arc is judged with the plan's normal (the one the eye was put on:
+          // the planner's dwell points carry the surface's interpolated normal, a flat face's
+          // own); the point's facet (fn) tells a flat face, on the side of a rim the plan's is on.
           auto on_surface = [&](int i) {
             Surface::Point q = surf->project(planned[i], &planned_n[i]);
             q.p = planned[i];
             return q;
           };
+          bool in_plane = false;
           auto wraps_on = [&](int i, const Surface::Point& pi) {
             const Vec3 d = e - planned[i];
-            const bool in_plane = options.touch > 0.0 && bend[i] != 0 &&
-                                  std::fabs(d.dot(pi.fn)) <= options.touch / probe * d.norm();
-            if (!in_plane) return d.dot(pi.n) < 0.0;
+            in_plane = options.touch > 0.0 && bend[i] != 0 &&
+                       std::fabs(d.dot(pi.fn)) <= options.touch / probe * d.norm();
+            if (!in_plane) return d.dot(planned_n[i]) < 0.0;
             if (i + 1 <= last && held[i + 1]) {
               return bend[i] * pi.fn.dot(d.cross(planned[i + 1] - planned[i])) < 0.0;
             }
@@ -500,14 +502,24 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
           bool released = false;
           while (j < last && held[j] && wraps_on(j, pj)) {
             if (!held[j + 1]) {
-              released = true;  // the fibre leaves the arc's last pin, free again
-              break;
+              // Off the arc's end. In a flat face's plane the fibre leaves the last pin and lies
+              // straight on the face (the free walk from the pin); on a curved surface it leaves
+              // the arc at its end, at the pass's first point (as it was laid before the flat
+              // rule).
+              if (in_plane) {
+                released = true;
+                break;
+              }
             }
             pj = on_surface(++j);
           }
-          if (!held[j]) released = true;
-          if (anchor_flat(pj) && (pj.p - anchor.p).norm() > 0.0) dev = lay_segment(pj.p);
+          // The fibre lay straight on a flat face beyond its anchor (it swung with the eye): the
+          // pins hold its far end now, and it is laid.
+          if ((P.p - anchor.p).norm() > 0.0 && anchor_flat(pj) && (pj.p - anchor.p).norm() > 0.0) {
+            dev = lay_segment(pj.p);
+          }
           P = pj;
+          P.n = planned_n[j];
           anchor = P;
           if (released) released_to = j;
           ptr = released && held[j] ? std::min(j + 1, last) : j;
