@@ -55,6 +55,21 @@ class Surface {
     for (int v = 0; v < mesh.num_vertices(); ++v) {
       for (const auto& fa : fan[v]) fan_[v].push_back(fa.first);
     }
+    // A flat face of the part (a rounded rectangle's side) has vertices inside it, all of whose
+    // faces are coplanar; a curved surface's coarse facets (a 36-gon's strips, a cone's) have none:
+    // every vertex sits on a fold. The straight-fibre rules below hold on the former only.
+    std::vector<char> planar_vertex(mesh.num_vertices(), 0);
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      bool planar = !fan[v].empty();
+      for (const auto& fa : fan[v]) {
+        planar = planar && fn[fa.first].dot(fn[fan[v].front().first]) >= 1.0 - 1e-12;
+      }
+      planar_vertex[v] = planar;
+    }
+    flat_face_.assign(nf, 0);
+    for (int f = 0; f < nf; ++f) {
+      for (int k = 0; k < 3; ++k) flat_face_[f] = flat_face_[f] || planar_vertex[tris[f][k]];
+    }
     const double crease = std::cos(40.0 * kPi / 180.0);
     corner_.resize(static_cast<std::size_t>(nf) * 3);
     for (int f = 0; f < nf; ++f) {
@@ -71,6 +86,7 @@ class Surface {
     Vec3 p = Vec3::Zero();
     Vec3 n = Vec3::UnitX();   ///< interpolated normal (the walk's tangency)
     Vec3 fn = Vec3::UnitX();  ///< the facet's normal (flat faces: the face's plane)
+    bool flat = false;        ///< the facet has a vertex all of whose faces are coplanar with it
   };
   /// The closest point with its interpolated normal. On a crease (an edge or vertex shared by
   /// faces more than 40 deg apart, e.g. a tube's rim) the face whose normal is closest to `ref`
@@ -114,6 +130,7 @@ class Surface {
     const double nn = n.norm();
     out.n = nn > 0.0 ? Vec3(n / nn) : mesh_.face_normal(f);
     out.fn = face_n_[f];
+    out.flat = flat_face_[f];
     return out;
   }
 
@@ -125,6 +142,7 @@ class Surface {
   std::vector<Vec3> corner_;
   std::vector<Vec3> face_n_;
   std::vector<std::vector<int>> fan_;
+  std::vector<char> flat_face_;
 };
 
 double lift(const Surface::Point& p, const Vec3& eye) { return (eye - p.p).dot(p.n); }
@@ -221,11 +239,19 @@ double lay_straight(const Surface& surf, const Vec3& eye, Surface::Point* P, dou
   if (!(reach > probe)) return 0.0;
   const Vec3 w = d / reach;
   const Vec3 p0 = P->p;
+  // A point on the plane of the face: within touch of it, on a facet of the same normal.
+  auto on_plane = [&](const Vec3& q, Surface::Point* Q) {
+    *Q = surf.project(q, &P->n);
+    return Q->flat && (q - Q->p).norm() <= touch && Q->fn.dot(n0) >= 1.0 - 1e-9;
+  };
+  // A face, not a facet strip: the plane reaches probe / 2 to one side of the fibre too (a
+  // cylinder's facets are straight along its axis; 0.6 mm wide on the shipped pipe's mesh).
+  const Vec3 side = 0.5 * probe * n0.cross(w);
   double laid = 0.0;
   for (double s = probe; s < reach; s += probe) {
     const Vec3 q = p0 + s * w;
-    const Surface::Point Q = surf.project(q, &P->n);
-    if ((q - Q.p).norm() > touch || Q.fn.dot(n0) < 1.0 - 1e-9) break;
+    Surface::Point Q, Qs;
+    if (!on_plane(q, &Q) || !(on_plane(q + side, &Qs) || on_plane(q - side, &Qs))) break;
     *P = Q;
     laid = s;
     if (pin && (Q.p - *pin).norm() <= catch_distance) break;
@@ -486,11 +512,27 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
             q.p = planned[i];
             return q;
           };
+          // A flat face, not a facet: the plane of pin i's facet reaches 2.5 probe (5 mm) both
+          // ways along the arc (a coarse pipe's 36-gon has 8.7 mm facets, curved between them).
+          auto flat_around = [&](int i, const Surface::Point& pi) {
+            Vec3 t = planned[std::min(i + 1, last)] - planned[std::max(i - 1, 0)];
+            t -= t.dot(pi.fn) * pi.fn;
+            if (!(t.norm() > 1e-12)) return false;
+            t *= 2.5 * probe / t.norm();
+            for (const Vec3& q : {Vec3(planned[i] + t), Vec3(planned[i] - t)}) {
+              const Surface::Point Q = surf->project(q, &pi.n);
+              if (!Q.flat || (q - Q.p).norm() > options.touch || Q.fn.dot(pi.fn) < 1.0 - 1e-9) {
+                return false;
+              }
+            }
+            return true;
+          };
           bool in_plane = false;
           auto wraps_on = [&](int i, const Surface::Point& pi) {
             const Vec3 d = e - planned[i];
             in_plane = options.touch > 0.0 && bend[i] != 0 &&
-                       std::fabs(d.dot(pi.fn)) <= options.touch / probe * d.norm();
+                       std::fabs(d.dot(pi.fn)) <= options.touch / probe * d.norm() &&
+                       flat_around(i, pi);
             if (!in_plane) return d.dot(planned_n[i]) < 0.0;
             if (i + 1 <= last && held[i + 1]) {
               return bend[i] * pi.fn.dot(d.cross(planned[i + 1] - planned[i])) < 0.0;
@@ -545,9 +587,10 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
             advance(*surf, e, &wrap, &h_guess, 4.0 * options.step);
             const Vec3 to_eye = e - anchor.p;
             if (to_eye.dot(anchor.fn) < -options.touch / probe * to_eye.norm() &&
-                !anchor_flat(wrap)) {
+                (!anchor_flat(wrap) || (wrap.p - flat_end.p).norm() > 1e-9)) {
               // The eye below the face's plane: the fibre is pressed onto the face and wraps on
-              // where it curves: held there, the straight stretch is laid.
+              // where it curves (or walks on where the straight stretch stopped short of its
+              // face's end: a facet with no planar vertex): held there, the stretch is laid.
               seg_dev = lay_segment(flat_end.p);
               anchor = wrap;
               P = wrap;
@@ -571,6 +614,8 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
           // the contact goes onto that surface.
           surf = s;
           P = surf->project(P.p, &P.n);
+          anchor = P;
+          lptr = ptr;
         }
         dev_sum += dev;
         ++r.substeps;
