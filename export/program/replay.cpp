@@ -55,6 +55,21 @@ class Surface {
     for (int v = 0; v < mesh.num_vertices(); ++v) {
       for (const auto& fa : fan[v]) fan_[v].push_back(fa.first);
     }
+    // A flat face of the part (a rounded rectangle's side) has vertices inside it, all of whose
+    // faces are coplanar; a curved surface's coarse facets (a 36-gon's strips, a cone's) have none:
+    // every vertex sits on a fold. The straight-fibre rules below hold on the former only.
+    std::vector<char> planar_vertex(mesh.num_vertices(), 0);
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      bool planar = !fan[v].empty();
+      for (const auto& fa : fan[v]) {
+        planar = planar && fn[fa.first].dot(fn[fan[v].front().first]) >= 1.0 - 1e-12;
+      }
+      planar_vertex[v] = planar;
+    }
+    flat_face_.assign(nf, 0);
+    for (int f = 0; f < nf; ++f) {
+      for (int k = 0; k < 3; ++k) flat_face_[f] = flat_face_[f] || planar_vertex[tris[f][k]];
+    }
     const double crease = std::cos(40.0 * kPi / 180.0);
     corner_.resize(static_cast<std::size_t>(nf) * 3);
     for (int f = 0; f < nf; ++f) {
@@ -69,7 +84,9 @@ class Surface {
   }
   struct Point {
     Vec3 p = Vec3::Zero();
-    Vec3 n = Vec3::UnitX();
+    Vec3 n = Vec3::UnitX();   ///< interpolated normal (the walk's tangency)
+    Vec3 fn = Vec3::UnitX();  ///< the facet's normal (flat faces: the face's plane)
+    bool flat = false;        ///< the facet has a vertex all of whose faces are coplanar with it
   };
   /// The closest point with its interpolated normal. On a crease (an edge or vertex shared by
   /// faces more than 40 deg apart, e.g. a tube's rim) the face whose normal is closest to `ref`
@@ -112,6 +129,8 @@ class Surface {
     Vec3 n = bary[0] * corner_[3 * f] + bary[1] * corner_[3 * f + 1] + bary[2] * corner_[3 * f + 2];
     const double nn = n.norm();
     out.n = nn > 0.0 ? Vec3(n / nn) : mesh_.face_normal(f);
+    out.fn = face_n_[f];
+    out.flat = flat_face_[f];
     return out;
   }
 
@@ -123,6 +142,7 @@ class Surface {
   std::vector<Vec3> corner_;
   std::vector<Vec3> face_n_;
   std::vector<std::vector<int>> fan_;
+  std::vector<char> flat_face_;
 };
 
 double lift(const Surface::Point& p, const Vec3& eye) { return (eye - p.p).dot(p.n); }
@@ -194,6 +214,49 @@ void advance(const Surface& surf, const Vec3& eye, Surface::Point* P, double* h_
     *P = hi;
     return;
   }
+}
+
+// A fibre is straight where the surface is flat, so on a flat face the contact walk has nothing
+// to find: with the eye in the face's plane every point of it is "tangent" ((E - P) . n = 0), and
+// with the eye below that plane the lift is the same negative number all across the face. Both
+// cases lay a straight fibre on the face, and the contact is where that fibre leaves it:
+//  - lift >= 0: the free fibre P -> E itself; the contact moves along it while it lies on the face;
+//  - lift < 0: the fibre wraps on along the tangent-plane direction of E - P, straight while the
+//    surface under it is flat (where it curves, advance() takes over).
+// The straight line is probed every `probe` mm from P; a probe point within `touch` of the surface
+// lies on it (a curved surface of radius R falls away by probe^2 / 2R: 0.016 mm at R = 128 mm and
+// 2 mm, so only a face flat to `touch` over the probe passes). It stops at the first point within
+// `catch_distance` of a held point (the pins take the fibre there). Returns the length laid, mm.
+double lay_straight(const Surface& surf, const Vec3& eye, Surface::Point* P, double probe,
+                    double touch, const Vec3* pin, double catch_distance) {
+  if (!(touch > 0.0)) return 0.0;
+  Vec3 d = eye - P->p;
+  const double len = d.norm();
+  if (!(len > probe)) return 0.0;
+  const Vec3 n0 = P->fn;
+  if (d.dot(n0) < 0.0) d -= d.dot(n0) * n0;
+  const double reach = d.norm();
+  if (!(reach > probe)) return 0.0;
+  const Vec3 w = d / reach;
+  const Vec3 p0 = P->p;
+  // A point on the plane of the face: within touch of it, on a facet of the same normal.
+  auto on_plane = [&](const Vec3& q, Surface::Point* Q) {
+    *Q = surf.project(q, &P->n);
+    return Q->flat && (q - Q->p).norm() <= touch && Q->fn.dot(n0) >= 1.0 - 1e-9;
+  };
+  // A face, not a facet strip: the plane reaches probe / 2 to one side of the fibre too (a
+  // cylinder's facets are straight along its axis; 0.6 mm wide on the shipped pipe's mesh).
+  const Vec3 side = 0.5 * probe * n0.cross(w);
+  double laid = 0.0;
+  for (double s = probe; s < reach; s += probe) {
+    const Vec3 q = p0 + s * w;
+    Surface::Point Q, Qs;
+    if (!on_plane(q, &Q) || !(on_plane(q + side, &Qs) || on_plane(q - side, &Qs))) break;
+    *P = Q;
+    laid = s;
+    if (pin && (Q.p - *pin).norm() <= catch_distance) break;
+  }
+  return laid;
 }
 
 // Distance of p to the polyline q (cumulative arc length sq), searched on the segments from
@@ -282,6 +345,27 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   for (std::size_t i = 1; i < planned.size(); ++i) {
     planned_s[i] = planned_s[i - 1] + (planned[i] - planned[i - 1]).norm();
   }
+  // Per turnaround point, the sense in which its arc turns about the surface normal (+1 left,
+  // -1 right, 0 not held): the side of the pins' bend, for a fibre turned in a flat face's plane.
+  std::vector<signed char> bend(planned.size(), 0);
+  for (std::size_t i = 0; i < planned.size();) {
+    if (!held[i]) {
+      ++i;
+      continue;
+    }
+    std::size_t k = i;
+    double turn = 0.0;
+    while (k + 1 < planned.size() && held[k + 1]) ++k;
+    for (std::size_t m = i + 1; m + 1 <= k && m + 1 < planned.size(); ++m) {
+      turn += planned_n[m].dot((planned[m] - planned[m - 1]).cross(planned[m + 1] - planned[m]));
+    }
+    // The pass leaving the arc turns with it too (its first point after the last pin).
+    if (k + 1 < planned.size() && k > i) {
+      turn += planned_n[k].dot((planned[k] - planned[k - 1]).cross(planned[k + 1] - planned[k]));
+    }
+    for (std::size_t m = i; m <= k; ++m) bend[m] = turn > 0.0 ? 1 : (turn < 0.0 ? -1 : 0);
+    i = k + 1;
+  }
   // The first turnaround point at or after each planned point (-1: none).
   std::vector<int> next_held(planned.size(), -1);
   for (int i = static_cast<int>(planned.size()) - 1; i >= 0; --i) {
@@ -315,7 +399,16 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   Surface::Point P;
   P.p = planned.front();
   P.n = planned_n.front();
-  int ptr = 0;
+  P.fn = planned_n.front();
+  // The last point that holds the fibre (pins, or a curved surface): beyond it on a flat face the
+  // fibre is straight; lptr tracks what is laid for the deviation.
+  Surface::Point anchor = P;
+  auto anchor_flat = [&](const Surface::Point& q) {
+    return std::fabs((q.p - anchor.p).dot(anchor.fn)) <= options.touch &&
+           q.fn.dot(anchor.fn) >= 1.0 - 1e-9;
+  };
+  int ptr = 0, lptr = 0;
+  int released_to = -1;  // the plan's points up to here are behind the contact
   double h_guess = 0.05;
   double dev_sum = 0.0;
   const int n_axes = lathe2 ? 2 : 4;
@@ -355,6 +448,9 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
           ptr = std::min<int>(*next, static_cast<int>(planned.size()) - 1);
           P.p = planned[ptr];
           P.n = planned_n[ptr];
+          P.fn = planned_n[ptr];
+          anchor = P;
+          lptr = ptr;
           surf = surface_at(ptr);
         }
       }
@@ -374,29 +470,152 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
         const int last = static_cast<int>(planned.size()) - 1;
         double dev = 0.0;
         // The pins catch the fibre as it arrives at the ring: within `catch_distance` before it.
+        // An arc the fibre has left holds it no more (the deviation track may fall back on it).
+        if (ptr <= released_to) ptr = std::min(released_to + 1, last);
         const int nh = next_held[ptr];
-        if (!held[ptr] && nh >= 0 && planned_s[nh] - planned_s[ptr] <= options.catch_distance) {
+        // Measured along the plan from the foot of the contact on its planned segment (a straight
+        // pass on a flat face is one long segment: from the segment's start the pins were never
+        // within reach).
+        double s_contact = planned_s[ptr];
+        if (ptr < last) {
+          const double seg = planned_s[ptr + 1] - planned_s[ptr];
+          if (seg > 0.0) {
+            s_contact += std::clamp((P.p - planned[ptr]).dot(planned[ptr + 1] - planned[ptr]) / seg,
+                                    0.0, seg);
+          }
+        }
+        if (!held[ptr] && nh >= 0 && planned_s[nh] - s_contact <= options.catch_distance) {
           ptr = nh;
         }
+        const double probe = 4.0 * options.step;
+        // The straight fibre anchor -> `to` (on the anchor's flat face) is held at both ends now:
+        // it is laid; its points are compared with the plan.
+        auto lay_segment = [&](const Vec3& to) {
+          const double len = (to - anchor.p).norm();
+          const int m = static_cast<int>(std::ceil(len / options.step));
+          double worst = 0.0;
+          for (int i = 1; i <= m; ++i) {
+            const Vec3 q = anchor.p + (static_cast<double>(i) / m) * (to - anchor.p);
+            worst = std::max(worst, track(planned, planned_s, q, options.search_back,
+                                          options.search_ahead, &lptr));
+          }
+          return worst;
+        };
         if (held[ptr] && ptr < last) {
           // On a turnaround the pins or the boss lay the fibre along the plan: the contact moves
           // along the planned arc to the first point whose free fibre to the eye is tangent.
+          // The tangency on the arc is judged with the plan's normal (the one the eye was put on:
+          // the planner's dwell points carry the surface's interpolated normal, a flat face's
+          // own); the point's facet (fn) tells a flat face, on the side of a rim the plan's is on.
+          auto on_surface = [&](int i) {
+            Surface::Point q = surf->project(planned[i], &planned_n[i]);
+            q.p = planned[i];
+            return q;
+          };
+          // A flat face, not a facet: the plane of pin i's facet reaches 2.5 probe (5 mm) both
+          // ways along the arc (a coarse pipe's 36-gon has 8.7 mm facets, curved between them).
+          auto flat_around = [&](int i, const Surface::Point& pi) {
+            Vec3 t = planned[std::min(i + 1, last)] - planned[std::max(i - 1, 0)];
+            t -= t.dot(pi.fn) * pi.fn;
+            if (!(t.norm() > 1e-12)) return false;
+            t *= 2.5 * probe / t.norm();
+            for (const Vec3& q : {Vec3(planned[i] + t), Vec3(planned[i] - t)}) {
+              const Surface::Point Q = surf->project(q, &pi.n);
+              if (!Q.flat || (q - Q.p).norm() > options.touch || Q.fn.dot(pi.fn) < 1.0 - 1e-9) {
+                return false;
+              }
+            }
+            return true;
+          };
+          bool in_plane = false;
+          auto wraps_on = [&](int i, const Surface::Point& pi) {
+            const Vec3 d = e - planned[i];
+            in_plane = options.touch > 0.0 && bend[i] != 0 &&
+                       std::fabs(d.dot(pi.fn)) <= options.touch / probe * d.norm() &&
+                       flat_around(i, pi);
+            if (!in_plane) return d.dot(planned_n[i]) < 0.0;
+            if (i + 1 <= last && held[i + 1]) {
+              return bend[i] * pi.fn.dot(d.cross(planned[i + 1] - planned[i])) < 0.0;
+            }
+            return i > 0 && bend[i] * pi.fn.dot((planned[i] - planned[i - 1]).cross(d)) <= 0.0;
+          };
           int j = ptr;
-          while (j < last && held[j] && (e - planned[j]).dot(planned_n[j]) < 0.0) ++j;
-          ptr = j;
-          // The plan's normal: at a rim the closest face may be the end cap's.
-          P.p = planned[j];
+          Surface::Point pj = on_surface(j);
+          bool released = false;
+          while (j < last && held[j] && wraps_on(j, pj)) {
+            if (!held[j + 1]) {
+              // Off the arc's end. In a flat face's plane the fibre leaves the last pin and lies
+              // straight on the face (the free walk from the pin); on a curved surface it leaves
+              // the arc at its end, at the pass's first point (as it was laid before the flat
+              // rule).
+              if (in_plane) {
+                released = true;
+                break;
+              }
+            }
+            pj = on_surface(++j);
+          }
+          // The fibre lay straight on a flat face beyond its anchor (it swung with the eye): the
+          // pins hold its far end now, and it is laid.
+          if ((P.p - anchor.p).norm() > 0.0 && anchor_flat(pj) && (pj.p - anchor.p).norm() > 0.0) {
+            dev = lay_segment(pj.p);
+          }
+          P = pj;
           P.n = planned_n[j];
+          anchor = P;
+          if (released) released_to = j;
+          ptr = released && held[j] ? std::min(j + 1, last) : j;
+          lptr = ptr;
           ++r.held_substeps;
         } else {
-          advance(*surf, e, &P, &h_guess, 4.0 * options.step);
+          const Vec3* pin = nh >= 0 ? &planned[nh] : nullptr;
+          // The fibre runs from its anchor (the last point that holds it: pins, or a curved
+          // surface) straight over a flat face, then wraps on where the surface curves.
+          Surface::Point flat_end = anchor;
+          const double laid =
+              lay_straight(*surf, e, &flat_end, probe, options.touch, pin, options.catch_distance);
+          double seg_dev = 0.0;
+          if (!(laid > 0.0)) {
+            // No flat stretch: the contact walk (on a flat face beyond its anchor with the eye
+            // lifted above the face, the fibre leaves at the anchor).
+            P = anchor;
+            advance(*surf, e, &P, &h_guess, 4.0 * options.step);
+            anchor = P;
+          } else {
+            P = flat_end;
+            Surface::Point wrap = flat_end;
+            advance(*surf, e, &wrap, &h_guess, 4.0 * options.step);
+            const Vec3 to_eye = e - anchor.p;
+            if (to_eye.dot(anchor.fn) < -options.touch / probe * to_eye.norm() &&
+                (!anchor_flat(wrap) || (wrap.p - flat_end.p).norm() > 1e-9)) {
+              // The eye below the face's plane: the fibre is pressed onto the face and wraps on
+              // where it curves (or walks on where the straight stretch stopped short of its
+              // face's end: a facet with no planar vertex): held there, the stretch is laid.
+              seg_dev = lay_segment(flat_end.p);
+              anchor = wrap;
+              P = wrap;
+              lay_straight(*surf, e, &P, probe, options.touch, pin, options.catch_distance);
+            }
+          }
+          r.straight_substeps += (P.p - anchor.p).norm() > 0.0;
           dev = track(planned, planned_s, P.p, options.search_back, options.search_ahead, &ptr);
+          if ((P.p - anchor.p).norm() > 0.0) {
+            // The fibre lies on a flat face beyond its anchor, held at no far end: it swings with
+            // the eye and is not laid yet; what is laid ends at the anchor.
+            dev = track(planned, planned_s, anchor.p, options.search_back, options.search_ahead,
+                        &lptr);
+          } else {
+            lptr = ptr;
+          }
+          dev = std::max(dev, seg_dev);
         }
         if (const Surface* s = surface_at(ptr); s != surf) {
           // The plan moved on to a circuit wound on another surface without a rapid between:
           // the contact goes onto that surface.
           surf = s;
           P = surf->project(P.p, &P.n);
+          anchor = P;
+          lptr = ptr;
         }
         dev_sum += dev;
         ++r.substeps;

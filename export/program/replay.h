@@ -25,7 +25,23 @@
 // catch_distance (10 mm, along the plan) of one, it moves along the planned arc to the first
 // planned point whose free fibre to the eye is tangent ((E - P) . n >= 0 with the plan's normal),
 // and no deviation is counted (held_substeps counts those sub-steps); it leaves the arc at its end,
-// free again. A layup's circuits are walked on the surface each layer was wound on
+// free again. Flat faces (issue #26: a rounded rectangle's sides; a facet with a vertex all of
+// whose faces are coplanar, so not a coarse pipe's facet strips): a fibre is straight there, and
+// with the eye in the face's plane every point of it is "tangent". The contact keeps an anchor, the
+// last point that holds the fibre (pins, or a curved surface); beyond it the fibre runs straight
+// over the face (probed every 4 `step`: a point within `touch` of the face lies on it) towards the
+// eye (the eye in or above the plane) or along the tangent-plane direction of the eye (below it),
+// and the contact is where it leaves the face. With the eye in the plane the stretch swings with
+// the eye and only the anchor counts as laid; when its far end is held (the eye drops below the
+// plane and the fibre wraps on where the surface curves, or pins catch it) the stretch is laid and
+// its points are compared with the plan. There the pins turn the fibre in the face's plane: it
+// wraps on to the next pin while that pin stands outside the straight fibre (away from the arc's
+// bend), and leaves the arc's last pin when the fibre no longer bends round it. Elsewhere the
+// tangency on an arc is judged with the plan's normal (the planner's dwell points carry the
+// surface's interpolated normal, a flat face's own) and the contact leaves the arc at its end, at
+// the pass's first point. The catch distance is measured along the plan from the foot of the
+// contact on its planned segment (a straight pass on a flat face is one long segment).
+// A layup's circuits are walked on the surface each layer was wound on
 // (circuit_surfaces below), not on the bare mandrel.
 //
 // Deviation: the distance of every sub-step's contact point to the planned fibre polyline (all
@@ -50,6 +66,9 @@ struct ReplayOptions {
   double search_ahead = 40.0;
   /// mm: a contact this close (along the plan) to a turnaround is caught by its pins or boss.
   double catch_distance = 10.0;
+  /// mm: a point of a straight fibre this close to the surface lies on it (a flat face: the eye in
+  /// its plane, or below it): the contact moves on to where the fibre leaves the face; 0: never.
+  double touch = 1e-3;
 };
 
 struct ReplayExcess;
@@ -58,6 +77,7 @@ struct ReplayResult {
   int blocks = 0;
   int substeps = 0;
   int held_substeps = 0;       ///< sub-steps on turnarounds (pins or boss lay the fibre)
+  int straight_substeps = 0;   ///< sub-steps that laid a straight fibre on a flat face (touch)
   double max_deviation = 0.0;  ///< mm, contact point to the planned path
   int max_deviation_line = 0;  ///< program line of the block where it is largest
   Vec3 max_deviation_point = Vec3::Zero();

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "geometry/base/errors.h"
+#include "geometry/mesh/closest_point.h"
 
 namespace windplan {
 
@@ -66,6 +67,40 @@ std::vector<FibrePoint> turnaround_points(const Mesh& m, const LoopArc& arc) {
     q.normal = m.face_normal(f);
     q.face = f;
     pts.push_back(q);
+  }
+  return pts;
+}
+
+// The same points with the surface's interpolated vertex normals (for the circuit: the eye is put
+// on the fibre's tangent, which the annotation projects onto the tangent plane of this normal; a
+// face's own normal is half a facet angle off it, 3 deg on the 60 facets of an ellipse 160 x 100,
+// which put the eye that far below the true tangent plane at the arc's end: the fibre wrapped on
+// along the station beyond the last pin, 4.3 mm off the next pass). A flat face keeps its own
+// normal: an edge of length l whose end normals differ by d (rad) would, were it a chord of a
+// curved surface, stand l d / 8 off it; beyond kFlatSagitta no tessellation leaves a chord, so the
+// face is flat (a rounded rectangle's side, 90 mm wide between corners whose first facets tilt its
+// edges' normals 3 deg: 1.1 mm; the ellipse's facets: 0.04 mm), and the interpolated normals
+// tilting across it are an artefact.
+std::vector<FibrePoint> turnaround_points(const Mesh& m, const LoopArc& arc,
+                                          const std::vector<Vec3>& vn) {
+  constexpr double kFlatSagitta = 0.25;  // mm
+  std::vector<FibrePoint> pts = turnaround_points(m, arc);
+  for (FibrePoint& q : pts) {
+    const Tri& t = m.triangle(q.face);
+    const Vec3& a = m.points()[t[0]];
+    const Vec3& b = m.points()[t[1]];
+    const Vec3& c = m.points()[t[2]];
+    double sagitta = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const int u = t[k], v = t[(k + 1) % 3];
+      const double cosang = std::clamp(vn[u].dot(vn[v]), -1.0, 1.0);
+      sagitta = std::max(sagitta, (m.points()[v] - m.points()[u]).norm() * std::acos(cosang) / 8.0);
+    }
+    if (sagitta > kFlatSagitta) continue;
+    Vec3 bary;
+    closest_point_on_triangle(q.position, a, b, c, &bary);
+    const Vec3 n = bary[0] * vn[t[0]] + bary[1] * vn[t[1]] + bary[2] * vn[t[2]];
+    if (n.norm() > 1e-12) q.normal = n.normalized();
   }
   return pts;
 }
@@ -317,9 +352,10 @@ std::vector<Circuit> build_circuits(const Mesh& m, const HelixPlan& plan,
       append_circuit_segment(&c, std::move(pts), kind, axis, window);
     };
     append(path_points(m, plan.passes[2 * k].path, vn), CircuitSegment::Kind::Pass);
-    append(turnaround_points(m, plan.turnarounds[2 * k].arc), CircuitSegment::Kind::Turnaround);
+    append(turnaround_points(m, plan.turnarounds[2 * k].arc, vn), CircuitSegment::Kind::Turnaround);
     append(path_points(m, plan.passes[2 * k + 1].path, vn), CircuitSegment::Kind::Pass);
-    append(turnaround_points(m, plan.turnarounds[2 * k + 1].arc), CircuitSegment::Kind::Turnaround);
+    append(turnaround_points(m, plan.turnarounds[2 * k + 1].arc, vn),
+           CircuitSegment::Kind::Turnaround);
     if (!face_map.empty()) {
       for (FibrePoint& q : c.points) {
         if (q.face >= 0 && q.face < static_cast<int>(face_map.size())) q.face = face_map[q.face];

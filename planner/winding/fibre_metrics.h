@@ -76,7 +76,10 @@ std::vector<FibrePoint> path_points(const Mesh& annulus, const SurfacePath& path
 
 /// The K continuous circuits of a helix plan as dense FibrePoints (passes and turnarounds,
 /// each annotated separately, arc length continuous). face_map maps annulus faces to the full
-/// mesh (empty: keep annulus faces).
+/// mesh (empty: keep annulus faces). A turnaround's points carry the surface's interpolated
+/// vertex normal (on a flat face, the face's own), not the facet normal its figures use: the eye
+/// is put on their tangents (issue #26: a facet's normal, 3 deg off on an oval canister's 60
+/// facets, put the eye below the true tangent plane at the arc's end).
 std::vector<Circuit> build_circuits(const Mesh& annulus, const HelixPlan& plan,
                                     const std::vector<int>& face_map, const SpindleAxis& axis,
                                     const WindingOptions& options);
