@@ -433,7 +433,8 @@ PipelineResult plan_winding(Mandrel mandrel, const Job& job, const WindingOption
         "K=" + std::to_string(tw.K) + ", skip p=" + std::to_string(tw.p) + ": a friction layer " +
         "at " + format_fixed(tw.angle_deg, 2) + " deg to the centre line" +
         (std::isnan(wo.angle) ? " (for winding.turns " + format_turns(wo.turns) + ")" : "") +
-        ", held on the bend at " + "|k_g/k_n| up to " + format_fixed(tw.required, 4) +
+        (r.tube.centre_line.exact ? ", held on the bend at " : ", held by friction at ") +
+        "|k_g/k_n| up to " + format_fixed(tw.required, 4) +
         " (winding.slippage " + format_fixed(wo.slippage, 3) + "); " +
         (tw.pins > 0
              ? "turnarounds on rings of " + std::to_string(tw.pins) + " pins on the stations " +
