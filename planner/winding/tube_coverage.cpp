@@ -5,6 +5,47 @@
 
 namespace windplan {
 
+namespace {
+
+// A station's figures from its bins' band stacks (per family), and the report's running worst.
+// bin: each bin's length along the loop (nullptr: n equal bins, counted as whole numbers).
+void close_station(const std::array<std::vector<int>, 2>& stack, const std::vector<double>* bin,
+                   double loop, double band_length, const std::array<double, 2>& fam_length,
+                   StationCoverage* st, CoverageReport* rep, double* plies) {
+  const int n = static_cast<int>(stack[0].size());
+  const double total = bin ? loop : n;
+  for (int fam = 0; fam < 2; ++fam) {
+    double bare = 0.0, run = 0.0, widest = 0.0, first_run = -1.0;
+    for (int i = 0; i < n; ++i) {
+      st->max_stack = std::max(st->max_stack, stack[fam][i]);
+      if (stack[fam][i] == 0) {
+        const double len = bin ? (*bin)[i] : 1.0;
+        bare += len;
+        run += len;
+      } else {
+        if (first_run < 0.0) first_run = run;
+        widest = std::max(widest, run);
+        run = 0.0;
+      }
+    }
+    // The gap that wraps round the seam joins the last run to the first.
+    widest = std::max(widest, first_run < 0.0 ? total : run + first_run);
+    st->family_bare[fam] = bare / total;
+    st->widest_gap = std::max(st->widest_gap, bin ? widest : loop * widest / n);
+  }
+  st->bare_fraction = std::max(st->family_bare[0], st->family_bare[1]);
+  st->mean_plies = band_length / loop;
+  st->cover_factor = std::min(fam_length[0], fam_length[1]) / loop;
+  rep->bare_fraction = std::max(rep->bare_fraction, st->bare_fraction);
+  rep->widest_gap = std::max(rep->widest_gap, st->widest_gap);
+  rep->max_stack = std::max(rep->max_stack, st->max_stack);
+  rep->cover_factor = std::min(rep->cover_factor, st->cover_factor);
+  *plies += st->mean_plies;
+  rep->stations.push_back(*st);
+}
+
+}  // namespace
+
 CoverageReport measure_tube_coverage(const TubeCentreLine& line,
                                      const std::vector<Circuit>& circuits, double band_width,
                                      double s0, double s1, int stations) {
@@ -52,33 +93,7 @@ CoverageReport measure_tube_coverage(const TubeCentreLine& line,
       const int m = static_cast<int>(std::lround(width / (2 * M_PI) * n));
       for (int i = 0; i < m; ++i) ++stack[fam][((a + i) % n + n) % n];
     }
-    for (int fam = 0; fam < 2; ++fam) {
-      int bare = 0, run = 0, widest = 0, first_run = -1;
-      for (int i = 0; i < n; ++i) {
-        st.max_stack = std::max(st.max_stack, stack[fam][i]);
-        if (stack[fam][i] == 0) {
-          ++bare;
-          ++run;
-        } else {
-          if (first_run < 0) first_run = run;
-          widest = std::max(widest, run);
-          run = 0;
-        }
-      }
-      // The gap that wraps round the seam joins the last run to the first.
-      widest = std::max(widest, first_run < 0 ? n : run + first_run);
-      st.family_bare[fam] = static_cast<double>(bare) / n;
-      st.widest_gap = std::max(st.widest_gap, loop * widest / n);
-    }
-    st.bare_fraction = std::max(st.family_bare[0], st.family_bare[1]);
-    st.mean_plies = band_length / loop;
-    st.cover_factor = std::min(fam_length[0], fam_length[1]) / loop;
-    rep.bare_fraction = std::max(rep.bare_fraction, st.bare_fraction);
-    rep.widest_gap = std::max(rep.widest_gap, st.widest_gap);
-    rep.max_stack = std::max(rep.max_stack, st.max_stack);
-    rep.cover_factor = std::min(rep.cover_factor, st.cover_factor);
-    plies += st.mean_plies;
-    rep.stations.push_back(st);
+    close_station(stack, nullptr, loop, band_length, fam_length, &st, &rep, &plies);
   }
   rep.mean_plies = plies / rep.stations.size();
   return rep;
@@ -149,32 +164,7 @@ CoverageReport measure_tube_coverage(const TubeSurface& surface,
         back += bin[b];
       }
     }
-    for (int fam = 0; fam < 2; ++fam) {
-      double bare = 0.0, run = 0.0, widest = 0.0, first_run = -1.0;
-      for (int i = 0; i < n; ++i) {
-        st.max_stack = std::max(st.max_stack, stack[fam][i]);
-        if (stack[fam][i] == 0) {
-          bare += bin[i];
-          run += bin[i];
-        } else {
-          if (first_run < 0.0) first_run = run;
-          widest = std::max(widest, run);
-          run = 0.0;
-        }
-      }
-      widest = std::max(widest, first_run < 0.0 ? loop : run + first_run);
-      st.family_bare[fam] = bare / loop;
-      st.widest_gap = std::max(st.widest_gap, widest);
-    }
-    st.bare_fraction = std::max(st.family_bare[0], st.family_bare[1]);
-    st.mean_plies = band_length / loop;
-    st.cover_factor = std::min(fam_length[0], fam_length[1]) / loop;
-    rep.bare_fraction = std::max(rep.bare_fraction, st.bare_fraction);
-    rep.widest_gap = std::max(rep.widest_gap, st.widest_gap);
-    rep.max_stack = std::max(rep.max_stack, st.max_stack);
-    rep.cover_factor = std::min(rep.cover_factor, st.cover_factor);
-    plies += st.mean_plies;
-    rep.stations.push_back(st);
+    close_station(stack, &bin, loop, band_length, fam_length, &st, &rep, &plies);
   }
   rep.mean_plies = plies / rep.stations.size();
   return rep;
