@@ -233,7 +233,7 @@ TEST(MeshTubeSurface, RoundedRectangleFitStaysConvexAndTurnsAQuarterPerCorner) {
   const MeshTubeSurface& s = *f.fit.surface;
   EXPECT_TRUE(f.fit.summary.convex_fit) << f.fit.summary.brief_report();
   EXPECT_LT(f.fit.summary.least_curvature, -1e-3);  // the plain series is not convex
-  EXPECT_LT(f.fit.summary.fit_residual, 1.0) << f.fit.summary.brief_report();
+  EXPECT_LT(f.fit.summary.fit_residual, 0.5) << f.fit.summary.brief_report();  // 0.34
   const double z = 0.5 * s.length();
   double theta0 = 0.0, dist = 0.0, sz = 0.0;
   s.locate(Vec3(60.0, 0.0, 200.0), &sz, &theta0, &dist);  // the middle of the +x side
