@@ -16,6 +16,7 @@ namespace windplan {
 namespace {
 
 constexpr int kCentre = 0, kU = 3, kV = 6, kRho = 9;  // channel offsets
+constexpr int kMaxHarmonics = 256;                    // of the convex fit
 
 // Local linear least squares of values y(x) at x0 (tricube weights, half-width w): the value
 // and the first derivative there. Linear, not quadratic: inside the data its value is a
@@ -80,7 +81,7 @@ MeshTubeSurface::Eval MeshTubeSurface::eval(double s, double theta) const {
   const int nc = kRho + 2 * harmonics_ + 1;
   // Channel values and derivatives at s from the interval's cubic; beyond the ends the end
   // node's values (C goes on straight along its end slope).
-  std::array<double, kRho + 129> v, d1, d2;  // at most 64 harmonics
+  std::array<double, kRho + 2 * kMaxHarmonics + 1> v, d1, d2;
   const double sc = std::clamp(s, 0.0, length_);
   const int i = std::min(n - 2, std::max(0, static_cast<int>(std::floor(sc / h_))));
   const double t = sc - i * h_, t2 = t * t;
@@ -97,7 +98,7 @@ MeshTubeSurface::Eval MeshTubeSurface::eval(double s, double theta) const {
       d2[c] = 0.0;
     }
   }
-  auto vec = [](const std::array<double, kRho + 129>& x, int c) {
+  auto vec = [](const std::array<double, kRho + 2 * kMaxHarmonics + 1>& x, int c) {
     return Vec3(x[c], x[c + 1], x[c + 2]);
   };
   Eval e;
@@ -106,7 +107,8 @@ MeshTubeSurface::Eval MeshTubeSurface::eval(double s, double theta) const {
   e.V = vec(v, kV);
   const Vec3 C1 = vec(d1, kCentre), C2 = vec(d2, kCentre);
   const Vec3 U1 = vec(d1, kU), U2 = vec(d2, kU), V1 = vec(d1, kV), V2 = vec(d2, kV);
-  // rho and its derivatives from the Fourier series (cos k theta, sin k theta by recurrence).
+  // rho and its derivatives from the Fourier series (cos k theta, sin k theta by recurrence);
+  // in the convex fit the series is u = 1 / rho's, turned into rho's below.
   double r = v[kRho], rs = d1[kRho], rss = d2[kRho], rt = 0.0, rtt = 0.0, rst = 0.0;
   const double c1 = std::cos(theta), s1 = std::sin(theta);
   double ck = 1.0, sk = 0.0;
@@ -121,6 +123,17 @@ MeshTubeSurface::Eval MeshTubeSurface::eval(double s, double theta) const {
     rt += k * (-v[ca] * sk + v[cb] * ck);
     rtt -= k * k * (v[ca] * ck + v[cb] * sk);
     rst += k * (-d1[ca] * sk + d1[cb] * ck);
+  }
+  if (inverse_) {
+    // rho = 1 / u: rho' = -u' / u^2, rho'' = -u'' / u^2 + 2 u'^2 / u^3 (mixed alike).
+    const double u = r, i2 = 1.0 / (u * u), i3 = i2 / u;
+    const double us = rs, ut = rt;
+    r = 1.0 / u;
+    rs = -us * i2;
+    rt = -ut * i2;
+    rss = -rss * i2 + 2.0 * us * us * i3;
+    rtt = -rtt * i2 + 2.0 * ut * ut * i3;
+    rst = -rst * i2 + 2.0 * us * ut * i3;
   }
   const Vec3 d = c1 * e.U + s1 * e.V, dp = -s1 * e.U + c1 * e.V;
   const Vec3 ds = c1 * U1 + s1 * V1, dss = c1 * U2 + s1 * V2, dps = -s1 * U1 + c1 * V1;
@@ -274,14 +287,18 @@ bool MeshTubeSurfaceOptions::is_valid(std::string* why) const {
   if (!std::isnan(window) && !(window > 0.0)) return fail("window must be > 0 mm");
   if (harmonics < 1 || harmonics > 64) return fail("harmonics must be in 1..64");
   if (rays < 4 * harmonics) return fail("rays must be at least 4 x harmonics");
+  if (!(convex_width >= 0.03 && convex_width <= 1.0)) {
+    return fail("convex_width must be in 0.03..1 rad");
+  }
   return true;
 }
 
 std::string MeshTubeSurfaceSummary::brief_report() const {
   return std::to_string(sections) + " sections every " + format_fixed(step, 2) +
          " mm, smoothed over +-" + format_fixed(window, 1) + " mm, mean radius " +
-         format_fixed(mean_radius, 2) + " mm, " + std::to_string(harmonics) +
-         " harmonics, fit within " + format_fixed(fit_residual, 3) + " mm of the rays" +
+         format_fixed(mean_radius, 2) + " mm, " + std::to_string(harmonics) + " harmonics" +
+         (convex_fit ? " of 1 / rho (convex fit)" : "") + ", fit within " +
+         format_fixed(fit_residual, 3) + " mm of the rays" +
          (non_star_rays > 0 ? ", " + std::to_string(non_star_rays) + " rays met a section twice"
                             : std::string());
 }
@@ -368,6 +385,32 @@ MeshTubeSurfaceResult mesh_tube_surface(const Mesh& mesh, const Spine& spine,
   fit_channels(kU, 6, fy, fd);
   surf->build_polynomials();
   // rho: rays in each node's section, a Fourier series, smoothed along s.
+  // The farthest crossing of the ray from the origin at angle th with the closed polygon q
+  // (-1 if none), the count of crossings and the second farthest.
+  auto cast = [](const std::vector<Eigen::Vector2d>& q, double th, int* hits_out,
+                 double* second_out) {
+    const Eigen::Vector2d dir(std::cos(th), std::sin(th));
+    double best = -1.0, second = -1.0;
+    int hits = 0;
+    for (std::size_t k = 0; k < q.size(); ++k) {
+      const Eigen::Vector2d a = q[k], b = q[(k + 1) % q.size()], e = b - a;
+      const double den = dir.x() * (-e.y()) - dir.y() * (-e.x());
+      if (std::abs(den) < 1e-300) continue;
+      // dir rho = a + tau e  ->  rho dir - tau e = a
+      const double rho = (a.x() * (-e.y()) - a.y() * (-e.x())) / den;
+      const double tau = (dir.x() * a.y() - dir.y() * a.x()) / den;
+      // (a ray through a vertex meets both its segments, within rounding)
+      if (tau >= -1e-9 && tau <= 1.0 + 1e-9 && rho > 0.0) {
+        ++hits;
+        second = std::min(best, rho) > second ? std::min(best, rho) : second;
+        best = std::max(best, rho);
+      }
+    }
+    *hits_out = hits;
+    *second_out = second;
+    return best;
+  };
+  std::vector<std::vector<Eigen::Vector2d>> polys(n);
   const PlaneSectioner sectioner(mesh, axis);
   const int R = o.rays;
   std::vector<std::vector<double>> coef(n, std::vector<double>(2 * M + 1, 0.0));
@@ -399,25 +442,12 @@ MeshTubeSurfaceResult mesh_tube_surface(const Mesh& mesh, const Spine& spine,
     const Vec3 u = (U[i] - U[i].dot(t) * t).normalized(), v = t.cross(u);
     std::vector<Eigen::Vector2d> q;
     for (const Vec3& p : sec.points) q.emplace_back((p - c).dot(u), (p - c).dot(v));
+    polys[i] = q;
     for (int j = 0; j < R; ++j) {
       const double th = 2.0 * M_PI * j / R;
-      const Eigen::Vector2d dir(std::cos(th), std::sin(th));
-      double best = -1.0, second = -1.0;
+      double second = -1.0;
       int hits = 0;
-      for (std::size_t k = 0; k < q.size(); ++k) {
-        const Eigen::Vector2d a = q[k], b = q[(k + 1) % q.size()], e = b - a;
-        const double den = dir.x() * (-e.y()) - dir.y() * (-e.x());
-        if (std::abs(den) < 1e-300) continue;
-        // dir rho = a + tau e  ->  rho dir - tau e = a
-        const double rho = (a.x() * (-e.y()) - a.y() * (-e.x())) / den;
-        const double tau = (dir.x() * a.y() - dir.y() * a.x()) / den;
-        // (a ray through a vertex meets both its segments, within rounding)
-        if (tau >= -1e-9 && tau <= 1.0 + 1e-9 && rho > 0.0) {
-          ++hits;
-          second = std::min(best, rho) > second ? std::min(best, rho) : second;
-          best = std::max(best, rho);
-        }
-      }
+      const double best = cast(q, th, &hits, &second);
       if (best <= 0.0) {
         throw InputError("tube surface: a ray from the centre line at " + format_fixed(si, 1) +
                          " mm misses its section (the section does not enclose the centre)");
@@ -431,21 +461,67 @@ MeshTubeSurfaceResult mesh_tube_surface(const Mesh& mesh, const Spine& spine,
       }
     }
   }
+  // The series' section curvature, sign of rho^2 + 2 rho'^2 - rho rho'' (720 angles per node):
+  // where it is negative beyond 1e-3 / r_mean, the convex fit of u = 1 / rho.
+  double least = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < 720; ++j) {
+      const double th = 2.0 * M_PI * j / 720;
+      double r = coef[i][0], rt = 0.0, rtt = 0.0;
+      for (int k = 1; k <= M; ++k) {
+        const double c = std::cos(k * th), sn = std::sin(k * th);
+        r += coef[i][2 * k - 1] * c + coef[i][2 * k] * sn;
+        rt += k * (-coef[i][2 * k - 1] * sn + coef[i][2 * k] * c);
+        rtt -= k * k * (coef[i][2 * k - 1] * c + coef[i][2 * k] * sn);
+      }
+      const double kappa = (r * r + 2.0 * rt * rt - r * rtt) / std::pow(r * r + rt * rt, 1.5);
+      least = std::min(least, kappa * r_mean);
+    }
+  }
+  sum.least_curvature = least;
+  int terms = M;
+  if (least < -1e-3) {
+    // The kernel's series down to 1e-9 of its first term: 6.5 / width terms.
+    terms = std::min(kMaxHarmonics, static_cast<int>(std::ceil(6.5 / o.convex_width)));
+    const int R2 = std::max(R, 4 * terms);
+    sum.convex_fit = true;
+    surf->inverse_ = true;
+    const int nct = kRho + 2 * terms + 1;
+    for (auto& row : surf->y_) row.resize(nct, 0.0);
+    for (auto& row : surf->m_) row.resize(nct, 0.0);
+    for (int i = 0; i < n; ++i) {
+      coef[i].assign(2 * terms + 1, 0.0);
+      for (int j = 0; j < R2; ++j) {
+        const double th = 2.0 * M_PI * j / R2;
+        int hits = 0;
+        double second = 0.0;
+        const double u = 1.0 / cast(polys[i], th, &hits, &second);
+        coef[i][0] += u / R2;
+        for (int k = 1; k <= terms; ++k) {
+          const double g = std::exp(-0.5 * std::pow(k * o.convex_width, 2));
+          coef[i][2 * k - 1] += 2.0 * g * u * std::cos(k * th) / R2;
+          coef[i][2 * k] += 2.0 * g * u * std::sin(k * th) / R2;
+        }
+      }
+    }
+  }
   std::vector<double> nodes_s(n);
   for (int i = 0; i < n; ++i) nodes_s[i] = step * i;
   std::vector<std::vector<double>> ry(n), rd(n);
   for (int i = 0; i < n; ++i) local_fit(nodes_s, coef, step * i, window, &ry[i], &rd[i]);
-  fit_channels(kRho, 2 * M + 1, ry, rd);
+  fit_channels(kRho, 2 * terms + 1, ry, rd);
   // Harmonics that change no curvature: dropped (k^2 |c_k| below 1e-5 of the mean radius at
-  // every node, i.e. under 1e-5 of k_n around the section).
+  // every node, i.e. under 1e-5 of k_n around the section; of 1 / r_mean in the convex fit).
   int keep = 0;
-  for (int k = 1; k <= M; ++k) {
+  const double scale = surf->inverse_ ? 1.0 / r_mean : r_mean;
+  for (int k = 1; k <= terms; ++k) {
     for (int i = 0; i < n; ++i) {
       const double amp = std::hypot(surf->y_[i][kRho + 2 * k - 1], surf->y_[i][kRho + 2 * k]);
-      if (k * k * amp > 1e-5 * r_mean) keep = k;
+      if (k * k * amp > 1e-5 * scale) keep = k;
     }
   }
-  surf->harmonics_ = keep;
+  // (The convex fit keeps every term: its smoothing kernel is positive only whole.)
+  surf->harmonics_ = surf->inverse_ ? terms : keep;
   surf->build_polynomials();
   // Figures: the fit against the rays, the mean radius, the largest girth.
   double mean = 0.0;

@@ -15,6 +15,8 @@
 //  - rho: the section of the mesh by the plane normal to C' at each node (PlaneSectioner's loop
 //    around the tube), cut by `rays` rays from C in the plane, as a truncated Fourier series in
 //    theta (`harmonics` terms), its coefficients smoothed along s by the same local fit;
+//    where that series makes a section concave (flat sides), the series of 1 / rho smoothed by
+//    a positive kernel instead (convex_width), which keeps convex sections convex;
 //  - C, u, v and the coefficients are clamped cubic splines in s, so P is C2 and every
 //    derivative the rates need (P_s, P_theta, P_ss, P_stheta, P_thetatheta) is analytic. Beyond
 //    [0, length] the ends continue straight with their end sections.
@@ -39,17 +41,27 @@ struct MeshTubeSurfaceOptions {
   double window = std::nan("");
   int harmonics = 16;  ///< Fourier terms of rho in theta (count, 1..64)
   int rays = 256;      ///< rays per section (count, >= 4 x harmonics)
+  /// Where the series of rho would make a section concave somewhere (a rounded rectangle's flat
+  /// sides: its truncated series ripples there), the section is fitted instead by the series of
+  /// u = 1 / rho smoothed by a wrapped Gaussian of this width in theta (rad, 0.03..1): a
+  /// positive kernel, so the fitted section's curvature (sign of u + u'') is >= 0 wherever the
+  /// mesh section is convex, ~0 on its flats beyond ~3 widths of a corner; 6.5 / width terms
+  /// (the kernel's series to 1e-9), from 4 rays per term. Narrow enough that a turnaround turns
+  /// only where the mesh is curved within a measuring window (a band width) of it.
+  double convex_width = 0.04;
   bool is_valid(std::string* why) const;
 };
 
 struct MeshTubeSurfaceSummary {
-  int sections = 0;           ///< sections cut (nodes)
-  double step = 0.0;          ///< mm used
-  double window = 0.0;        ///< mm used
-  double mean_radius = 0.0;   ///< mean rho (mm)
-  double fit_residual = 0.0;  ///< largest |fitted rho - ray| over every ray of every node (mm)
-  int harmonics = 0;          ///< Fourier terms kept (those that change k_n by > 1e-5)
-  int non_star_rays = 0;      ///< rays that met their section more than once (largest taken)
+  int sections = 0;              ///< sections cut (nodes)
+  double step = 0.0;             ///< mm used
+  double window = 0.0;           ///< mm used
+  double mean_radius = 0.0;      ///< mean rho (mm)
+  double fit_residual = 0.0;     ///< largest |fitted rho - ray| over every ray of every node (mm)
+  int harmonics = 0;             ///< Fourier terms kept (those that change k_n by > 1e-5)
+  int non_star_rays = 0;         ///< rays that met their section more than once (largest taken)
+  bool convex_fit = false;       ///< sections fitted by the smoothed series of 1 / rho
+  double least_curvature = 0.0;  ///< least section curvature x mean radius of the rho series (1)
   std::string brief_report() const;
 };
 
@@ -87,6 +99,7 @@ class MeshTubeSurface : public TubeSurface {
   // coefficients a0, a1, b1, ...), their spline second derivatives.
   double h_ = 1.0, length_ = 0.0, section_radius_ = 0.0;
   int harmonics_ = 0;
+  bool inverse_ = false;  ///< the series is u = 1 / rho's (the convex fit)
   std::vector<std::vector<double>> y_, m_;
   std::vector<double> poly_;     ///< per interval and channel, the cubic's coefficients
   std::size_t poly_stride_ = 0;  ///< doubles per interval

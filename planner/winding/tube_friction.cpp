@@ -531,19 +531,19 @@ TubeFrictionWinding plan_tube_friction(const TubeSurface& line, double s0, doubl
   w.required = d.slippage;
   w.required_s = d.s;
   w.required_theta_deg = d.theta_outside * 180.0 / M_PI;
-  if (!(d.min_k_n > 0.0)) {
+  if (!(d.min_k_n > -kFlatCurvature) || std::isinf(d.slippage)) {
     if (line.even_is_theta()) {
       throw ConfigError(asked + ": on the inside of the bend the fibre would bridge (k_n " +
                         format_fixed(d.min_k_n * 1000.0, 3) +
                         " /m <= 0): friction cannot hold it; use a higher angle");
     }
-    // A fitted section: flat sides (a rounded rectangle's, where the fitted series ripples
-    // below 0) or concave ones, or the inside of a bend.
-    throw ConfigError(asked + ": the fibre would bridge where the tube is flat or concave across " +
-                      "it (k_n " + format_fixed(d.min_k_n * 1000.0, 3) +
-                      " /m <= 0 on the fitted surface: the inside of a bend, or a flat or " +
-                      "concave side of the section): friction cannot hold it; use a higher " +
-                      "angle, a gentler bend or a section with no flat sides");
+    // A fitted section: concave sides, or the inside of a bend (flat sides read as held:
+    // planner/winding/tube_surface.h's kFlatCurvature).
+    throw ConfigError(asked + ": the fibre would bridge where the tube is concave across it (k_n " +
+                      format_fixed(d.min_k_n * 1000.0, 3) +
+                      " /m < 0 on the fitted surface: the inside of a bend or a concave side of " +
+                      "the section): friction cannot hold it; use a higher angle, a gentler bend " +
+                      "or a convex section");
   }
   if (d.slippage > o.slippage) {
     throw ConfigError(

@@ -16,6 +16,7 @@ constexpr double kOnPassDeg = 0.5;  // a point this near a0 to the centre line i
 struct Worst {
   double slippage = 0.0, s = 0.0;
   bool on_pass = false;
+  double k_n = 0.0, k_g = 0.0;  ///< measured there (1/mm)
 };
 
 // The largest measured |k_g / k_n| of the laid points (pins: of the Pass segments only), where
@@ -34,7 +35,7 @@ Worst worst_point(const TubeSurface& line, const TubeFrictionWinding& w, double 
         // the centre line's tangent).
         const Vec3 e1 = (line.point(s + 0.5, th) - line.point(s - 0.5, th)).normalized();
         const double ang = std::acos(std::min(1.0, std::abs(q.tangent.dot(e1))));
-        out = {q.slippage, s, std::abs(ang - a0) * 180.0 / M_PI < kOnPassDeg};
+        out = {q.slippage, s, std::abs(ang - a0) * 180.0 / M_PI < kOnPassDeg, q.k_n, q.k_g};
       }
     }
   }
@@ -73,6 +74,18 @@ TubeFrictionWinding plan_tube_friction_within_mu(const TubeSurface& line, double
                         format_fixed(w.required, 3) + " at most on the bend; the mandrel's " +
                         "facets add the rest): a higher winding.angle, a gentler bend or a finer " +
                         "mandrel.angular_deflection");
+    }
+    // Measured straight across (|k_n| below the fibre metrics' straight curvature, 1e-4 /mm)
+    // yet turning: a flat facet of the mesh where the fitted surface curves a little (a rounded
+    // rectangle's flat side beside its corner, which the fit rounds over a few millimetres). No
+    // lower slippage holds a turning fibre there.
+    if (std::abs(worst.k_n) < 1e-4) {
+      throw ConfigError("winding.slippage " + format_turns(o.slippage) + ": " + where +
+                        " in a turnaround that turns on a flat side of the mandrel (measured k_n " +
+                        format_fixed(worst.k_n * 1000.0, 4) + " /m, k_g " +
+                        format_fixed(worst.k_g * 1000.0, 3) + " /m): friction cannot hold a " +
+                        "turning fibre on a flat; sections with flat sides are not yet supported " +
+                        "for friction turnarounds (an oval or round section instead)");
     }
     if (replan == kMaxReplans) {
       throw ConfigError(

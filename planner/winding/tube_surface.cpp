@@ -21,8 +21,11 @@ ConstantAngleDemand TubeSurface::demand(double s0, double s1, double a) const {
       const double th = -M_PI + 2.0 * M_PI * (k + 1) / nt;
       const Rates q = rates(pc, s, th, a);
       d.min_k_n = std::min(d.min_k_n, q.k_n);
-      const double lam =
-          q.k_n > 0.0 ? std::abs(q.w) / q.k_n : std::numeric_limits<double>::infinity();
+      // Where both vanish (a straight line on a flat side: a geodesic, held without friction)
+      // the demand reads 0; a concave direction (k_n < -kFlatCurvature) bridges.
+      const double lam = std::abs(q.k_n) <= kFlatCurvature && std::abs(q.w) <= kFlatCurvature ? 0.0
+                         : q.k_n > 0.0 ? std::abs(q.w) / q.k_n
+                                       : std::numeric_limits<double>::infinity();
       if (lam > d.slippage) {
         d.slippage = lam;
         d.s = s;

@@ -26,6 +26,10 @@
 
 namespace windplan {
 
+/// Curvature below which a direction counts as straight (1/mm, a radius of 10 km): where k_n
+/// and the geodesic term are both below it in size the fibre runs straight on a flat side.
+constexpr double kFlatCurvature = 1e-7;
+
 /// The worst |k_g / k_n| a constant angle needs over some stations: the value, where, and the
 /// least k_n.
 struct ConstantAngleDemand {
@@ -70,7 +74,8 @@ class TubeSurface {
   virtual bool even_is_theta() const { return true; }
   /// Its inverse at s.
   virtual double from_even_angle(double, double psi) const { return psi; }
-  /// max |w| / k_n at angle a over the stations [s0, s1] and every theta, with where.
+  /// max |w| / k_n at angle a over the stations [s0, s1] and every theta, with where (0 where
+  /// both are below kFlatCurvature, inf where k_n <= 0 otherwise).
   virtual ConstantAngleDemand demand(double s0, double s1, double a) const;
 };
 

@@ -192,6 +192,98 @@ TEST(MeshTubeSurface, ThreePipeRadiusElbowMeshIsRefusedWithTheSlippageItNeeds) {
   }
 }
 
+// A rounded rectangle 120 x 80 with 15 mm corners, by the fraction t / (2 pi) of its girth
+// from the middle of the +x side, counter-clockwise.
+Vec3 rounded_rectangle(double z, double t) {
+  const double hw = 60.0, hh = 40.0, rc = 15.0, fx = hh - rc, fy = hw - rc;  // half flats
+  const double girth = 4.0 * (fx + fy) + 2.0 * M_PI * rc;
+  double l = std::fmod(t / (2.0 * M_PI), 1.0) * girth;
+  if (l < 0.0) l += girth;
+  // Four quarter pieces, each: half a side along, a corner, half the next side.
+  const double q = 0.25 * girth;
+  const int k = std::min(3, static_cast<int>(l / q));
+  l -= k * q;
+  const double a = k % 2 == 0 ? fx : fy, b = k % 2 == 0 ? fy : fx;  // half flats before, after
+  const double ex = k % 2 == 0 ? hw : hh;                           // distance of the first side
+  double x, y;  // in the quarter's frame: the first side is x = ex, going +y
+  if (l <= a) {
+    x = ex;
+    y = l;
+  } else if (l <= a + 0.5 * M_PI * rc) {
+    const double phi = (l - a) / rc;
+    x = ex - rc + rc * std::cos(phi);
+    y = a + rc * std::sin(phi);
+  } else {
+    x = ex - rc - (l - a - 0.5 * M_PI * rc);
+    y = a + rc;
+  }
+  (void)b;
+  const double c = std::cos(0.5 * M_PI * k), sn = std::sin(0.5 * M_PI * k);
+  return Vec3(c * x - sn * y, sn * x + c * y, z);
+}
+
+// A rounded rectangle's flat sides have no curvature across them: the series of rho ripples
+// below 0 there, so the section is fitted by the smoothed series of 1 / rho, which keeps it
+// convex. Checked around the mid section at a = 90 deg (across the tube): k_n >= 0 everywhere,
+// ~0 in the middle of the flats, and its integral over a quarter (mid-flat to mid-flat) is the
+// quarter turn pi / 2 (whatever the smoothing); the geodesic term is 0 (a straight tube), so a
+// 55 deg layer needs no slippage.
+TEST(MeshTubeSurface, RoundedRectangleFitStaysConvexAndTurnsAQuarterPerCorner) {
+  const Fitted f = fit(rounded_rectangle, 400.0, 400, 40);
+  const MeshTubeSurface& s = *f.fit.surface;
+  EXPECT_TRUE(f.fit.summary.convex_fit) << f.fit.summary.brief_report();
+  EXPECT_LT(f.fit.summary.least_curvature, -1e-3);  // the plain series is not convex
+  EXPECT_LT(f.fit.summary.fit_residual, 0.5) << f.fit.summary.brief_report();  // 0.34
+  const double z = 0.5 * s.length();
+  double theta0 = 0.0, dist = 0.0, sz = 0.0;
+  s.locate(Vec3(60.0, 0.0, 200.0), &sz, &theta0, &dist);  // the middle of the +x side
+  EXPECT_NEAR(dist, 60.0, 0.5);
+  const int n = 4000;
+  double turn = 0.0, least = 1.0;
+  Vec3 prev = s.point(z, theta0);
+  for (int j = 1; j <= n; ++j) {
+    const double th = theta0 + 0.5 * M_PI * j / n;  // a quarter of theta: to the +y side's middle
+    const Vec3 p = s.point(z, th);
+    const TubeSurface::Rates q = s.rates(z, th - 0.25 * M_PI / n, 0.5 * M_PI);
+    turn += q.k_n * (p - prev).norm();
+    least = std::min(least, q.k_n);
+    prev = p;
+  }
+  EXPECT_GE(least, -1e-9);
+  EXPECT_NEAR(turn, 0.5 * M_PI, 2e-3 * M_PI);
+  EXPECT_LT(std::abs(s.rates(z, theta0, 0.5 * M_PI).k_n), 1e-5);  // mid-flat: ~straight
+  const ConstantAngleDemand d = s.demand(20.0, 380.0, 55.0 * M_PI / 180.0);
+  EXPECT_LT(d.slippage, 1e-3);
+  EXPECT_GE(d.min_k_n, -kFlatCurvature);
+}
+
+// A section with truly concave sides (r = 50 (1 - 0.35 cos 2 theta): dented at 0 and 180 deg)
+// stays concave in the convex fit, and a friction layer on it is refused with one line naming
+// the bridge before anything is traced.
+TEST(MeshTubeSurface, ConcaveSectionIsRefusedNamingTheBridge) {
+  auto peanut = [](double z, double t) {
+    const double r = 50.0 * (1.0 - 0.35 * std::cos(2.0 * t));
+    return Vec3(r * std::cos(t), r * std::sin(t), z);
+  };
+  const Fitted f = fit(peanut, 400.0, 360, 40);
+  const MeshTubeSurface& s = *f.fit.surface;
+  EXPECT_TRUE(f.fit.summary.convex_fit);
+  EXPECT_LT(s.rates(200.0, 0.0, 0.5 * M_PI).k_n, -1e-3);  // the dent's curvature stays < 0
+  WindingOptions o;
+  o.angle = 55.0;
+  o.slippage = 0.15;
+  o.mu = 0.2;
+  o.band_width = 12.0;
+  try {
+    plan_tube_friction(s, 0.0, s.length(), f.mesh, {}, SpindleAxis{}, o);
+    FAIL() << "a concave section was planned";
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("winding.angle 55 deg: the fibre would bridge"), std::string::npos) << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  }
+}
+
 TEST(MeshTubeSurface, RefusesBadOptions) {
   MeshTubeSurfaceOptions o;
   std::string why;
@@ -203,6 +295,9 @@ TEST(MeshTubeSurface, RefusesBadOptions) {
   EXPECT_FALSE(o.is_valid(&why));
   o.rays = 256;
   o.step = -1.0;
+  EXPECT_FALSE(o.is_valid(&why));
+  o.step = std::nan("");
+  o.convex_width = 0.0;
   EXPECT_FALSE(o.is_valid(&why));
 }
 
