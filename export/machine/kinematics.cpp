@@ -220,7 +220,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
   if (mandrel && mandrel->num_faces() > 0) query = std::make_unique<ClosestPointQuery>(*mandrel);
   // A robot's eye on a layup keeps its clearance from the surface of the layer in work (each
   // circuit's entry of circuit_surfaces; null or missing: the mandrel): one query per distinct
-  // surface, built once. Lathes measure on the mandrel (their envelope is the finished part's).
+  // surface, built once. lathe4: see layer_envelopes below.
   std::vector<const Mesh*> surface_meshes;
   std::vector<std::unique_ptr<ClosestPointQuery>> surface_queries;
   std::vector<int> surface_of(plan.circuits.size(), -1);  // -1: the mandrel and `query`
@@ -228,7 +228,9 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
   // clearance envelope of the surface it is wound on, swept (not the bare mandrel's: the lathe
   // replay of a two-layer pipe measured the eye 16.32 mm from the outer layer's surface with 20
   // reported on the mandrel), and its clearance is checked on that surface. lathe2 keeps one eye
-  // cylinder (no cross-feed: the G-code has no Y for the replay to follow).
+  // cylinder from the mandrel (no cross-feed: its replay takes the radius from the mandrel; one
+  // cylinder clearing the outer layer's surface was tried and its replay laid the outer layer
+  // 10.0 mm off on the two-layer pipe of tests/export: not done).
   const bool layer_envelopes = !true_distance && !lathe2 && !env.fixed_length && mandrel &&
                                mandrel->num_faces() > 0 && opts.envelope.mode() == "clearance";
   std::vector<Envelope> surface_envelopes;  // per entry of surface_meshes (layer_envelopes)
