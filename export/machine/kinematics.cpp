@@ -261,14 +261,12 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     }
   }
   m.required_clearance = env.fixed_length ? 0.0 : opts.envelope.clearance;
-  // A robot's eyes are placed at the clearance plus twice the chord tolerance: the chord
-  // resampling keeps the targets' chords within chord_tolerance of the dense eyes, and a chord of
-  // length h between two dense eyes at distance c' dips at most c' - sqrt(c'^2 - h^2 / 4) (0.025
-  // mm for h = 2 mm, c' = 20) inside, besides the cell's own interpolation between targets (X, Y,
-  // E1 linear); the second tolerance covers those. With the eyes at exactly the clearance the
-  // replay measured 19.95 mm on pipe_robot_layup (once the circuit links were fixed) and 19.96 on
-  // bent_tube; at + 2 x 0.05 mm: 20.04 and 20.05.
-  const double eye_clearance = opts.envelope.clearance + 2.0 * opts.chord_tolerance;
+  // A robot's eyes are at exactly the clearance: the targets' chords lie within chord_tolerance
+  // of the dense eyes, so the replay measures down to clearance - chord_tolerance between them
+  // (19.95 mm on pipe_robot_layup and bent_tube). Eyes at the clearance plus 0.025 to 0.15 mm were
+  // tried: the replay's contact walk then lost the fibre at the start of a layup's second layer
+  // (15.7 to 16.0 mm off, on pipe_robot_layup and on tests/cli's robot layup), not done.
+  const double eye_clearance = opts.envelope.clearance;
   double min_clearance = std::numeric_limits<double>::infinity();
 
   // Per circuit, independent of the others: the smoothed tangents, the eye of every dense point,

@@ -14,9 +14,7 @@
 // between two dense points and where a circuit goes on from the previous one's last point (link
 // eyes, the tangent turned from that circuit's last tangent; not at a layer's start, where the
 // tow is tied on again), its targets resampled in (X, Y, angle) as well (the cell's
-// interpolation), and every eye placed at the clearance plus twice chord_tolerance (the chords
-// between targets lie within chord_tolerance of the dense eyes, whose own chords sag inside by
-// c - sqrt(c^2 - h^2 / 4) for eyes h apart), so that the eye keeps the clearance between them.
+// interpolation), so that the eye keeps the clearance between them to within chord_tolerance.
 // lathe4 on a layup (circuit_surfaces): each circuit's envelope is the clearance envelope of the
 // surface it is wound on, and its clearance is checked on that surface. The
 // tangents t are the plan's, smoothed under machine.tangent_window

@@ -24,9 +24,7 @@
 namespace windplan {
 namespace {
 
-// kRe: the planned eye's radius, 20 mm clearance plus twice the chord tolerance (0.05 mm) from the
-// cylinder (export/machine/kinematics.h), so that the hand-written eyes are the planned ones.
-constexpr double kR = 50, kRe = 70.1, kAlpha = 60, kTurns = 2, kOffset = -180;
+constexpr double kR = 50, kRe = 70, kAlpha = 60, kTurns = 2, kOffset = -180;
 
 MachineOptions cell() {
   MachineOptions m;
@@ -262,8 +260,8 @@ TEST(RobotReplay, AHoopLayersTieOnTurnIsOnThePlannedEyePath) {
 // eye checked every 2 mm of its travel against the surface of the layer in work. Where one circuit
 // goes on from the previous one's last point the tangent turns by about 40 deg (from the
 // turnaround's circumferential tangent into the next pass), and the straight move between the two
-// eyes cut 0.76 mm into the clearance (19.24 mm) before link eyes were put there; with the eyes at
-// exactly the clearance the chords between targets dipped 0.05 mm (19.95).
+// eyes cut 0.76 mm into the clearance (19.24 mm) before link eyes were put there; now the chords
+// between targets dip at most the chord tolerance (19.95 mm).
 TEST(RobotReplay, PipeLayupEyeKeepsTheClearanceBetweenTargets) {
   const Job job = load_job_from_string(
       "name: pipe layup\n"
@@ -293,7 +291,7 @@ TEST(RobotReplay, PipeLayupEyeKeepsTheClearanceBetweenTargets) {
   std::printf("%s\n", r.summary.c_str());
   const double clearance = job.machine.envelope.clearance;
   EXPECT_GE(mo.min_clearance, clearance);
-  EXPECT_GE(r.fibre.min_clearance, clearance - 1e-3) << r.summary;
+  EXPECT_GE(r.fibre.min_clearance, clearance - job.machine.chord_tolerance - 1e-3) << r.summary;
   EXPECT_LT(r.fibre.max_deviation, 0.3) << r.summary;
   EXPECT_LT(r.max_eye_deviation, 0.01) << r.max_eye_deviation_at;
 }
@@ -378,9 +376,7 @@ TEST(RobotReplay, BentTubeEyeSitsAtTheTrueClearance) {
   ASSERT_EQ(m.kind, "robot");
   const Mesh& mesh = c.planned.mandrel.mesh;
   const Motion mo = compute_motion(c.planned.plan, m, &mesh);
-  // The eye is placed at the clearance plus twice the chord tolerance
-  // (export/machine/kinematics.h).
-  const double clearance = m.envelope.clearance + 2 * m.chord_tolerance;
+  const double clearance = m.envelope.clearance;
   EXPECT_LE(worst_clearance_error(mo, mesh, clearance), m.chord_tolerance);
   EXPECT_EQ(mo.fibre_into_mandrel, 0);
   // The tangent line of a tube of radius 25 at 20 mm reaches it after about 38 mm.
@@ -408,9 +404,9 @@ TEST(RobotReplay, BentTubeProgramsReplayWithinTolerance) {
         read_robot_program(texts, files.front().name, dialect), c.planned.plan, mesh, m, &mo);
     EXPECT_LT(r.fibre.max_deviation, m.replay_tolerance) << dialect << ": " << r.summary;
     EXPECT_LT(r.max_eye_deviation, m.replay_tolerance) << dialect << ": " << r.summary;
-    // Between targets too (corner eyes, resampling in the cell's interpolation, the eyes planned
-    // at the clearance plus the chords' sag): 19.96 mm before, with the eyes at exactly 20.
-    EXPECT_GE(r.fibre.min_clearance, m.envelope.clearance - 1e-3) << r.summary;
+    // Between targets too (corner and link eyes, resampling in the cell's interpolation): within
+    // the chord tolerance (19.95 mm; 19.96 before the link eyes).
+    EXPECT_GE(r.fibre.min_clearance, m.envelope.clearance - m.chord_tolerance - 1e-3) << r.summary;
     EXPECT_LE(r.max_joint_speed_ratio, 1.001) << r.summary;  // durations written to 4 decimals
     EXPECT_EQ(r.configuration_changes, 0) << r.summary;
   }
