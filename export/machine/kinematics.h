@@ -11,8 +11,12 @@
 // its eye is the first point of the tangent line at the true clearance from the mesh (a layup's
 // circuit: from the surface of its layer, circuit_surfaces below)
 // (export/machine/clearance_eye.h), with eyes inserted where the tangent turns by more than 2 deg
-// between two dense points, and its targets resampled in (X, Y, angle) as well (the cell's
-// interpolation), so that the eye keeps the clearance between them. The
+// between two dense points and where a circuit goes on from the previous one's last point (link
+// eyes, the tangent turned from that circuit's last tangent; not at a layer's start, where the
+// tow is tied on again), its targets resampled in (X, Y, angle) as well (the cell's
+// interpolation), so that the eye keeps the clearance between them to within chord_tolerance.
+// lathe4 on a layup (circuit_surfaces): each circuit's envelope is the clearance envelope of the
+// surface it is wound on, and its clearance is checked on that surface. The
 // tangents t are the plan's, smoothed under machine.tangent_window
 // (export/machine/tangent_smoothing.h). L solves f(L) = r(E(L)) - R_env(x(E(L))) = 0 for the first
 // root: f is Lipschitz with constant 1 + S (S = the largest |dR_env/dx|), so marching by -f/(1+S)
@@ -163,7 +167,9 @@ int driven_axes(const MachineOptions& opts);
 ///        (a layup: planner/plan_layup.h layup_circuit_surfaces, as export/program/replay.h takes
 ///        it); null, missing entries or an empty list: the mandrel. A robot's true-distance eye
 ///        (and its clearance check) is measured from the circuit's own surface, the layer in
-///        work; lathes measure on the mandrel (their envelope already clears the finished part).
+///        work; lathe4 (and a robot without a mesh) takes the clearance envelope of that surface
+///        and checks the clearance on it; lathe2 keeps one cylinder from the mandrel and measures
+///        on the mandrel.
 /// \throw InputError for an envelope inside the mandrel, a tangent that never leaves the
 ///        envelope, an eye closer to the mandrel than the clearance, or a machine value outside
 ///        an axis's travel limits (naming the axis, the value and the point as circuit/index).

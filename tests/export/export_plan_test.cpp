@@ -18,6 +18,7 @@
 #include "export/files/report.h"
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
+#include "geometry/mesh/closest_point.h"
 #include "planner/job/job.h"
 #include "planner/pipeline.h"
 #include "planner/plan_layup.h"
@@ -491,6 +492,49 @@ TEST(ExportPlan, LayupReplaysEachLayerOnTheSurfaceItWasWoundOn) {
   EXPECT_GT(bare.replay.max_deviation_line, outer_line);
   // The same program either way: only the replay differs.
   EXPECT_EQ(read_text_file(b / "toolpath.ngc"), g);
+}
+
+// lathe4 on a layup keeps the clearance from the surface of the layer in work: each circuit's eye
+// envelope is that of the surface it is wound on (ExportContext::circuit_surfaces), and the
+// report's clearance is measured on it. With the bare mandrel's envelope the outer layer's eye was
+// 16.32 mm from the surface it is wound on while the motion reported 20.00 (on the mandrel).
+TEST(ExportPlan, LayupEyeKeepsTheClearanceFromTheLayerInWork) {
+  Job job = load_job_from_string(
+      "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 300}\n"
+      "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
+      "winding: {turns: 2, circuits: auto, band_width: 10}\n"
+      "layers:\n  - kind: helical\n    name: inner\n  - kind: helical\n    name: outer\n"
+      "machine: {kind: lathe4}\n"
+      "output: {ply: false, svg: false, viewer: false, csv: false}\n",
+      "/jobs/pipe_layup_clearance.yaml");
+  const LayupResult layup = plan_layup(job);
+  ASSERT_EQ(layup.layers.size(), 2u);
+  const std::vector<const Mesh*> under = layup_circuit_surfaces(layup);
+  ASSERT_NE(under.back(), nullptr);
+  const double clearance = job.machine.envelope.clearance;
+  ExportContext ctx;
+  ctx.circuit_surfaces = under;
+  job.machine.replay_tolerance = 1.0;
+  const fs::path a = temp_dir("layup_clearance");
+  const ExportResult r =
+      export_plan(layup.plan, layup.mandrel.mesh, job.machine, job.output, a, ctx);
+  ASSERT_TRUE(r.has_replay);
+  std::printf("%s\n", r.replay.summary.c_str());
+  // Every eye of the outer layer, measured independently on the surface it is wound on.
+  const ClosestPointQuery outer(*under.back());
+  double least = std::numeric_limits<double>::infinity();
+  int outer_states = 0;
+  for (const MachineState& s : r.motion.states) {
+    if (s.ordinal < layup.plan.layers[1].first_circuit) continue;
+    least = std::min(least, outer.closest(s.eye).distance);
+    ++outer_states;
+  }
+  ASSERT_GT(outer_states, 100);
+  std::printf("outer layer: %d eyes, least distance %.4f mm\n", outer_states, least);
+  EXPECT_GE(least, clearance - 0.01);  // the envelope's chords: 0.006 mm inside the dilation
+  EXPECT_GE(r.motion.min_clearance, clearance - 0.01);
+  EXPECT_GE(r.replay.min_clearance, clearance - job.machine.chord_tolerance);
+  EXPECT_LT(r.replay.max_deviation, 1.0);
 }
 
 }  // namespace
