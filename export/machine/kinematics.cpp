@@ -296,6 +296,25 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
   // the two), each at the true clearance. Returns the number of eyes; fills the arrays of `cm`
   // and first_of (dense index -> entry).
   constexpr double kCornerDeg = 2.0;
+  // The eye of fibre point p at the true clearance with the tangent turned the fraction f of the
+  // angle ang from ta to tb (slerp), counting a tangent that enters the mandrel.
+  struct TurnedEye {
+    Vec3 t = Vec3::Zero();  // unit tangent
+    EyeSolution es;
+  };
+  auto turned_eye = [](const Mesh& mesh, const ClosestPointQuery& q, const Vec3& p,
+                       const Vec3& ta, const Vec3& tb, double ang, double f, double clearance,
+                       CircuitMotion* cm) {
+    const Vec3 t = (std::sin((1.0 - f) * ang) * ta + std::sin(f * ang) * tb) / std::sin(ang);
+    const ClearanceEye ce = solve_clearance_eye(mesh, q, p, t, clearance);
+    if (ce.enters) ++cm->fibre_into_mandrel;
+    TurnedEye out;
+    out.t = t.normalized();
+    out.es.eye = ce.eye;
+    out.es.free_length = ce.free_length;
+    out.es.iterations = ce.iterations;
+    return out;
+  };
   auto insert_corner_eyes = [&](const Mesh& mesh, const ClosestPointQuery& q, double clearance,
                                 const std::vector<double>& s_dense, std::vector<Vec3>* fibre,
                                 std::vector<Vec3>* eyes, CircuitMotion* cm,
@@ -315,18 +334,12 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
         const int parts = static_cast<int>(std::ceil(ang * kDeg / kCornerDeg));
         for (int k = 1; k < parts && std::sin(ang) > 1e-9; ++k) {
           const double f = static_cast<double>(k) / parts;
-          const Vec3 t = (std::sin((1.0 - f) * ang) * ta + std::sin(f * ang) * tb) / std::sin(ang);
           const Vec3 p = (1.0 - f) * (*fibre)[i - 1] + f * (*fibre)[i];
-          const ClearanceEye ce = solve_clearance_eye(mesh, q, p, t, clearance);
-          if (ce.enters) ++cm->fibre_into_mandrel;
-          EyeSolution es;
-          es.eye = ce.eye;
-          es.free_length = ce.free_length;
-          es.iterations = ce.iterations;
+          const TurnedEye te = turned_eye(mesh, q, p, ta, tb, ang, f, clearance, cm);
           fibre2.push_back(p);
-          eyes2.push_back(ce.eye);
-          tangent2.push_back(t.normalized());
-          sol2.push_back(es);
+          eyes2.push_back(te.es.eye);
+          tangent2.push_back(te.t);
+          sol2.push_back(te.es);
           dense.push_back(i - 1);
           s2.push_back((1.0 - f) * s_dense[i - 1] + f * s_dense[i]);
           inserted = true;
@@ -443,17 +456,11 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     std::vector<EyeSolution> sol2;
     for (int k = 1; k < parts; ++k) {
       const double f = static_cast<double>(k) / parts;
-      const Vec3 t = (std::sin((1.0 - f) * ang) * ta + std::sin(f * ang) * tb) / std::sin(ang);
-      const ClearanceEye ce = solve_clearance_eye(mesh, q, p, t, clearance);
-      if (ce.enters) ++cm->fibre_into_mandrel;
-      EyeSolution es;
-      es.eye = ce.eye;
-      es.free_length = ce.free_length;
-      es.iterations = ce.iterations;
+      const TurnedEye te = turned_eye(mesh, q, p, ta, tb, ang, f, clearance, cm);
       fibre2.push_back(p);
-      eyes2.push_back(ce.eye);
-      tangent2.push_back(t.normalized());
-      sol2.push_back(es);
+      eyes2.push_back(te.es.eye);
+      tangent2.push_back(te.t);
+      sol2.push_back(te.es);
     }
     const int added = parts - 1;
     fibre->insert(fibre->begin(), fibre2.begin(), fibre2.end());
