@@ -12,9 +12,6 @@ namespace windplan {
 
 namespace {
 
-// Curvature below which a fibre counts as straight for its slippage (1/mm: a radius of 10 m).
-constexpr double kStraightCurvature = 1e-4;
-
 constexpr double kTwoPi = 2.0 * M_PI;
 
 // Arc-length interpolation of a point attribute (position, normal) along a polyline (cumulative
@@ -295,10 +292,10 @@ void annotate_fibre_points(std::vector<FibrePoint>* points, const SpindleAxis& a
     }
     q.k_n = -dt.dot(nc);  // > 0 where the fibre bends towards the mandrel (convex)
     q.k_g = dt.dot(nc.cross(tc));
-    // A fibre bent by less than kStraightCurvature (a radius of 10 m) is straight to the
+    // A fibre bent by less than kStraightFibreCurvature (a radius of 10 m) is straight to the
     // measurement: k_g / k_n of two such values is noise (the ends of traced helix passes on a
     // coarse bent pipe measured 0.25-410 from curvatures of 1e-8..1e-5 / mm), and it does not slip.
-    q.slippage = std::hypot(q.k_n, q.k_g) < kStraightCurvature ? 0.0
+    q.slippage = std::hypot(q.k_n, q.k_g) < kStraightFibreCurvature ? 0.0
                  : std::fabs(q.k_n) > 1e-12                    ? std::fabs(q.k_g / q.k_n)
                                             : (std::fabs(q.k_g) > 1e-12 ? kUnboundedSlippage : 0.0);
   }

@@ -49,6 +49,10 @@
 
 namespace windplan {
 
+/// Curvature below which a fibre counts as straight for its slippage (1/mm: a radius of 10 m):
+/// its |k_g / k_n| is 0, not the ratio of two tiny numbers.
+inline constexpr double kStraightFibreCurvature = 1e-4;
+
 /// Unit vertex normals of a mesh (angle-weighted).
 std::vector<Vec3> vertex_normals(const Mesh& mesh);
 

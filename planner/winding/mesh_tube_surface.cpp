@@ -235,15 +235,7 @@ double MeshTubeSurface::from_even_angle(double s, double psi) const {
 }
 
 double MeshTubeSurface::girth(double s) const {
-  double g = 0.0;
-  const int n = 720;
-  Vec3 prev = point(s, 0.0);
-  for (int k = 1; k <= n; ++k) {
-    const Vec3 p = point(s, 2.0 * M_PI * k / n);
-    g += (p - prev).norm();
-    prev = p;
-  }
-  return g;
+  return section_table(*this, s, kEvenSamples).back();
 }
 
 void MeshTubeSurface::locate(const Vec3& p, double* s, double* theta, double* distance) const {

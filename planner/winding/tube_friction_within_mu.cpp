@@ -5,6 +5,7 @@
 
 #include "geometry/base/errors.h"
 #include "geometry/base/format_number.h"
+#include "planner/winding/fibre_metrics.h"
 
 namespace windplan {
 
@@ -75,11 +76,11 @@ TubeFrictionWinding plan_tube_friction_within_mu(const TubeSurface& line, double
                         "facets add the rest): a higher winding.angle, a gentler bend or a finer " +
                         "mandrel.angular_deflection");
     }
-    // Measured straight across (|k_n| below the fibre metrics' straight curvature, 1e-4 /mm)
+    // Measured straight across (|k_n| below the fibre metrics' straight curvature)
     // yet turning: a flat facet of the mesh where the fitted surface curves a little (a rounded
     // rectangle's flat side beside its corner, which the fit rounds over a few millimetres). No
     // lower slippage holds a turning fibre there.
-    if (std::abs(worst.k_n) < 1e-4) {
+    if (std::abs(worst.k_n) < kStraightFibreCurvature) {
       throw ConfigError("winding.slippage " + format_turns(o.slippage) + ": " + where +
                         " in a turnaround that turns on a flat side of the mandrel (measured k_n " +
                         format_fixed(worst.k_n * 1000.0, 4) + " /m, k_g " +
