@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 
+#include "export/machine/circuit_surfaces.h"
 #include "export/machine/eye_envelope.h"
 #include "export/machine/kinematics.h"
 #include "export/machine/resample.h"
@@ -306,17 +307,11 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   if (mandrel.num_faces() == 0) throw InputError("the mandrel mesh is empty");
   std::vector<Vec3> planned, planned_n;
   std::vector<int> circuit_start;       // index of each circuit's first point in `planned`
-  std::vector<const Mesh*> start_mesh;  // the surface of the circuit starting there
-  std::vector<const Mesh*> meshes;      // the distinct surfaces, the mandrel first
-  std::vector<char> held;               // on a turnaround: a pin ring or boss holds the fibre there
-  meshes.push_back(&mandrel);
+  std::vector<int> start_mesh;  // the surface (entry of surfaces_of.meshes) of the circuit there
+  std::vector<char> held;        // on a turnaround: a pin ring or boss holds the fibre there
+  const CircuitSurfaces surfaces_of = distinct_circuit_surfaces(plan, mandrel, circuit_surfaces);
   for (std::size_t ci = 0; ci < plan.circuits.size(); ++ci) {
     const Circuit& c = plan.circuits[ci];
-    const Mesh* cm =
-        ci < circuit_surfaces.size() && circuit_surfaces[ci] ? circuit_surfaces[ci] : &mandrel;
-    if (cm->num_faces() == 0)
-      throw InputError("the mesh under circuit " + std::to_string(ci) + " is empty");
-    if (std::find(meshes.begin(), meshes.end(), cm) == meshes.end()) meshes.push_back(cm);
     std::vector<char> on_turn(c.points.size(), 0);
     for (const CircuitSegment& seg : c.segments) {
       if (seg.kind != CircuitSegment::Kind::Turnaround) continue;
@@ -327,7 +322,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
     }
     if (!c.points.empty()) {
       circuit_start.push_back(static_cast<int>(planned.size()));
-      start_mesh.push_back(cm);
+      start_mesh.push_back(surfaces_of.of[ci]);
     }
     for (std::size_t i = 0; i < c.points.size(); ++i) {
       const FibrePoint& p = c.points[i];
@@ -385,12 +380,11 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
 
   // One walking surface per distinct mesh; `surf` is the one under the circuit at ptr.
   std::vector<std::unique_ptr<const Surface>> surfaces;
-  for (const Mesh* m : meshes) surfaces.push_back(std::make_unique<const Surface>(*m));
+  for (const Mesh* m : surfaces_of.meshes) surfaces.push_back(std::make_unique<const Surface>(*m));
   auto surface_at = [&](int ptr_index) -> const Surface* {
     const auto it = std::upper_bound(circuit_start.begin(), circuit_start.end(), ptr_index);
-    const Mesh* m =
-        it == circuit_start.begin() ? &mandrel : start_mesh[it - circuit_start.begin() - 1];
-    return surfaces[std::find(meshes.begin(), meshes.end(), m) - meshes.begin()].get();
+    return surfaces[it == circuit_start.begin() ? 0 : start_mesh[it - circuit_start.begin() - 1]]
+        .get();
   };
   const Surface* surf = surface_at(0);
   ReplayResult r;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 
+#include "export/machine/circuit_surfaces.h"
 #include "export/machine/kinematics.h"
 #include "export/robot/robot_kinematics.h"
 #include "geometry/base/errors.h"
@@ -39,19 +40,9 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
   const AxisFrame frame = make_axis_frame(plan.axis);
   // The surfaces the links are measured to: the mandrel first, then every other surface a
   // circuit was wound on (a layup's layers), each with its query.
-  std::vector<const Mesh*> meshes{&mandrel};
-  std::vector<int> circuit_mesh(plan.circuits.size(), 0);  // per circuit: its entry of `meshes`
-  for (std::size_t ci = 0; ci < plan.circuits.size() && ci < circuit_surfaces.size(); ++ci) {
-    const Mesh* m = circuit_surfaces[ci] ? circuit_surfaces[ci] : &mandrel;
-    auto it = std::find(meshes.begin(), meshes.end(), m);
-    if (it == meshes.end()) {
-      if (m->num_faces() == 0)
-        throw InputError("the mesh under circuit " + std::to_string(ci) + " is empty");
-      meshes.push_back(m);
-      it = meshes.end() - 1;
-    }
-    circuit_mesh[ci] = static_cast<int>(it - meshes.begin());
-  }
+  const CircuitSurfaces surfaces_of = distinct_circuit_surfaces(plan, mandrel, circuit_surfaces);
+  const std::vector<const Mesh*>& meshes = surfaces_of.meshes;
+  const std::vector<int>& circuit_mesh = surfaces_of.of;  // per circuit: its entry of `meshes`
   std::vector<std::unique_ptr<const ClosestPointQuery>> queries;
   for (const Mesh* m : meshes) queries.push_back(std::make_unique<const ClosestPointQuery>(*m));
 
