@@ -33,7 +33,9 @@ const char* const kSimulateHelp =
     "ranges, reversals, the axis velocity and acceleration against their limits and the wind\n"
     "time, and writes them to a JSON file. Exit 1 for a program with an unknown word, another\n"
     "dialect's words or a move beyond an axis's travel (the line is named), or when the\n"
-    "deviation exceeds machine.replay_tolerance (when that is > 0).\n"
+    "deviation exceeds machine.replay_tolerance or the eye comes nearer the surface of the layer\n"
+    "in work than machine.envelope.clearance less chord_tolerance (both when replay_tolerance\n"
+    "> 0; a lathe2 layup's eye radius is the one named at each layer's stop, M0).\n"
     "A robot cell's job (machine.robot.arm) reads a KRL (.src, with its .dat and parts) or\n"
     "RAPID (.mod) program instead (machine.robot.dialect), solves every target by inverse\n"
     "kinematics, runs forward kinematics and the positioner E1, and also reports the clearance\n"
@@ -158,6 +160,15 @@ int run_simulate(const std::vector<std::string>& argv) {
   write_simulate_report(args, program_file, j.str(), rp.summary);
   if (ReplayExcess e; !rp.within(job.machine.replay_tolerance, &e)) {
     throw InputError(e.located(program_file.string()));
+  }
+  // The eye kept the clearance from the layer in work (a lathe2 layup's program without its
+  // stops' eye radii replays on the mandrel's cylinder: 16.32 mm on a two-layer pipe).
+  const double clearance =
+      job.machine.envelope.mode() == "free_length" ? 0.0 : job.machine.envelope.clearance;
+  if (const std::string why =
+          rp.clearance_short(program_file.string(), clearance, job.machine.chord_tolerance, true);
+      job.machine.replay_tolerance > 0.0 && !why.empty()) {
+    throw InputError(why);
   }
   return 0;
 }

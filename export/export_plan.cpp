@@ -165,6 +165,12 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
     if (ReplayExcess e; !r.replay.within(machine.replay_tolerance, &e)) {
       throw InputError(e.refused(name));
     }
+    // The eye kept the clearance from the layer in work (issue #26: lathe2's eye radius).
+    if (const std::string why = r.replay.clearance_short(name, r.motion.required_clearance,
+                                                         machine.chord_tolerance, false);
+        machine.replay_tolerance > 0.0 && !why.empty()) {
+      throw InputError(why);
+    }
   };
 
   // The list first, so that the reports can name every file (themselves included).

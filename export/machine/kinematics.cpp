@@ -220,21 +220,22 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
   if (mandrel && mandrel->num_faces() > 0) query = std::make_unique<ClosestPointQuery>(*mandrel);
   // A robot's eye on a layup keeps its clearance from the surface of the layer in work (each
   // circuit's entry of circuit_surfaces; null or missing: the mandrel): one query per distinct
-  // surface, built once. lathe4: see layer_envelopes below.
+  // surface, built once. Lathes: see layer_envelopes below.
   std::vector<const Mesh*> surface_meshes;
   std::vector<std::unique_ptr<ClosestPointQuery>> surface_queries;
   std::vector<int> surface_of(plan.circuits.size(), -1);  // -1: the mandrel and `query`
-  // lathe4 (and a robot without a mesh) on a layup: the eye envelope of each circuit is the
+  // lathes (and a robot without a mesh) on a layup: the eye envelope of each circuit is the
   // clearance envelope of the surface it is wound on, swept (not the bare mandrel's: the lathe
   // replay of a two-layer pipe measured the eye 16.32 mm from the outer layer's surface with 20
-  // reported on the mandrel), and its clearance is checked on that surface. lathe2 keeps one eye
-  // cylinder from the mandrel (no cross-feed: its replay takes the radius from the mandrel; one
-  // cylinder clearing the outer layer's surface was tried and its replay laid the outer layer
-  // 10.0 mm off on the two-layer pipe of tests/export: not done).
-  const bool layer_envelopes = !true_distance && !lathe2 && !env.fixed_length && mandrel &&
+  // reported on the mandrel), and its clearance is checked on that surface. lathe2 (no
+  // cross-feed): each layer's eye cylinder is that surface's largest radius + the clearance (the
+  // operator sets it at the stop before the layer: export/program/gcode.h); an explicit
+  // envelope.radius or profile stays one envelope, its clearance checked on each layer's surface.
+  const bool layer_envelopes = !true_distance && !env.fixed_length && mandrel &&
                                mandrel->num_faces() > 0 && opts.envelope.mode() == "clearance";
-  std::vector<Envelope> surface_envelopes;  // per entry of surface_meshes (layer_envelopes)
-  if (true_distance || layer_envelopes) {
+  const bool layer_clearance = mandrel && mandrel->num_faces() > 0;
+  std::vector<Envelope> surface_envelopes;  // per entry of surface_meshes
+  if (true_distance || layer_clearance) {
     for (std::size_t ci = 0; ci < plan.circuits.size() && ci < circuit_surfaces.size(); ++ci) {
       const Mesh* sm = circuit_surfaces[ci];
       if (!sm || sm == mandrel) continue;
@@ -244,16 +245,22 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
       if (it == surface_meshes.end()) {
         surface_meshes.push_back(sm);
         surface_queries.push_back(std::make_unique<ClosestPointQuery>(*sm));
-        if (layer_envelopes) {
-          surface_envelopes.push_back(
-              make_envelope(swept_profile(plan, sm), opts.envelope, opts.kind));
-        }
+        surface_envelopes.push_back(
+            layer_envelopes ? make_envelope(swept_profile(plan, sm), opts.envelope, opts.kind)
+                            : env);
         it = surface_meshes.end() - 1;
       }
       surface_of[ci] = static_cast<int>(it - surface_meshes.begin());
     }
-    if (!surface_meshes.empty() && layer_envelopes) {
+    if (!surface_meshes.empty() && layer_envelopes && lathe2 && !(opts.envelope.radius > 0.0)) {
+      m.envelope = "cylinder per layer, largest radius of the layer in work + " +
+                   num(opts.envelope.clearance) + " mm: r = " + num(env.r.front());
+      for (const Envelope& e : surface_envelopes) m.envelope += ", " + num(e.r.front());
+      m.envelope += " mm (set by hand at each layer's stop; the clearance from the layer in work)";
+    } else if (!surface_meshes.empty() && layer_envelopes && !lathe2) {
       m.envelope = env.description + ", of the surface of the layer in work";
+    } else if (!surface_meshes.empty() && !true_distance) {
+      m.envelope = env.description + ", its clearance measured from the layer in work";
     } else if (!surface_meshes.empty()) {
       m.envelope =
           "true distance " + num(opts.envelope.clearance) +

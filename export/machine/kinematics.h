@@ -16,7 +16,11 @@
 // tow is tied on again), its targets resampled in (X, Y, angle) as well (the cell's
 // interpolation), so that the eye keeps the clearance between them to within chord_tolerance.
 // lathe4 on a layup (circuit_surfaces): each circuit's envelope is the clearance envelope of the
-// surface it is wound on, and its clearance is checked on that surface. The
+// surface it is wound on, and its clearance is checked on that surface; lathe2 (no cross-feed):
+// each layer's eye cylinder is the largest radius of the surface it is wound on + the clearance,
+// set by hand at the operator stop before the layer (export/program/gcode.h), unless
+// envelope.radius (or a constant profile) fixes one cylinder for all, whose clearance is then
+// checked on each layer's surface. The
 // tangents t are the plan's, smoothed under machine.tangent_window
 // (export/machine/tangent_smoothing.h). L solves f(L) = r(E(L)) - R_env(x(E(L))) = 0 for the first
 // root: f is Lipschitz with constant 1 + S (S = the largest |dR_env/dx|), so marching by -f/(1+S)
@@ -168,8 +172,9 @@ int driven_axes(const MachineOptions& opts);
 ///        it); null, missing entries or an empty list: the mandrel. A robot's true-distance eye
 ///        (and its clearance check) is measured from the circuit's own surface, the layer in
 ///        work; lathe4 (and a robot without a mesh) takes the clearance envelope of that surface
-///        and checks the clearance on it; lathe2 keeps one cylinder from the mandrel and measures
-///        on the mandrel.
+///        and checks the clearance on it; lathe2 takes the cylinder of that surface's largest
+///        radius + the clearance (its explicit envelope.radius or profile: that one cylinder)
+///        and checks the clearance on it.
 /// \throw InputError for an envelope inside the mandrel, a tangent that never leaves the
 ///        envelope, an eye closer to the mandrel than the clearance, or a machine value outside
 ///        an axis's travel limits (naming the axis, the value and the point as circuit/index).

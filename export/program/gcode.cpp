@@ -53,6 +53,14 @@ class Writer {
     }
     out_ << s << "\n";
   }
+  // A line with a comment after its words (an operator stop's instruction).
+  void line(const std::string& s, const std::string& c) {
+    if (marlin_) {
+      line(s + " ; " + comment_text(c, false));
+    } else {
+      line(s + " (" + comment_text(c, fanuc_) + ")");
+    }
+  }
   void raw(const std::string& s) { out_ << s << "\n"; }
   void restart_numbers() { n_ = 1; }
   std::string str() const { return out_.str(); }
@@ -66,6 +74,10 @@ class Writer {
 }  // namespace
 
 std::string format_fixed4(double v) { return format_ticks(ticks(v)); }
+
+std::string eye_radius_comment(double radius_mm) {
+  return "eye radius " + format_fixed4(radius_mm) + " mm: set the eye by hand, then cycle start";
+}
 
 std::string gcode_extension(const std::string& dialect) {
   if (dialect == "marlin") return ".gcode";
@@ -171,14 +183,19 @@ std::string gcode_program(const Motion& motion, const std::string& job_name,
     }
     return -1;
   };
-  // Before a layer's first circuit: the transition (tie off, cut, pause) and the layer comment.
-  auto layer_header = [&](int l) {
+  // Before a layer's first circuit k: the transition (tie off, cut, pause) and the layer comment.
+  // lathe2 has no cross-feed: the operator sets the eye radius of the layer by hand at the stop.
+  auto layer_header = [&](int l, int k) {
     const int n = static_cast<int>(motion.layers.size());
     const LayerSummary& L = motion.layers[l];
     if (l > 0) {
       w.comment("end of layer " + std::to_string(l) + " " + motion.layers[l - 1].name +
                 ": tie off and cut the tow");
-      w.line("M0");
+      if (lathe2) {
+        w.line("M0", eye_radius_comment(motion.states[circuit_starts[k]].y_mm));
+      } else {
+        w.line("M0");
+      }
     }
     w.comment("layer " + std::to_string(l + 1) + " of " + std::to_string(n) + ": " + L.name + ", " +
               L.kind + ", circuits " + std::to_string(L.first_circuit) + " to " +
@@ -191,7 +208,7 @@ std::string gcode_program(const Motion& motion, const std::string& job_name,
     const int end =
         k + 1 < n_circuits ? circuit_starts[k + 1] : static_cast<int>(motion.states.size());
     const int layer = layer_start(k);
-    if (!fanuc && layer >= 0) layer_header(layer);
+    if (!fanuc && layer >= 0) layer_header(layer, k);
     if (!fanuc) w.comment("circuit " + std::to_string(motion.states[begin].circuit));
     for (int i = begin; i < end; ++i) {
       motion_line(motion.states[i], i == 0 || (i == begin && layer > 0));
@@ -209,7 +226,7 @@ std::string gcode_program(const Motion& motion, const std::string& job_name,
 
   if (fanuc) {
     for (int k = 0; k < n_circuits; ++k) {
-      if (const int layer = layer_start(k); layer >= 0) layer_header(layer);
+      if (const int layer = layer_start(k); layer >= 0) layer_header(layer, k);
       w.line("M98 P" + std::to_string(opts.gcode.program_number + 1 + k));
     }
     w.line("M30");

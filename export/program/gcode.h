@@ -24,7 +24,11 @@
 // the end of the previous one ("tie off and cut the tow"), pauses with M0 (the operator ties off,
 // cuts and ties the tow on at the next layer's start, then presses cycle start) and moves to the
 // next layer's first point with a rapid G0 (the tow is cut: no fibre is laid on the way). Fanuc
-// writes these in the main program before the layer's first M98 call.
+// writes these in the main program before the layer's first M98 call. lathe2 (no cross-feed: its
+// eye radius is set by hand per setup) winds each layer with the eye on its own cylinder
+// (export/machine/kinematics.h): its M0 carries the comment eye_radius_comment(R), "eye radius
+// R mm: set the eye by hand, then cycle start" (R with 4 decimals; upper case in Fanuc), which
+// the reader turns into the eye radius of the moves that follow (export/program/gcode_reader.h).
 #include <string>
 
 #include "export/machine/kinematics.h"
@@ -42,5 +46,8 @@ std::string gcode_program(const Motion& motion, const std::string& job_name,
 
 /// Formats a value with 4 decimals, "-0.0000" written as "0.0000".
 std::string format_fixed4(double v);
+
+/// The comment of a lathe2 layup's operator stop that names the next layer's eye radius (mm).
+std::string eye_radius_comment(double radius_mm);
 
 }  // namespace windplan

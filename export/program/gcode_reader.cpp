@@ -25,7 +25,24 @@ struct Word {
 struct Line {
   int number = 0;  // 1-based
   std::vector<Word> words;
+  std::string comment;  // the text of its comments, lower case
 };
+
+// The radius of "eye radius R mm" in a comment (lower case): > 0 when found, 0 when the comment
+// does not name one, -1 when it names one that is not a positive number of mm.
+double eye_radius_in(const std::string& comment) {
+  const std::string key = "eye radius";
+  const std::size_t at = comment.find(key);
+  if (at == std::string::npos) return 0.0;
+  const char* begin = comment.c_str() + at + key.size();
+  char* end = nullptr;
+  const double r = std::strtod(begin, &end);
+  if (end == begin || !std::isfinite(r) || !(r > 0.0) || r > kMaxLinearTravel) return -1.0;
+  std::size_t i = static_cast<std::size_t>(end - comment.c_str());
+  while (i < comment.size() && comment[i] == ' ') ++i;
+  if (comment.compare(i, 2, "mm") != 0) return -1.0;
+  return r;
+}
 
 std::string code_of(const Word& w) {
   std::string s(1, w.letter);
@@ -78,11 +95,13 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
            "a carriage return (CR) inside the line: the program has CR-only line ends "
            "(old Mac style); convert them to LF or CR LF");
     }
-    std::string s;
+    std::string s, comment;
     int depth = 0;
-    for (char c : raw) {
+    for (std::size_t k = 0; k < raw.size(); ++k) {
+      const char c = raw[k];
       if (c == ';' && depth == 0) {
         if (fanuc) other(number, "a ';' comment", "linuxcnc or marlin");
+        comment += raw.substr(k + 1);
         break;
       }
       if (c == '(') {
@@ -95,11 +114,28 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
         --depth;
         continue;
       }
-      if (depth == 0) s += c;
+      if (depth == 0) {
+        s += c;
+      } else {
+        comment += c;
+      }
     }
     if (depth != 0) fail(number, "unclosed '(' comment");
     Line ln;
     ln.number = number;
+    for (char& c : comment) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    ln.comment = comment;
+    if (ln.comment.find("eye radius") != std::string::npos) {
+      // lathe2's operator stop names the eye radius of the layer that follows (gcode.h).
+      if (!lathe2) {
+        fail(number,
+             "an eye radius set by hand: only a lathe2 (no cross-feed) sets its eye so; a " +
+                 machine.kind + " moves it with its axes");
+      }
+      if (eye_radius_in(ln.comment) < 0.0) {
+        fail(number, "the comment names an eye radius but not as \"eye radius R mm\" with R > 0");
+      }
+    }
     std::size_t i = 0;
     while (i < s.size()) {
       const unsigned char c = static_cast<unsigned char>(s[i]);
@@ -133,7 +169,14 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
       }
       ln.words.push_back({letter, v, num});
     }
-    if (ln.words.empty()) continue;
+    if (ln.words.empty()) {
+      if (eye_radius_in(ln.comment) > 0.0) {
+        fail(number,
+             "an eye radius is set by hand at an operator stop: name it on an M0 line without "
+             "axis words");
+      }
+      continue;
+    }
     if (ln.words[0].letter == 'O') {
       if (!fanuc) other(number, "an O program label", "fanuc");
       labels[static_cast<int>(ln.words[0].value)] = lines.size();
@@ -151,6 +194,7 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
   bool have_feed = false;
   int motion = -1;  // modal 0 / 1
   bool inverse = false;
+  double eye_radius = 0.0;  // lathe2: set at the last operator stop (0: none yet)
   std::vector<std::size_t> stack;
   std::size_t pc = 0;
   int steps = 0;
@@ -161,7 +205,7 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
     int call = -1;
     double newv[4] = {value[0], value[1], value[2], value[3]};
     bool set[4] = {false, false, false, false};
-    bool end = false, ret = false;
+    bool end = false, ret = false, stop = false;
     bool f_word = false;
     int motion_words = 0;
     for (const Word& w : ln.words) {
@@ -207,7 +251,9 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
           if (!marlin) other(ln.number, code, "marlin");
           end = true;
         } else if (code == "M0" || code == "M00") {
-          // A pause between layers (the operator ties off and cuts): no motion.
+          // A pause between layers (the operator ties off and cuts): no motion. lathe2: the
+          // operator sets the eye radius its comment names.
+          stop = true;
         } else if (code == "M98") {
           if (!fanuc) other(ln.number, code, "fanuc");
           call = 0;
@@ -291,6 +337,14 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
       continue;
     }
     if (call == 0) fail(ln.number, "M98 without a P program number");
+    if (const double r = eye_radius_in(ln.comment); r > 0.0) {
+      if (!stop || move) {
+        fail(ln.number,
+             "an eye radius is set by hand at an operator stop: name it on an M0 line without "
+             "axis words");
+      }
+      eye_radius = r;
+    }
     if (move && !g92) {
       if (motion < 0) fail(ln.number, "an axis word before any G0 or G1");
       for (int k = 0; k < 4; ++k) {
@@ -314,6 +368,7 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
       b.b = newv[3];
       b.feed = feed;
       b.inverse_time = inverse;
+      b.eye_radius = eye_radius;
       prog.blocks.push_back(b);
       for (int k = 0; k < 4; ++k) value[k] = newv[k];
     }

@@ -4,7 +4,10 @@
 // would make.
 //
 // Accepted, per dialect (anything else is an error naming the line):
-//   all:      G0, G1 (modal), G21, G90, G94, F, M0 (the pause between layers), the machine's axis
+//   all:      G0, G1 (modal), G21, G90, G94, F, M0 (the pause between layers; lathe2: its comment
+//             "eye radius R mm", case-insensitive, sets the eye radius of the moves after it,
+//             export/program/gcode.h; a comment naming an eye radius anywhere else, or in
+//             another kind's program, is an error), the machine's axis
 //   letters (lathe2: X and A;
 //             lathe4: X, Y, A, B, as named in machine.axes), blank lines;
 //   linuxcnc: "%" lines, ( ) and ; comments, G93, M2, M30;
@@ -29,6 +32,9 @@ struct GcodeBlock {
   double a = 0.0, x = 0.0, y = 0.0, b = 0.0;  ///< planner values (deg, mm, mm, deg) after the move
   double feed = 0.0;                          ///< modal F at the move
   bool inverse_time = false;                  ///< G93 active at the move
+  /// lathe2: mm, the eye radius named at the last operator stop before the move (M0 with "eye
+  /// radius R mm"); 0: none yet, the machine's own (export/program/replay.h)
+  double eye_radius = 0.0;
 };
 
 struct GcodeProgram {

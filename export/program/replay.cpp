@@ -307,6 +307,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   if (mandrel.num_faces() == 0) throw InputError("the mandrel mesh is empty");
   std::vector<Vec3> planned, planned_n;
   std::vector<int> circuit_start;       // index of each circuit's first point in `planned`
+  std::vector<int> layer_start;         // the first point of each layer but the first (a layup)
   std::vector<int> start_mesh;  // the surface (entry of surfaces_of.meshes) of the circuit there
   std::vector<char> held;        // on a turnaround: a pin ring or boss holds the fibre there
   const CircuitSurfaces surfaces_of = distinct_circuit_surfaces(plan, mandrel, circuit_surfaces);
@@ -323,6 +324,10 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
     if (!c.points.empty()) {
       circuit_start.push_back(static_cast<int>(planned.size()));
       start_mesh.push_back(surfaces_of.of[ci]);
+      for (const LayerSummary& l : plan.layers) {
+        if (ci > 0 && l.first_circuit == static_cast<int>(ci))
+          layer_start.push_back(circuit_start.back());
+      }
     }
     for (std::size_t i = 0; i < c.points.size(); ++i) {
       const FibrePoint& p = c.points[i];
@@ -372,10 +377,11 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   if (lathe2) {
     eye_radius = make_envelope(swept_profile(plan, &mandrel), machine.envelope, "lathe2").r.front();
   }
+  // y: the eye's radius (lathe2: its cylinder's, set by hand at the last operator stop, or the
+  // machine's own before any).
   auto eye_at = [&](double a_deg, double x, double y) {
     const double th = -a_deg * kPi / 180.0;
-    const double r = lathe2 ? eye_radius : y;
-    return Vec3(frame.origin + x * frame.d + r * (std::cos(th) * frame.u + std::sin(th) * frame.v));
+    return Vec3(frame.origin + x * frame.d + y * (std::cos(th) * frame.u + std::sin(th) * frame.v));
   };
 
   // One walking surface per distinct mesh; `surf` is the one under the circuit at ptr.
@@ -402,6 +408,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
            q.fn.dot(anchor.fn) >= 1.0 - 1e-9;
   };
   int ptr = 0, lptr = 0;
+  int tied_at = 0;       // the planned point where the tow was last tied on
   int released_to = -1;  // the plan's points up to here are behind the contact
   double h_guess = 0.05;
   double dev_sum = 0.0;
@@ -412,7 +419,8 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   std::vector<double> xs, as;
   const GcodeBlock* prev = nullptr;
   for (const GcodeBlock& b : program.blocks) {
-    const AxisValues v{b.a, b.x, lathe2 ? eye_radius : b.y, b.b};
+    const AxisValues v{b.a, b.x, lathe2 ? (b.eye_radius > 0.0 ? b.eye_radius : eye_radius) : b.y,
+                       b.b};
     double dur = 0.0;
     if (prev) {
       const AxisValues pv = values.back();
@@ -437,9 +445,22 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
       if (b.rapid) {
         // A rapid move between layers: the tow is cut, and tied on again at the next circuit's
         // first point (export/program/gcode.h); no fibre is laid on the way.
-        const auto next = std::upper_bound(circuit_start.begin(), circuit_start.end(), ptr);
-        if (next != circuit_start.end()) {
-          ptr = std::min<int>(*next, static_cast<int>(planned.size()) - 1);
+        // A layup: the next layer's start after the last tie-on, not the circuit after the
+        // contact: where the pins at a layer's last turnaround release the fibre, the contact
+        // steps onto the next layer's first point, and the circuit after it was the next layer's
+        // SECOND one (the outer layer of a two-layer pipe laid 10.0 mm off the plan with one eye
+        // cylinder, on lathe2, 73.68 mm, for both layers).
+        int next = -1;
+        if (const auto l = std::upper_bound(layer_start.begin(), layer_start.end(), tied_at);
+            l != layer_start.end()) {
+          next = *l;
+        } else if (const auto c = std::upper_bound(circuit_start.begin(), circuit_start.end(), ptr);
+                   c != circuit_start.end()) {
+          next = *c;
+        }
+        if (next >= 0) {
+          ptr = std::min<int>(next, static_cast<int>(planned.size()) - 1);
+          tied_at = ptr;
           P.p = planned[ptr];
           P.n = planned_n[ptr];
           P.fn = planned_n[ptr];
@@ -674,6 +695,23 @@ bool ReplayResult::within(double tolerance, ReplayExcess* excess) const {
     excess->line = max_deviation_line;
   }
   return false;
+}
+
+std::string ReplayResult::clearance_short(const std::string& program, double clearance,
+                                          double slack, bool located) const {
+  if (!(min_clearance < clearance - slack)) return "";
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                " %.3f mm from the surface of the layer in work%s, less than the clearance %.3f "
+                "mm (a lathe2 layup: does each layer's stop name its eye radius?)",
+                min_clearance,
+                located ? "" : (" at line " + std::to_string(min_clearance_line)).c_str(),
+                clearance);
+  if (located) {
+    return program + ":" + std::to_string(min_clearance_line) + ": the replay puts the eye" + buf;
+  }
+  return "machine.envelope.clearance: the replay of " + program + " puts the eye" + buf +
+         "; no program written";
 }
 
 std::string ReplayExcess::refused(const std::string& program) const {

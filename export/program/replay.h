@@ -4,7 +4,9 @@
 // Each block's axis values (export/program/gcode_reader.h) put the eye, in the mandrel frame, at
 //   E = o + X d + Y (cos(-A) u + sin(-A) v)
 // (export/machine/kinematics.h: the axis frame, A = -theta(E)); lathe2 programs have no Y, the eye
-// runs on the kind's eye cylinder (export/machine/eye_envelope.h). Within a block the axes move
+// runs on the cylinder named at the last operator stop (GcodeBlock::eye_radius: a layup's layers
+// each on their own), before any on the kind's eye cylinder of the mandrel
+// (export/machine/eye_envelope.h). Within a block the axes move
 // linearly, and the move is cut into sub-steps of at most `step` mm of eye travel in the mandrel
 // frame.
 //
@@ -19,8 +21,11 @@
 // lifts off, P stays: laid fibre does not come off. This is the payout lag of a real winder; on a
 // cylinder it lays z_P' = (z_E - z_P) / tan(beta) per radian (beta = acos(r / R_eye)), whose steady
 // state is the planned helix. The fibre starts at the planned path's first point (where it is tied
-// on); a rapid G0 after that (between layers: the tow is cut) ties it on again at the next
-// circuit's first point. On the plan's turnarounds (CircuitSegment::Kind::Turnaround: dwell arcs on
+// on); a rapid G0 after that (between layers: the tow is cut) ties it on again at the first point
+// of the next layer after the last tie-on (a plan without layers: of the circuit after the
+// contact's; not after the contact's in a layup: a layer's last pins can release the contact onto
+// the next layer's first point, and the circuit after it was that layer's second).
+// On the plan's turnarounds (CircuitSegment::Kind::Turnaround: dwell arcs on
 // pin rings, stations or a boss) the pins or the boss hold the fibre: once the contact comes within
 // catch_distance (10 mm, along the plan) of one, it moves along the planned arc to the first
 // planned point whose free fibre to the eye is tangent ((E - P) . n >= 0 with the plan's normal),
@@ -95,6 +100,13 @@ struct ReplayResult {
   /// The check of machine.replay_tolerance: true when max_deviation <= tolerance (mm) or the
   /// tolerance is <= 0 (report only); else false, with `excess` (when given) naming it.
   bool within(double tolerance, ReplayExcess* excess = nullptr) const;
+
+  /// The eye's clearance in the replay (from the surface of the layer in work): "" when
+  /// min_clearance >= clearance - slack (mm), else one line naming `program`, the line, the
+  /// distance and the clearance ("machine.envelope.clearance: the replay of PROGRAM puts the eye
+  /// D mm from ... at line N ..."; `located`: "PROGRAM:N: the replay puts the eye ...").
+  std::string clearance_short(const std::string& program, double clearance, double slack,
+                              bool located) const;
 };
 
 /// A replay's worst deviation beyond machine.replay_tolerance (ReplayResult::within, and

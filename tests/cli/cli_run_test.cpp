@@ -509,9 +509,16 @@ TEST_F(CliRun, VesselLayupEveryLayerInTheReportAndInOrderInTheProgram) {
     ASSERT_NE(p, std::string::npos) << "layer " << l;
     at = p;
   }
+  // lathe2 (issue #26): each pause names the next layer's eye radius, the largest radius of the
+  // surface it is wound on + the clearance (20 mm), set by hand.
   std::size_t pauses = 0;
-  for (std::size_t p = ngc.find("\nM0\n"); p != std::string::npos; p = ngc.find("\nM0\n", p + 1)) {
+  const std::string stop = "\nM0 (eye radius ";
+  for (std::size_t p = ngc.find(stop); p != std::string::npos; p = ngc.find(stop, p + 1)) {
     ++pauses;
+    if (pauses > 3) break;
+    EXPECT_NEAR(std::stod(ngc.substr(p + stop.size(), 12)),
+                layers[pauses]["surface_radius_mm"].as<double>() + 20.0, 2e-3)
+        << "layer " << pauses + 1;
   }
   EXPECT_EQ(pauses, 3u);
   for (const char* f :

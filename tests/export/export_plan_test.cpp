@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "export/files/report.h"
+#include "export/program/gcode_reader.h"
 #include "geometry/base/atomic_file.h"
 #include "geometry/base/errors.h"
 #include "geometry/mesh/closest_point.h"
@@ -490,8 +491,13 @@ TEST(ExportPlan, LayupReplaysEachLayerOnTheSurfaceItWasWoundOn) {
   EXPECT_GT(bare.replay.max_deviation, 0.4 * t);
   EXPECT_GT(bare.replay.max_deviation, 2 * own.replay.max_deviation);
   EXPECT_GT(bare.replay.max_deviation_line, outer_line);
-  // The same program either way: only the replay differs.
-  EXPECT_EQ(read_text_file(b / "toolpath.ngc"), g);
+  // The same inner layer's moves (lathe2: the outer layer's eye runs on its own cylinder,
+  // LayupOnALathe2KeepsTheClearanceFromTheLayerInWork; the header's move count and the feeds
+  // of the inner layer's last circuit, which the feed plan joins to the next one, differ).
+  const std::string gb = read_text_file(b / "toolpath.ngc");
+  const auto from = g.find("G21"), to = g.find("(circuit 13)");
+  ASSERT_NE(to, std::string::npos);
+  EXPECT_EQ(gb.substr(gb.find("G21"), to - from), g.substr(from, to - from));
 }
 
 // lathe4 on a layup keeps the clearance from the surface of the layer in work: each circuit's eye
@@ -535,6 +541,114 @@ TEST(ExportPlan, LayupEyeKeepsTheClearanceFromTheLayerInWork) {
   EXPECT_GE(r.motion.min_clearance, clearance - 0.01);
   EXPECT_GE(r.replay.min_clearance, clearance - job.machine.chord_tolerance);
   EXPECT_LT(r.replay.max_deviation, 1.0);
+}
+
+// lathe2 (no cross-feed) on a layup: each layer's eye runs on its own cylinder, the largest
+// radius of the surface it is wound on + the clearance, which the operator sets by hand at the
+// stop before the layer (M0 "eye radius R mm"). With the mandrel's one cylinder the outer layer's
+// eye was 16.32 mm from the surface it is wound on (clearance 20, layers 3.68 mm). Measured here
+// independently: the program read back, each block's eye put on the radius its stop names, and
+// its distance to the outer layer's surface. Without the stop's radius (an old program, or an
+// operator who skipped it) the replay keeps the mandrel's cylinder and finds the eye inside the
+// clearance.
+TEST(ExportPlan, LayupOnALathe2KeepsTheClearanceFromTheLayerInWork) {
+  Job job = load_job_from_string(
+      "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 300}\n"
+      "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
+      "winding: {turns: 2, circuits: auto, band_width: 10}\n"
+      "layers:\n  - kind: helical\n    name: inner\n  - kind: helical\n    name: outer\n"
+      "machine: {kind: lathe2, replay_tolerance: 1.0}\n"
+      "output: {ply: false, svg: false, viewer: false, csv: false}\n",
+      "/jobs/pipe_layup_lathe2.yaml");
+  const LayupResult layup = plan_layup(job);
+  ASSERT_EQ(layup.layers.size(), 2u);
+  const std::vector<const Mesh*> under = layup_circuit_surfaces(layup);
+  ASSERT_NE(under.back(), nullptr);
+  const double clearance = job.machine.envelope.clearance;
+  ExportContext ctx;
+  ctx.circuit_surfaces = under;
+  const fs::path a = temp_dir("layup_lathe2");
+  const ExportResult r =
+      export_plan(layup.plan, layup.mandrel.mesh, job.machine, job.output, a, ctx);
+  ASSERT_TRUE(r.has_replay);
+  std::printf("lathe2 layup: %s\n", r.replay.summary.c_str());
+  EXPECT_LT(r.replay.max_deviation, job.machine.replay_tolerance);
+  EXPECT_GE(r.replay.min_clearance, clearance - job.machine.chord_tolerance);
+  EXPECT_GE(r.motion.min_clearance, clearance - 1e-3);
+
+  // The outer surface's largest radius (its vertices) + the clearance: the stop's eye radius.
+  const AxisFrame frame = make_axis_frame(layup.plan.axis);
+  double outer_r = 0.0;
+  for (int v = 0; v < under.back()->num_vertices(); ++v) {
+    outer_r = std::max(outer_r, frame.radius(under.back()->position(v)));
+  }
+  const double mandrel_eye = 50.0 + clearance;
+  const std::string g = read_text_file(a / "toolpath.ngc");
+  const GcodeProgram prog = read_gcode(g, job.machine, "toolpath.ngc");
+  const ClosestPointQuery outer(*under.back());
+  double least = std::numeric_limits<double>::infinity(), eye_radius = 0.0;
+  int outer_blocks = 0;
+  for (const GcodeBlock& b : prog.blocks) {
+    if (b.eye_radius == 0.0) continue;  // the inner layer: the machine's own cylinder
+    eye_radius = b.eye_radius;
+    const double th = -b.a * 3.14159265358979323846 / 180.0;
+    const Vec3 e = frame.origin + b.x * frame.d +
+                   b.eye_radius * (std::cos(th) * frame.u + std::sin(th) * frame.v);
+    least = std::min(least, outer.closest(e).distance);
+    ++outer_blocks;
+  }
+  ASSERT_GT(outer_blocks, 100);
+  std::printf(
+      "outer layer: %d blocks, eye radius %.4f mm (surface %.4f mm), least distance "
+      "%.4f mm\n",
+      outer_blocks, eye_radius, outer_r, least);
+  EXPECT_NEAR(eye_radius, outer_r + clearance, 2e-4);  // 4 decimals; the vertices are its top
+  EXPECT_GT(eye_radius, mandrel_eye + 2.0);
+  EXPECT_GE(least, clearance - 1e-3);
+
+  // The same program with the stop's eye radius left out: replayed on the mandrel's cylinder,
+  // the outer layer's eye is found inside the clearance from the surface it is wound on.
+  std::string old = g;
+  const auto m0 = old.find("M0 (eye radius");
+  ASSERT_NE(m0, std::string::npos);
+  old.erase(m0 + 2, old.find('\n', m0) - (m0 + 2));
+  EXPECT_EQ(old.find("eye radius"), std::string::npos);
+  const GcodeProgram without = read_gcode(old, job.machine, "old.ngc");
+  const ReplayResult wrong =
+      replay_program(without, layup.plan, layup.mandrel.mesh, job.machine, {}, under);
+  std::printf("without the stop's radius: %s\n", wrong.summary.c_str());
+  EXPECT_LT(wrong.min_clearance, clearance - 2.0);
+  const std::string why = wrong.clearance_short("old.ngc", clearance, 0.05, true);
+  EXPECT_NE(why.find("old.ngc:"), std::string::npos) << why;
+  EXPECT_NE(why.find("the replay puts the eye 16.3"), std::string::npos) << why;
+  EXPECT_EQ(r.replay.clearance_short("toolpath.ngc", clearance, 0.05, true), "");
+
+  // One cylinder for both layers, the mandrel's (envelope.radius 70): refused before any file,
+  // naming the outer layer's circuit and the distance from the surface it is wound on.
+  job.machine.envelope.radius = mandrel_eye;
+  try {
+    export_plan(layup.plan, layup.mandrel.mesh, job.machine, job.output,
+                temp_dir("layup_lathe2_70"), ctx);
+    FAIL() << "an eye 16.3 mm from the outer layer was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("machine.envelope: circuit 14, point"), std::string::npos) << what;
+    EXPECT_NE(what.find("mm from the surface it is wound on, less than the clearance 20 mm"),
+              std::string::npos)
+        << what;
+  }
+  // One cylinder clearing the outer layer (envelope.radius = its largest radius + clearance):
+  // kept, and replayed within the tolerance (10.0 mm off before the replay tied the tow on at
+  // the outer layer's second circuit, see export/program/replay.cpp).
+  job.machine.envelope.radius = eye_radius;
+  const ExportResult one = export_plan(layup.plan, layup.mandrel.mesh, job.machine, job.output,
+                                       temp_dir("layup_lathe2_one"), ctx);
+  std::printf("one cylinder r %.4f: %s\n", eye_radius, one.replay.summary.c_str());
+  EXPECT_LT(one.replay.max_deviation, job.machine.replay_tolerance);
+  EXPECT_GE(one.motion.min_clearance, clearance - 1e-3);
+  char same[64];
+  std::snprintf(same, sizeof same, "M0 (eye radius %.4f mm", eye_radius);
+  EXPECT_NE(read_text_file(temp_dirs.dirs.back() / "toolpath.ngc").find(same), std::string::npos);
 }
 
 }  // namespace

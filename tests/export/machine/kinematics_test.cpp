@@ -339,8 +339,10 @@ TEST(Kinematics, RobotEyeKeepsTheClearanceFromTheLayerInWork) {
   const Motion bare = compute_motion(plan, m, &mandrel);
   EXPECT_LT(worst(bare, 1, R + clearance), 0.01);
   // lathe4: each circuit's envelope is its surface's (the outer helix's eye on R2 + clearance,
-  // measured on R2; on the bare mandrel's envelope it was clearance - 5 mm from R2); lathe2 keeps
-  // the mandrel's cylinder and measures on the mandrel whatever the surfaces.
+  // measured on R2; on the bare mandrel's envelope it was clearance - 5 mm from R2); lathe2 too,
+  // each circuit on the cylinder of its surface's largest radius + the clearance (issue #26: it
+  // kept the mandrel's and measured on the mandrel whatever the surfaces), and one cylinder
+  // (envelope.radius) too near the outer surface is refused naming the circuit and the distance.
   MachineOptions lathe;
   lathe.kind = "lathe4";
   const Motion l1 = compute_motion(plan, lathe, &mandrel, {nullptr, &built});
@@ -350,8 +352,29 @@ TEST(Kinematics, RobotEyeKeepsTheClearanceFromTheLayerInWork) {
   const Motion l0 = compute_motion(plan, lathe, &mandrel);
   EXPECT_LT(worst(l0, 1, R + clearance), 0.01);
   lathe.kind = "lathe2";
-  EXPECT_EQ(compute_motion(plan, lathe, &mandrel, {nullptr, &built}).min_clearance,
-            compute_motion(plan, lathe, &mandrel).min_clearance);
+  const Motion c1 = compute_motion(plan, lathe, &mandrel, {nullptr, &built});
+  EXPECT_LT(worst(c1, 0, R + clearance), 0.01);
+  EXPECT_LT(worst(c1, 1, R2 + clearance), 0.01);
+  EXPECT_NEAR(c1.min_clearance, clearance, 0.01);
+  for (const MachineState& s : c1.states) {
+    EXPECT_NEAR(s.y_mm, s.ordinal == 0 ? R + clearance : R2 + clearance, 0.01);
+  }
+  const Motion c0 = compute_motion(plan, lathe, &mandrel);
+  EXPECT_LT(worst(c0, 1, R + clearance), 0.01);
+  lathe.envelope.radius = R + clearance;
+  try {
+    compute_motion(plan, lathe, &mandrel, {nullptr, &built});
+    ADD_FAILURE() << "an eye 15 mm from the outer surface was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("machine.envelope: circuit 1, point"), std::string::npos) << what;
+    EXPECT_NE(what.find("is 15"), std::string::npos) << what;
+    EXPECT_NE(what.find("from the surface it is wound on"), std::string::npos) << what;
+  }
+  lathe.envelope.radius = R2 + clearance;  // one cylinder clearing both: the clearance on each
+  const Motion one = compute_motion(plan, lathe, &mandrel, {nullptr, &built});
+  EXPECT_NEAR(one.min_clearance, clearance, 0.01);
+  EXPECT_LT(worst(one, 0, R2 + clearance), 0.01);
 }
 
 TEST(Kinematics, FixedFreeLengthMode) {

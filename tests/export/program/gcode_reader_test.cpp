@@ -110,5 +110,63 @@ TEST(GcodeReader, AsStrictAsLinuxCnc) {
                "(from line 5)");
 }
 
+// A lathe2 layup (issue #26): the stop before each layer names its eye radius, which the
+// operator sets by hand; the moves after it carry it (0 before any stop: the machine's own).
+// Written by gcode_program in every dialect with the second layer's eye 6.25 mm further out.
+TEST(GcodeReader, Lathe2StopsNameEachLayersEyeRadius) {
+  WindingPlan plan = test::helix_plan(40, 50, 2, 600, 4);
+  plan.layers.resize(2);
+  plan.layers[0].name = "inner";
+  plan.layers[0].circuit_count = 2;
+  plan.layers[1].name = "outer";
+  plan.layers[1].first_circuit = 2;
+  plan.layers[1].circuit_count = 2;
+  for (const std::string dialect : {"linuxcnc", "marlin", "fanuc"}) {
+    SCOPED_TRACE(dialect);
+    const MachineOptions m = machine("lathe2", dialect);
+    Motion mo = compute_motion(plan, m);
+    const double inner = mo.states.front().y_mm, outer = inner + 6.25;
+    for (MachineState& s : mo.states) {
+      if (s.ordinal >= 2) s.y_mm = outer;
+    }
+    const std::string text = gcode_program(mo, "t", m);
+    const std::string stop = dialect == "fanuc"    ? " M0 (EYE RADIUS " + format_fixed4(outer)
+                             : dialect == "marlin" ? "\nM0 ; eye radius " + format_fixed4(outer)
+                                                   : "\nM0 (eye radius " + format_fixed4(outer);
+    EXPECT_NE(text.find(stop + (dialect == "fanuc" ? " MM" : " mm")), std::string::npos) << stop;
+    const GcodeProgram p = read_gcode(text, m, "t");
+    ASSERT_EQ(p.blocks.size(), mo.states.size());
+    int outer_blocks = 0;
+    for (std::size_t i = 0; i < p.blocks.size(); ++i) {
+      if (mo.states[i].ordinal < 2) {
+        EXPECT_EQ(p.blocks[i].eye_radius, 0.0) << i;
+      } else {
+        EXPECT_NEAR(p.blocks[i].eye_radius, outer, 5e-5) << i;
+        ++outer_blocks;
+      }
+    }
+    EXPECT_GT(outer_blocks, 100);
+  }
+  // Where an eye radius may be named, and how.
+  const MachineOptions lc = machine("lathe2", "linuxcnc");
+  const std::string head = "G21 G90 G93\nG0 X0 A0\n";
+  const GcodeProgram ok =
+      read_gcode(head + "M0 (EYE Radius 71.5 mm: set it)\nG1 X1 A1 F10\nM2\n", lc, "ok");
+  ASSERT_EQ(ok.blocks.size(), 2u);
+  EXPECT_EQ(ok.blocks[0].eye_radius, 0.0);
+  EXPECT_EQ(ok.blocks[1].eye_radius, 71.5);
+  expect_error(head + "(eye radius 71.5 mm)\nG1 X1 A1 F10\nM2\n", lc,
+               "edit.ngc:3: an eye radius is set by hand at an operator stop");
+  expect_error(head + "G1 X1 A1 F10 (eye radius 71.5 mm)\nM2\n", lc,
+               "edit.ngc:3: an eye radius is set by hand at an operator stop");
+  expect_error(head + "M0 (eye radius -3 mm)\nM2\n", lc,
+               "edit.ngc:3: the comment names an eye radius but not as");
+  expect_error(head + "M0 (eye radius 71.5 in)\nM2\n", lc,
+               "edit.ngc:3: the comment names an eye radius but not as");
+  expect_error("G21 G90 G93\nG0 X0 Y70 A0 B0\nM0 (eye radius 71.5 mm)\nM2\n",
+               machine("lathe4", "linuxcnc"),
+               "edit.ngc:3: an eye radius set by hand: only a lathe2");
+}
+
 }  // namespace
 }  // namespace windplan
