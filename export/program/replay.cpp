@@ -443,13 +443,13 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
           std::hypot((e1 - e0).norm(), std::fabs(b.a - prev->a) * kPi / 180.0 *
                                            std::max(std::fabs(v[2]), std::fabs(pv[2])));
       if (b.rapid) {
-        // A rapid move between layers: the tow is cut, and tied on again at the next circuit's
-        // first point (export/program/gcode.h); no fibre is laid on the way.
-        // A layup: the next layer's start after the last tie-on, not the circuit after the
-        // contact: where the pins at a layer's last turnaround release the fibre, the contact
-        // steps onto the next layer's first point, and the circuit after it was the next layer's
-        // SECOND one (the outer layer of a two-layer pipe laid 10.0 mm off the plan with one eye
-        // cylinder, on lathe2, 73.68 mm, for both layers).
+        // A rapid move between layers: the tow is cut, and tied on again at the next layer's
+        // first point after the last tie-on (export/program/gcode.h; a plan without layers: the
+        // circuit after the contact's); no fibre is laid on the way. Not the circuit after the
+        // contact's in a layup: where the pins at a layer's last turnaround release the fibre,
+        // the contact steps onto the next layer's first point, and the circuit after it was the
+        // next layer's SECOND one (the outer layer of a two-layer pipe laid 10.0 mm off the plan
+        // with one eye cylinder, on lathe2, 73.68 mm, for both layers).
         int next = -1;
         if (const auto l = std::upper_bound(layer_start.begin(), layer_start.end(), tied_at);
             l != layer_start.end()) {
