@@ -263,15 +263,20 @@ double lay_straight(const Surface& surf, const Vec3& eye, Surface::Point* P, dou
 // Distance of p to the polyline q (cumulative arc length sq), searched on the segments from
 // `back` mm behind the last match to `ahead` mm after it; moves ptr to the best segment. The
 // window is short in arc length so that a later pass crossing this one is never taken for it.
-// Segments end at `limit` at the latest (the last point before the next tie-on: a layer's first
+// Only the segments between `first` and `limit` (the points of one layer, between two tie-ons:
+// the step from a layer's last point to the next one's first is no fibre, and a layer's first
 // point is reached by a rapid only, never by tracking).
 double track(const std::vector<Vec3>& q, const std::vector<double>& sq, const Vec3& p, double back,
-             double ahead, int limit, int* ptr) {
+             double ahead, int first, int limit, int* ptr) {
   const int m = static_cast<int>(q.size());
-  if (m == 1) return (p - q[0]).norm();
-  const int hi_max = std::max(0, std::min(m - 2, limit - 1));
-  int lo = std::min(*ptr, hi_max), hi = lo;
-  while (lo > 0 && sq[*ptr] - sq[lo] < back) --lo;
+  limit = std::min(limit, m - 1);
+  if (limit <= first) {
+    *ptr = first;
+    return (p - q[first]).norm();
+  }
+  const int hi_max = limit - 1;
+  int lo = std::clamp(*ptr, first, hi_max), hi = lo;
+  while (lo > first && sq[*ptr] - sq[lo] < back) --lo;
   while (hi < hi_max && sq[hi] - sq[*ptr] < ahead) ++hi;
   double best = std::numeric_limits<double>::infinity();
   int at = *ptr;
@@ -378,9 +383,15 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   // layer's end, and its rapid then tied the tow on at the second layer's second circuit:
   // 15.98 mm off.
   std::vector<int> stretch_last(planned.size(), static_cast<int>(planned.size()) - 1);
+  std::vector<int> stretch_first(planned.size(), 0);  // and its layer's first point
   for (int i = static_cast<int>(planned.size()) - 2; i >= 0; --i) {
     const bool before_tie_on = std::find(tie_on.begin(), tie_on.end(), i + 1) != tie_on.end();
     stretch_last[i] = before_tie_on ? i : stretch_last[i + 1];
+  }
+  for (std::size_t i = 1; i < planned.size(); ++i) {
+    const bool tied_on =
+        std::find(tie_on.begin(), tie_on.end(), static_cast<int>(i)) != tie_on.end();
+    stretch_first[i] = tied_on ? static_cast<int>(i) : stretch_first[i - 1];
   }
   // The first turnaround point at or after each planned point in its stretch (-1: none).
   std::vector<int> next_held(planned.size(), -1);
@@ -486,7 +497,8 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
         // The pins catch the fibre as it arrives at the ring: within `catch_distance` before it.
         // An arc the fibre has left holds it no more (the deviation track may fall back on it).
         if (ptr <= released_to) ptr = std::min(released_to + 1, stretch_last[ptr]);
-        const int last = stretch_last[ptr];  // this layer's (the tow's) last planned point
+        const int last = stretch_last[ptr];    // this layer's (the tow's) last planned point
+        const int first = stretch_first[ptr];  // and its first
         const int nh = next_held[ptr];
         // Measured along the plan from the foot of the contact on its planned segment (a straight
         // pass on a flat face is one long segment: from the segment's start the pins were never
@@ -512,7 +524,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
           for (int i = 1; i <= m; ++i) {
             const Vec3 q = anchor.p + (static_cast<double>(i) / m) * (to - anchor.p);
             worst = std::max(worst, track(planned, planned_s, q, options.search_back,
-                                          options.search_ahead, last, &lptr));
+                                          options.search_ahead, first, last, &lptr));
           }
           return worst;
         };
@@ -613,13 +625,13 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
             }
           }
           r.straight_substeps += (P.p - anchor.p).norm() > 0.0;
-          dev =
-              track(planned, planned_s, P.p, options.search_back, options.search_ahead, last, &ptr);
+          dev = track(planned, planned_s, P.p, options.search_back, options.search_ahead, first,
+                      last, &ptr);
           if ((P.p - anchor.p).norm() > 0.0) {
             // The fibre lies on a flat face beyond its anchor, held at no far end: it swings with
             // the eye and is not laid yet; what is laid ends at the anchor.
             dev = track(planned, planned_s, anchor.p, options.search_back, options.search_ahead,
-                        last, &lptr);
+                        first, last, &lptr);
           } else {
             lptr = ptr;
           }
