@@ -375,13 +375,15 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
     for (std::size_t m = i; m <= k; ++m) bend[m] = turn > 0.0 ? 1 : (turn < 0.0 ? -1 : 0);
     i = k + 1;
   }
-  // Per planned point, the last point before the next layer's first (the tow is cut at a layer's
-  // end and tied on again at the next layer's first point by a rapid, below): the contact, the
-  // pins that catch it and the deviation's track stay on this side of it. Without this the
-  // robot replay of pipe_robot_layup with its eyes 0.05 mm further out took the second layer's
-  // first point (2.4 mm over the first layer's last) for the track's nearest at the first
-  // layer's end, and its rapid then tied the tow on at the second layer's second circuit:
-  // 15.98 mm off.
+  // Per planned point, the first and last points of its layer (the tow is cut at a layer's end
+  // and tied on again at the next layer's first point by a rapid, below): the contact, the pins
+  // that catch it and the deviation's track stay between them. Without the last, the robot
+  // replay of pipe_robot_layup with its eyes 0.05 mm further out let the pins of the second
+  // layer's first circuit catch the contact at the first layer's end, and its rapid then tied the
+  // tow on at the second layer's second circuit: 15.98 mm off. Without the first, the track at a
+  // tie-on reached one segment back (the step between the layers), took it for the nearest and
+  // put the contact back on the previous layer's last turnaround: a hoop's tie-on turn on the
+  // taper of the helical layer under it replayed 4.11 mm off in the KR 16 cell (now 0.231).
   std::vector<int> stretch_last(planned.size(), static_cast<int>(planned.size()) - 1);
   std::vector<int> stretch_first(planned.size(), 0);  // and its layer's first point
   for (int i = static_cast<int>(planned.size()) - 2; i >= 0; --i) {
