@@ -83,10 +83,19 @@ int run_run(const std::vector<std::string>& argv) {
   PipelineOptions po;
   po.on_stage_start = [&](const std::string& stage) { progress.start(stage); };
   po.on_stage = [&](const StageTiming& t) { progress.finish(t.stage, t.seconds); };
+  const Mandrel* built_mandrel = nullptr;  // the mandrel of the job being planned
   if (job.machine.kind == "robot" && job.machine.robot.has_arm()) {
     // The cell's reach, before the long work (export/robot/cell_reach.h).
     po.on_mandrel = [&](const Mandrel& m) {
       check_cell_reach(m.winding.mesh, m.axis, m.profile, job.machine);
+      built_mandrel = &m;
+    };
+    // And over the laminate each layer of a layup is wound on, before that layer is planned.
+    po.on_layer_surface = [&](const Mesh& surface, const std::string& layer) {
+      if (built_mandrel) {
+        check_cell_reach_over(built_mandrel->winding.mesh, built_mandrel->axis, surface,
+                              job.machine, layer);
+      }
     };
   }
   // A job with `layers:` is a layup (planner/plan_layup.h): every layer in order, one program.

@@ -109,6 +109,10 @@ int simulate_robot(const Job& job, const std::filesystem::path& program_file, co
   if (ReplayExcess e; !rp.within(job.machine.replay_tolerance, &e)) {
     throw InputError(e.located(program_file.string()));
   }
+  if (std::string why; job.machine.envelope.mode() == "clearance" &&
+                       !rp.keeps_clearance(job.machine.envelope.clearance, &why)) {
+    throw InputError(why);
+  }
   return 0;
 }
 

@@ -156,6 +156,12 @@ ExportResult export_plan(const WindingPlan& plan, const Mesh& mandrel_mesh,
       if (ReplayExcess e; !r.robot_replay.within(machine.replay_tolerance, &e)) {
         throw InputError(e.refused(r.robot_main));
       }
+      // The eye keeps the clearance between the targets too (no slack below it).
+      if (std::string why; machine.envelope.mode() == "clearance" &&
+                           !r.robot_replay.keeps_clearance(machine.envelope.clearance, &why)) {
+        throw InputError("machine.envelope.clearance: " + why + " (" + r.robot_main +
+                         "); no program written");
+      }
       return;
     }
     const std::string name = "toolpath" + gcode_extension(machine.gcode.dialect);

@@ -40,6 +40,11 @@ struct PipelineOptions {
   /// and lives above planner/ (the robot cell's reach, export/robot/cell_reach.h) refuses the job
   /// there by throwing, before the long work. plan_job and plan_layup call it.
   std::function<void(const Mandrel&)> on_mandrel;
+  /// Called by plan_layup before each layer wound over others, with the surface it will be wound
+  /// on (the laminate the layers under it built) and the layer as "layers[k] (name)": a check
+  /// above planner/ (the robot cell's reach over the laminate, export/robot/cell_reach.h) refuses
+  /// the job there by throwing, before that layer's winding stages.
+  std::function<void(const Mesh&, const std::string&)> on_layer_surface;
 };
 
 /// Off shapes of revolution, the wound region as a tube: either a friction layer at a constant

@@ -233,6 +233,15 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
     S.band_thickness = job.material.thickness(S.band_width);
     const double t_band = S.band_thickness;
     LayerThickness th;
+    // The surface this layer is wound on when it is not the mandrel: the laminate under it.
+    std::shared_ptr<const Mesh> under;
+    if (k > 0) {
+      under = R.revolution ? std::make_shared<const Mesh>(revolve_meridian(surface, axis, edge))
+                           : std::make_shared<const Mesh>(built.mesh);
+      if (options.on_layer_surface) {
+        options.on_layer_surface(*under, what + " (" + L.name + ")");
+      }
+    }
     if (L.kind == LayerKind::Hoop) {
       if (!R.revolution) {
         throw InputError(what +
@@ -244,7 +253,7 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
       if (!h.has_range()) std::tie(h.x0, h.x1) = cylinder;
       const HoopLayer hl = plan_hoop_layer(forward_profile(surface), axis, h, what);
       out.circuits = hl.circuits;
-      if (k > 0) out.surface = std::make_shared<const Mesh>(revolve_meridian(surface, axis, edge));
+      if (k > 0) out.surface = under;
       th = hoop_layer_thickness(surface, hl.x0, hl.x1, hl.pitch, S.band_width, t_band, h.passes);
       S.circuits = h.passes;
       S.angle = hl.angle;
@@ -290,13 +299,12 @@ LayupResult plan_layup(const Job& job, const PipelineOptions& options) {
       if (k == 0) {
         pr = plan_winding(md, job, wopt, quiet);
       } else if (R.revolution) {
-        auto mesh = std::make_shared<const Mesh>(revolve_meridian(surface, axis, edge));
-        pr = plan_winding(built_mandrel(md, *mesh, true, forward_profile(surface)), job, wopt,
+        pr = plan_winding(built_mandrel(md, *under, true, forward_profile(surface)), job, wopt,
                           quiet);
-        out.surface = std::move(mesh);
+        out.surface = under;
       } else {
         pr = plan_winding(built_mandrel(md, built.mesh, false, md.profile), job, wopt, quiet);
-        out.surface = std::make_shared<const Mesh>(built.mesh);
+        out.surface = under;
       }
       struct {
         std::vector<Circuit> circuits;

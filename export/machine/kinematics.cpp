@@ -268,12 +268,20 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     }
   }
   m.required_clearance = env.fixed_length ? 0.0 : opts.envelope.clearance;
-  // A robot's eyes are at exactly the clearance: the targets' chords lie within chord_tolerance
-  // of the dense eyes, so the replay measures down to clearance - chord_tolerance between them
-  // (19.95 mm on pipe_robot_layup and bent_tube). Eyes at the clearance plus 0.025 to 0.15 mm were
-  // tried: the replay's contact walk then lost the fibre at the start of a layup's second layer
-  // (15.7 to 16.0 mm off, on pipe_robot_layup and on tests/cli's robot layup), not done.
-  const double eye_clearance = opts.envelope.clearance;
+  // A robot's eyes are planned at the clearance plus two chord tolerances, so that the eye keeps
+  // the clearance between targets too: one for the targets' chords (within chord_tolerance of
+  // the dense eyes, in the cell's axes as well), one for the turn of the eye about the E1 axis
+  // between two targets (export/robot/robot_motion.h: a turn of the eye's angle about the E1 axis
+  // by d at radius Y cuts the chord Y (1 - cos(d / 2)) inside the arc; the targets inserted where
+  // that turns keep it within chord_tolerance). Eyes at exactly the clearance were replayed 19.94
+  // to 19.95 mm from the surface between the targets on the shipped cells; here >= 20.04 mm.
+  // (Eyes further out than the clearance used to make the replay lose the fibre at a layup's
+  // second layer, 16 mm off: a bug of the replay's deviation track, which took the next layer's
+  // first point for the contact's nearest and then tied the tow on a circuit too far;
+  // export/program/replay.cpp.)
+  const double eye_clearance =
+      true_distance ? opts.envelope.clearance + kRobotEyeChords * opts.chord_tolerance
+                    : opts.envelope.clearance;
   double min_clearance = std::numeric_limits<double>::infinity();
 
   // Per circuit, independent of the others: the smoothed tangents, the eye of every dense point,
@@ -309,9 +317,8 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     Vec3 t = Vec3::Zero();  // unit tangent
     EyeSolution es;
   };
-  auto turned_eye = [](const Mesh& mesh, const ClosestPointQuery& q, const Vec3& p,
-                       const Vec3& ta, const Vec3& tb, double ang, double f, double clearance,
-                       CircuitMotion* cm) {
+  auto turned_eye = [](const Mesh& mesh, const ClosestPointQuery& q, const Vec3& p, const Vec3& ta,
+                       const Vec3& tb, double ang, double f, double clearance, CircuitMotion* cm) {
     const Vec3 t = (std::sin((1.0 - f) * ang) * ta + std::sin(f * ang) * tb) / std::sin(ang);
     const ClearanceEye ce = solve_clearance_eye(mesh, q, p, t, clearance);
     if (ce.enters) ++cm->fibre_into_mandrel;
@@ -536,7 +543,10 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
       }
       if (query) {
         cm.clearance = check_clearance(*surface_query, eyes);
-        if (cm.clearance.min_distance < m.required_clearance - opts.chord_tolerance) {
+        // A robot's dense eyes are planned beyond the clearance (eye_clearance): no slack below
+        // it; the envelopes' keep chord_tolerance.
+        const double slack = true_distance ? 0.0 : opts.chord_tolerance;
+        if (cm.clearance.min_distance < m.required_clearance - slack) {
           const Vec3& e = cm.clearance.worst_eye;
           throw InputError(
               "machine.envelope: circuit " + std::to_string(c.index) + ", point " +

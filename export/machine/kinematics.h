@@ -14,13 +14,15 @@
 // between two dense points and where a circuit goes on from the previous one's last point (link
 // eyes, the tangent turned from that circuit's last tangent; not at a layer's start, where the
 // tow is tied on again), its targets resampled in (X, Y, angle) as well (the cell's
-// interpolation), so that the eye keeps the clearance between them to within chord_tolerance.
-// lathe4 on a layup (circuit_surfaces): each circuit's envelope is the clearance envelope of the
-// surface it is wound on, and its clearance is checked on that surface; lathe2 (no cross-feed):
-// each layer's eye cylinder is the largest radius of the surface it is wound on + the clearance,
-// set by hand at the operator stop before the layer (export/program/gcode.h), unless
-// envelope.radius (or a constant profile) fixes one cylinder for all, whose clearance is then
-// checked on each layer's surface. The
+// interpolation); its eyes are planned at the clearance plus kRobotEyeChords chord tolerances, so
+// that the eye keeps the clearance between the targets too (one tolerance for the chords, one for
+// the turn of the eye about the positioner's axis between two targets,
+// export/robot/robot_motion.h). lathe4 on a layup (circuit_surfaces): each circuit's envelope is
+// the clearance envelope of the surface it is wound on, and its clearance is checked on that
+// surface; lathe2 (no cross-feed): each layer's eye cylinder is the largest radius of the surface
+// it is wound on + the clearance, set by hand at the operator stop before the layer
+// (export/program/gcode.h), unless envelope.radius (or a constant profile) fixes one cylinder for
+// all, whose clearance is then checked on each layer's surface. The
 // tangents t are the plan's, smoothed under machine.tangent_window
 // (export/machine/tangent_smoothing.h). L solves f(L) = r(E(L)) - R_env(x(E(L))) = 0 for the first
 // root: f is Lipschitz with constant 1 + S (S = the largest |dR_env/dx|), so marching by -f/(1+S)
@@ -49,7 +51,8 @@
 // The first point of the plan has duration 0 and F 0 (a rapid positioning move); a move without
 // motion has duration 0 and keeps the previous F.
 // Clearance (with a mandrel mesh): every dense eye point's distance to the mesh; below the
-// required clearance minus chord_tolerance it is an error naming the point.
+// required clearance minus chord_tolerance (a robot's true-distance eye: below the clearance) it is
+// an error naming the point.
 // Monotone axes (machine.monotone_axes, export/machine/monotone_axes.h): per circuit, A monotone
 // and X monotone between its turning points; the eye is then recomputed from the axes. Reversals: a
 // reversal of an axis is a sign change between consecutive non-zero moves of its resampled values;
@@ -67,6 +70,10 @@
 #include "planner/plan/plan.h"
 
 namespace windplan {
+
+/// A robot's true-distance eye is planned this many machine.chord_tolerance beyond
+/// envelope.clearance (see the header comment).
+constexpr double kRobotEyeChords = 2.0;
 
 /// The spindle axis with a fixed angular reference (see the header comment).
 struct AxisFrame {

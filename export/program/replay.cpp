@@ -263,13 +263,21 @@ double lay_straight(const Surface& surf, const Vec3& eye, Surface::Point* P, dou
 // Distance of p to the polyline q (cumulative arc length sq), searched on the segments from
 // `back` mm behind the last match to `ahead` mm after it; moves ptr to the best segment. The
 // window is short in arc length so that a later pass crossing this one is never taken for it.
+// Only the segments between `first` and `limit` (the points of one layer, between two tie-ons:
+// the step from a layer's last point to the next one's first is no fibre, and a layer's first
+// point is reached by a rapid only, never by tracking).
 double track(const std::vector<Vec3>& q, const std::vector<double>& sq, const Vec3& p, double back,
-             double ahead, int* ptr) {
+             double ahead, int first, int limit, int* ptr) {
   const int m = static_cast<int>(q.size());
-  if (m == 1) return (p - q[0]).norm();
-  int lo = std::min(*ptr, m - 2), hi = lo;
-  while (lo > 0 && sq[*ptr] - sq[lo] < back) --lo;
-  while (hi < m - 2 && sq[hi] - sq[*ptr] < ahead) ++hi;
+  limit = std::min(limit, m - 1);
+  if (limit <= first) {
+    *ptr = first;
+    return (p - q[first]).norm();
+  }
+  const int hi_max = limit - 1;
+  int lo = std::clamp(*ptr, first, hi_max), hi = lo;
+  while (lo > first && sq[*ptr] - sq[lo] < back) --lo;
+  while (hi < hi_max && sq[hi] - sq[*ptr] < ahead) ++hi;
   double best = std::numeric_limits<double>::infinity();
   int at = *ptr;
   for (int j = lo; j <= hi; ++j) {
@@ -306,13 +314,18 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   if (program.blocks.empty()) throw InputError("the program has no moves");
   if (mandrel.num_faces() == 0) throw InputError("the mandrel mesh is empty");
   std::vector<Vec3> planned, planned_n;
-  std::vector<int> circuit_start;       // index of each circuit's first point in `planned`
-  std::vector<int> layer_start;         // the first point of each layer but the first (a layup)
-  std::vector<int> start_mesh;  // the surface (entry of surfaces_of.meshes) of the circuit there
-  std::vector<char> held;        // on a turnaround: a pin ring or boss holds the fibre there
+  std::vector<int> circuit_start;  // index of each circuit's first point in `planned`
+  std::vector<int> start_mesh;     // the surface (entry of surfaces_of.meshes) of the circuit there
+  std::vector<char> held;          // on a turnaround: a pin ring or boss holds the fibre there
+  std::vector<int> tie_on;         // index in `planned` of each later layer's first point
   const CircuitSurfaces surfaces_of = distinct_circuit_surfaces(plan, mandrel, circuit_surfaces);
   for (std::size_t ci = 0; ci < plan.circuits.size(); ++ci) {
     const Circuit& c = plan.circuits[ci];
+    for (const LayerSummary& l : plan.layers) {
+      if (l.first_circuit == static_cast<int>(ci) && !planned.empty() && !c.points.empty()) {
+        tie_on.push_back(static_cast<int>(planned.size()));
+      }
+    }
     std::vector<char> on_turn(c.points.size(), 0);
     for (const CircuitSegment& seg : c.segments) {
       if (seg.kind != CircuitSegment::Kind::Turnaround) continue;
@@ -324,10 +337,6 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
     if (!c.points.empty()) {
       circuit_start.push_back(static_cast<int>(planned.size()));
       start_mesh.push_back(surfaces_of.of[ci]);
-      for (const LayerSummary& l : plan.layers) {
-        if (ci > 0 && l.first_circuit == static_cast<int>(ci))
-          layer_start.push_back(circuit_start.back());
-      }
     }
     for (std::size_t i = 0; i < c.points.size(); ++i) {
       const FibrePoint& p = c.points[i];
@@ -366,10 +375,30 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
     for (std::size_t m = i; m <= k; ++m) bend[m] = turn > 0.0 ? 1 : (turn < 0.0 ? -1 : 0);
     i = k + 1;
   }
-  // The first turnaround point at or after each planned point (-1: none).
+  // Per planned point, the first and last points of its layer (the tow is cut at a layer's end
+  // and tied on again at the next layer's first point by a rapid, below): the contact, the pins
+  // that catch it and the deviation's track stay between them. Without the last, the robot
+  // replay of pipe_robot_layup with its eyes 0.05 mm further out let the pins of the second
+  // layer's first circuit catch the contact at the first layer's end, and its rapid then tied the
+  // tow on at the second layer's second circuit: 15.98 mm off. Without the first, the track at a
+  // tie-on reached one segment back (the step between the layers), took it for the nearest and
+  // put the contact back on the previous layer's last turnaround: a hoop's tie-on turn on the
+  // taper of the helical layer under it replayed 4.11 mm off in the KR 16 cell (now 0.231).
+  std::vector<int> stretch_last(planned.size(), static_cast<int>(planned.size()) - 1);
+  std::vector<int> stretch_first(planned.size(), 0);  // and its layer's first point
+  for (int i = static_cast<int>(planned.size()) - 2; i >= 0; --i) {
+    const bool before_tie_on = std::find(tie_on.begin(), tie_on.end(), i + 1) != tie_on.end();
+    stretch_last[i] = before_tie_on ? i : stretch_last[i + 1];
+  }
+  for (std::size_t i = 1; i < planned.size(); ++i) {
+    const bool tied_on =
+        std::find(tie_on.begin(), tie_on.end(), static_cast<int>(i)) != tie_on.end();
+    stretch_first[i] = tied_on ? static_cast<int>(i) : stretch_first[i - 1];
+  }
+  // The first turnaround point at or after each planned point in its stretch (-1: none).
   std::vector<int> next_held(planned.size(), -1);
   for (int i = static_cast<int>(planned.size()) - 1; i >= 0; --i) {
-    next_held[i] = held[i] ? i : (i + 1 < static_cast<int>(planned.size()) ? next_held[i + 1] : -1);
+    next_held[i] = held[i] ? i : (i < stretch_last[i] ? next_held[i + 1] : -1);
   }
   const bool lathe2 = machine.kind == "lathe2";
   const AxisFrame frame = make_axis_frame(plan.axis);
@@ -451,8 +480,8 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
         // next layer's SECOND one (the outer layer of a two-layer pipe laid 10.0 mm off the plan
         // with one eye cylinder, on lathe2, 73.68 mm, for both layers).
         int next = -1;
-        if (const auto l = std::upper_bound(layer_start.begin(), layer_start.end(), tied_at);
-            l != layer_start.end()) {
+        if (const auto l = std::upper_bound(tie_on.begin(), tie_on.end(), tied_at);
+            l != tie_on.end()) {
           next = *l;
         } else if (const auto c = std::upper_bound(circuit_start.begin(), circuit_start.end(), ptr);
                    c != circuit_start.end()) {
@@ -482,11 +511,12 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
         const double t = static_cast<double>(k) / n;
         const Vec3 e = eye_at(prev->a + t * (b.a - prev->a), prev->x + t * (b.x - prev->x),
                               pv[2] + t * (v[2] - pv[2]));
-        const int last = static_cast<int>(planned.size()) - 1;
         double dev = 0.0;
         // The pins catch the fibre as it arrives at the ring: within `catch_distance` before it.
         // An arc the fibre has left holds it no more (the deviation track may fall back on it).
-        if (ptr <= released_to) ptr = std::min(released_to + 1, last);
+        if (ptr <= released_to) ptr = std::min(released_to + 1, stretch_last[ptr]);
+        const int last = stretch_last[ptr];    // this layer's (the tow's) last planned point
+        const int first = stretch_first[ptr];  // and its first
         const int nh = next_held[ptr];
         // Measured along the plan from the foot of the contact on its planned segment (a straight
         // pass on a flat face is one long segment: from the segment's start the pins were never
@@ -512,7 +542,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
           for (int i = 1; i <= m; ++i) {
             const Vec3 q = anchor.p + (static_cast<double>(i) / m) * (to - anchor.p);
             worst = std::max(worst, track(planned, planned_s, q, options.search_back,
-                                          options.search_ahead, &lptr));
+                                          options.search_ahead, first, last, &lptr));
           }
           return worst;
         };
@@ -613,12 +643,13 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
             }
           }
           r.straight_substeps += (P.p - anchor.p).norm() > 0.0;
-          dev = track(planned, planned_s, P.p, options.search_back, options.search_ahead, &ptr);
+          dev = track(planned, planned_s, P.p, options.search_back, options.search_ahead, first,
+                      last, &ptr);
           if ((P.p - anchor.p).norm() > 0.0) {
             // The fibre lies on a flat face beyond its anchor, held at no far end: it swings with
             // the eye and is not laid yet; what is laid ends at the anchor.
             dev = track(planned, planned_s, anchor.p, options.search_back, options.search_ahead,
-                        &lptr);
+                        first, last, &lptr);
           } else {
             lptr = ptr;
           }

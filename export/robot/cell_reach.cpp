@@ -8,6 +8,7 @@
 
 #include "export/robot/robot_motion.h"
 #include "geometry/base/errors.h"
+#include "geometry/region/winding_surface.h"
 
 namespace windplan {
 
@@ -39,8 +40,12 @@ std::string CellReach::brief_report() const {
   return buf;
 }
 
-CellReach check_cell_reach(const Mesh& wound, const SpindleAxis& axis, const RadiusProfile& profile,
-                           const MachineOptions& machine) {
+namespace {
+
+// The check at the stations of `wound`, the eye at `profile`'s radius there (see the header);
+// `what` names the surface in the message ("mandrel", "laminate under layers[1] (outer)").
+CellReach reach(const Mesh& wound, const SpindleAxis& axis, const RadiusProfile& profile,
+                const MachineOptions& machine, const std::string& what) {
   const RobotOptions& ro = machine.robot;
   if (!ro.has_arm()) throw ConfigError("machine.robot.arm: a robot cell needs an arm profile");
   if (wound.points().empty()) throw InputError("cell reach: the wound region is empty");
@@ -106,19 +111,36 @@ CellReach check_cell_reach(const Mesh& wound, const SpindleAxis& axis, const Rad
               : ro.positioner_file + ": frame";
       char buf[400];
       std::snprintf(buf, sizeof buf,
-                    " with machine.robot.offset %.1f mm puts the mandrel out of reach of the %s: "
+                    " with machine.robot.offset %.1f mm puts the %s out of reach of the %s: "
                     "the eye at %.1f mm along the spindle axis, %.1f mm from it, at (%.1f, %.1f, "
                     "%.1f) mm in the cell, ",
-                    ro.offset, ro.arm_name.c_str(), station, p.distance, p.cell.x(), p.cell.y(),
-                    p.cell.z());
+                    ro.offset, what.c_str(), ro.arm_name.c_str(), station, p.distance, p.cell.x(),
+                    p.cell.y(), p.cell.z());
       throw InputError(where + buf + why +
                        "; move the positioner's frame or machine.robot.offset (checked before "
-                       "planning)");
+                       "planning" +
+                       (what == "mandrel" ? std::string() : " the layer") + ")");
     }
     out.points.push_back(p);
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+}  // namespace
+
+CellReach check_cell_reach(const Mesh& wound, const SpindleAxis& axis, const RadiusProfile& profile,
+                           const MachineOptions& machine) {
+  return reach(wound, axis, profile, machine, "mandrel");
+}
+
+CellReach check_cell_reach_over(const Mesh& wound, const SpindleAxis& axis, const Mesh& surface,
+                                const MachineOptions& machine, const std::string& layer) {
+  if (surface.points().empty())
+    throw InputError("cell reach: the surface under " + layer + " is empty");
+  // Its largest radius, never below the surface between stations (bound_between).
+  const RadiusProfile profile = compute_radius_profile(surface, axis, 200, true);
+  return reach(wound, axis, profile, machine, "laminate under " + layer);
 }
 
 }  // namespace windplan

@@ -54,4 +54,14 @@ struct CellReach {
 CellReach check_cell_reach(const Mesh& wound, const SpindleAxis& axis, const RadiusProfile& profile,
                            const MachineOptions& machine);
 
+/// The same over the surface a layup winds a layer on (the laminate the layers under it built,
+/// planner/pipeline.h PipelineOptions::on_layer_surface): a layup's outer layers put the eye
+/// further from the axis than the bare mandrel does. The stations are the mandrel's wound
+/// region's (`wound`), the eye at `surface`'s largest radius there (its radius profile,
+/// geometry/region/winding_surface.h, never below it between stations) plus the clearance, as
+/// above. \param layer the layer wound on it, as "layers[1] (outer)"
+/// \throw InputError as above, naming "the laminate under <layer>" instead of the mandrel
+CellReach check_cell_reach_over(const Mesh& wound, const SpindleAxis& axis, const Mesh& surface,
+                                const MachineOptions& machine, const std::string& layer);
+
 }  // namespace windplan

@@ -109,7 +109,16 @@ RobotMotion compute_robot_motion(const Motion& motion, const WindingPlan& plan,
       const MachineState& p = motion.states[i - 1];
       const double pe1 = m.positioner.e1[i - 1];
       const double turn = std::fabs((e1 - s.a_deg) - (pe1 - p.a_deg));
-      parts = std::max(1, static_cast<int>(std::ceil(turn / kTurnStepDeg)));
+      // The arm moves straight in the cell: a turn by d about the E1 axis at radius Y puts the
+      // eye Y (1 - cos(d / 2)) inside the arc, which the eye's plan allows chord_tolerance for
+      // (export/machine/kinematics.h, kRobotEyeChords): 4.3 deg at Y = 70 mm, so 2 deg rules on
+      // the shipped cells.
+      const double y = std::max(s.y_mm, p.y_mm);
+      double step = kTurnStepDeg;
+      if (y > machine.chord_tolerance) {
+        step = std::min(step, 2.0 * std::acos(1.0 - machine.chord_tolerance / y) * kDeg);
+      }
+      parts = std::max(1, static_cast<int>(std::ceil(turn / step)));
       for (int k = 1; k < parts; ++k) {
         const double f = static_cast<double>(k) / parts;
         MachineState q = s;

@@ -15,6 +15,11 @@
 // for a ring eye (eye: ring, the default), whose orifice lays the fibre the same at any rotation, y
 // = z x x. The flange target is BASE * eye * TOOL^-1 (BASE the positioner frame in the cell).
 //
+// Where E1 - A turns between two states, targets are inserted on the planned eye path (the
+// straight line between the two eyes in the mandrel frame) in steps of at most 2 deg, and small
+// enough that the arm's straight move between two of them, Y (1 - cos(step / 2)) inside the arc at
+// the eye's distance Y from the E1 axis, stays within chord_tolerance (the eye is planned that far
+// beyond the clearance for it: export/machine/kinematics.h, kRobotEyeChords).
 // IK: the first target of the plan takes the solution nearest the arm's home joints
 // (RobotArm::inverse_near), every other is seeded from the previous solution (one continuous
 // configuration). Errors (InputError, naming the circuit and

@@ -300,6 +300,7 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
   r.fibre.max_deviation_line = wt.line;  // the line in its file (max_deviation_at names the file)
   const int cl = std::min<int>(std::max(1, r.fibre.min_clearance_line), r.targets);
   r.fibre.min_clearance_line = program.targets[cl - 1].line;
+  r.min_clearance_at = at(program.targets[cl - 1]);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   char buf[600];
   std::snprintf(buf, sizeof buf,
@@ -318,6 +319,19 @@ RobotReplayResult replay_robot_program(const RobotProgram& program, const Windin
                 r.max_joint_speed_ratio, r.configuration_changes, r.cycle_time);
   r.summary = buf;
   return r;
+}
+
+bool RobotReplayResult::keeps_clearance(double clearance, std::string* message) const {
+  if (!(clearance > 0.0) || !(fibre.min_clearance < clearance - 1e-3)) return true;
+  if (message) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  ": the replay puts the eye %.4f mm from the surface it winds on, less than "
+                  "machine.envelope.clearance %g mm",
+                  fibre.min_clearance, clearance);
+    *message = min_clearance_at + buf;
+  }
+  return false;
 }
 
 bool RobotReplayResult::within(double tolerance, ReplayExcess* excess) const {

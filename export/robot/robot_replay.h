@@ -38,14 +38,23 @@ struct RobotReplayResult {
   double max_joint_speed_ratio = 0.0;  ///< joint or E1 speed over its max_velocity, largest
   std::string max_joint_speed_at;
   int configuration_changes = 0;
-  double cycle_time = 0.0;  ///< s
-  double seconds = 0.0;     ///< wall time
-  std::string summary;      ///< one line
+  double cycle_time = 0.0;       ///< s
+  double seconds = 0.0;          ///< wall time
+  std::string summary;           ///< one line
+  std::string min_clearance_at;  ///< "file:line" of the eye's least clearance (fibre.min_clearance)
 
   /// The check of machine.replay_tolerance on the worst of the fibre's deviation and the eye's
   /// (the larger one; the fibre's on a tie): true when it is <= tolerance (mm) or the tolerance
   /// is <= 0 (report only); else false, with `excess` (when given) naming it and its file:line.
   bool within(double tolerance, ReplayExcess* excess = nullptr) const;
+
+  /// The check of machine.envelope.clearance on the replayed eye: true when its least distance to
+  /// the surface of the layer in work (fibre.min_clearance, every 2 mm of eye travel) is at least
+  /// clearance - 1e-3 mm (rounding; no chord slack: the eye is planned beyond the clearance,
+  /// export/machine/kinematics.h), or clearance <= 0 (not checked); else false, with `message`
+  /// (when given) "FILE:LINE: the replay puts the eye D mm from the surface it winds on, less
+  /// than machine.envelope.clearance C mm".
+  bool keeps_clearance(double clearance, std::string* message = nullptr) const;
 };
 
 /// \throw InputError for an empty program or mesh, a target out of reach or past a joint limit

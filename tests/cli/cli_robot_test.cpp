@@ -117,5 +117,39 @@ TEST_F(CliRobot, BadInputIsOneLineExitOne) {
   EXPECT_NE(r.err.find("p.src:2"), std::string::npos) << r.err;
 }
 
+// Reach over the laminate: a cell whose positioner holds the pipe high (axis 1200 mm up, the eye
+// above it) reaches the bare 50 mm pipe, but the helical layer's laminate (20 mm bands) puts the
+// hoop layer's eye out of reach. Refused once that layer's surface is built, before it is
+// planned: one line naming the layer, exit 1, no output.
+TEST_F(CliRobot, ALaminateOutOfReachIsOneLineExitOne) {
+  std::ofstream(dir_ / "high.yaml")
+      << "name: high\nframe: {xyz: [900, 0, 1200], abc: [90, 0, 90]}\ne1_max_velocity: 180\n";
+  std::ofstream(dir_ / "job.yaml")
+      << "name: thick\n"
+         "mandrel: {source: pipe, angular_deflection: 3, pipe: {radius: 50, length: 300}}\n"
+         "material: {tex: 2400, fibre_density: 1.8, resin_density: 1.2,\n"
+         "           fibre_volume_fraction: 0.6, band_thickness: 20}\n"
+         "winding: {turns: 2, circuits: auto, band_width: 16}\n"
+         "layers:\n  - {kind: helical, name: inner}\n  - {kind: hoop, name: outer}\n"
+         "machine:\n  profile: "
+      << (source_dir() / "configs" / "machines" / "robot_cell_kr16.yaml").string()
+      << "\n  robot: {offset: -150, positioner: " << (dir_ / "high.yaml").string() << "}\n";
+  const RunResult r = run({"run", (dir_ / "job.yaml").string(), "--out", (dir_ / "o").string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("high.yaml: frame with machine.robot.offset -150.0 mm puts the laminate "
+                       "under layers[1] (outer) out of reach of the KUKA KR 16-2: the eye at"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("inner    done"), std::string::npos) << r.err;  // the mandrel was reached
+  EXPECT_EQ(r.err.find("outer    done"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("export"), std::string::npos) << r.err;
+  std::size_t errors = 0;
+  for (std::size_t p = r.err.find("error:"); p != std::string::npos;
+       p = r.err.find("error:", p + 1))
+    ++errors;
+  EXPECT_EQ(errors, 1u) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "o" / "report.json"));
+}
+
 }  // namespace
 }  // namespace windplan::test

@@ -65,6 +65,38 @@ TEST(Layup, HoopOnHoopHasTheAngleOfRadiusRPlusT) {
   EXPECT_NEAR(r.total.fibre_mass, a.fibre_mass + b.fibre_mass, 1e-9);
 }
 
+// PipelineOptions::on_layer_surface: called once before each layer wound over others, naming it,
+// with the surface it is then wound on (the robot cell's reach is checked there, before the layer
+// is planned): the second hoop's surface is R + t1 on the cylinder, the third's R + t1 + t2.
+TEST(Layup, EachLayerOverOthersShowsItsSurfaceBeforeItIsPlanned) {
+  std::vector<std::string> names;
+  std::vector<double> radii;
+  PipelineOptions po;
+  po.on_layer_surface = [&](const Mesh& surface, const std::string& layer) {
+    names.push_back(layer);
+    double r = 0.0;  // the largest radius of its vertices at mid-length
+    for (const Vec3& p : surface.points()) {
+      if (std::fabs(p.z() - 150.0) < 20.0) r = std::max(r, std::hypot(p.x(), p.y()));
+    }
+    radii.push_back(r);
+  };
+  const LayupResult r =
+      plan_layup(pipe_job("layers:\n  - {kind: hoop, name: a}\n  - {kind: hoop, name: b}\n"
+                          "  - {kind: hoop, name: c}\n"),
+                 po);
+  ASSERT_EQ(names.size(), 2u);
+  EXPECT_EQ(names[0], "layers[1] (b)");
+  EXPECT_EQ(names[1], "layers[2] (c)");
+  const double t1 = r.plan.layers[0].thickness_cylinder, t2 = r.plan.layers[1].thickness_cylinder;
+  EXPECT_NEAR(radii[0], kR + t1, 1e-6);
+  EXPECT_NEAR(radii[1], kR + t1 + t2, 1e-6);
+  // A refusal there stops the layup before the layer is planned.
+  po.on_layer_surface = [](const Mesh&, const std::string& layer) {
+    throw InputError(layer + ": refused");
+  };
+  EXPECT_THROW(plan_layup(pipe_job("layers:\n  - kind: hoop\n  - kind: hoop\n"), po), InputError);
+}
+
 TEST(Layup, HelicalCylinderThicknessFromItsOwnCircuits) {
   const LayupResult r = plan_layup(pipe_job("layers:\n  - kind: helical\n  - kind: hoop\n"));
   const LayerSummary &h = r.plan.layers[0], &o = r.plan.layers[1];

@@ -107,6 +107,128 @@ TEST(Replay, EachCircuitIsWalkedOnTheSurfaceItWasWoundOn) {
   EXPECT_EQ(none.substeps, bare.substeps);
 }
 
+// A layup whose second layer starts where the first one ends: its first circuit begins right over
+// the first layer's last point (2 mm out, on the surface the first layer built) with a turnaround
+// (pins), and a second circuit follows half a turn round. Near the first layer's end the pins of
+// the second layer's first circuit were within catch_distance along the plan, so the contact
+// jumped onto them; the G0 between the layers then tied the tow on at the next circuit start after
+// that, the second layer's second circuit, and the whole first circuit of the second layer was
+// laid from the wrong place (the robot replay of pipe_robot_layup with its eyes 0.05 mm further
+// out: 15.98 mm off). The tow is tied on at a layer's first point by the G0 only.
+TEST(Replay, ALayersPinsDoNotCatchTheLayerBeforeIt) {
+  const double R = 50, R2 = 52, Re = 75, turns = 2, turns2 = 1, a1 = 60, a2 = 50;  // mm, deg
+  const double c1 = R / std::tan(a1 * M_PI / 180), c2 = R2 / std::tan(a2 * M_PI / 180);
+  const double z_end = c1 * turns * 2 * M_PI, theta_end = turns * 2 * M_PI;
+  WindingPlan plan = test::helix_plan(R, a1, turns, 2000);
+  // Layer 2: helices on R2 running down from z_end, the first from over the first layer's end.
+  const int n2 = 2000, held = 40;
+  for (int k = 0; k < 2; ++k) {
+    Circuit ci;
+    ci.index = 1 + k;
+    const double psi = theta_end + k * M_PI;
+    for (int i = 0; i < n2; ++i) {
+      FibrePoint fp = test::helix_point(R2, -c2, turns2 * 2 * M_PI * i / (n2 - 1), psi);
+      fp.position.z() += z_end;
+      ci.points.push_back(fp);
+    }
+    ci.segments.push_back({CircuitSegment::Kind::Turnaround, 0, held});
+    ci.segments.push_back({CircuitSegment::Kind::Pass, held, n2 - 1});
+    plan.circuits.push_back(ci);
+  }
+  plan.layers.resize(2);
+  plan.layers[0].first_circuit = 0;
+  plan.layers[0].circuit_count = 1;
+  plan.layers[1].first_circuit = 1;
+  plan.layers[1].circuit_count = 2;
+  const double len = z_end + 100;
+  const Mesh mandrel(test::open_cylinder(R, len, 512, 200));
+  const Mesh built(test::open_cylinder(R2, len, 512, 200));
+  // The program: the first two circuits' closed-form eyes on the cylinder Re (helix_program's
+  // lead), a G0 before each layer.
+  std::string text = "%\n(two layers, the second from where the first ends)\nG21 G90 G93\n";
+  int second_line = 0;
+  auto helix = [&](double r, double c, double n_turns, double psi, double z0) {
+    const double beta = std::acos(r / Re);
+    for (int i = 0; i < 1500; ++i) {
+      const double phi = n_turns * 2 * M_PI * i / 1499;
+      char buf[128];
+      std::snprintf(buf, sizeof buf, "%s X%.4f A%.4f%s\n", i == 0 ? "G0" : "G1",
+                    z0 + c * phi + c * std::tan(beta), -(phi + psi + beta) * 180 / M_PI,
+                    i == 0 ? "" : " F600");
+      text += buf;
+    }
+  };
+  helix(R, c1, turns, 0.0, 0.0);
+  second_line = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  helix(R2, -c2, turns2, theta_end, z_end);
+  text += "M2\n%\n";
+  const MachineOptions m = lathe2(Re);
+  const GcodeProgram p = read_gcode(text, m, "layers.ngc");
+  const ReplayResult r = replay_program(p, plan, mandrel, m, {}, {nullptr, &built, &built});
+  std::printf("%s\n", r.summary.c_str());
+  // The second layer's first circuit is laid from its own first point (the program ends there).
+  EXPECT_LT(r.max_deviation, 0.1) << "at line " << r.max_deviation_line << " (second layer from "
+                                  << second_line << ")";
+}
+
+// The first layer ends on a turnaround (pins) and the second is tied on 60 deg before that end,
+// its eye short of its lead (the free fibre lifts off: the contact stays on the tie-on point). At
+// the tie-on the contact is on the second layer's first point, which is also the end of the step
+// from the first layer's last point: the deviation track's window
+// reached one segment back onto that step and put the contact on the first layer's last pin,
+// which then held it until the eye had passed it by acos(R / R_e) (a hoop's tie-on turn on the
+// taper of a helical layer in the KR 16 cell: 4.11 mm off). The track stays in the layer: the
+// second layer is laid from its own first point.
+TEST(Replay, ATieOnStartsFromTheLayersFirstPoint) {
+  const double R = 50, R2 = 52, Re = 75, turns = 2, turns2 = 1, a1 = 60, a2 = 50;  // mm, deg
+  const double c1 = R / std::tan(a1 * M_PI / 180), c2 = R2 / std::tan(a2 * M_PI / 180);
+  const double z_end = c1 * turns * 2 * M_PI, theta_end = turns * 2 * M_PI;
+  const double psi2 = theta_end - 60 * M_PI / 180;
+  WindingPlan plan = test::helix_plan(R, a1, turns, 2000);
+  plan.circuits[0].segments = {{CircuitSegment::Kind::Pass, 0, 1959},
+                               {CircuitSegment::Kind::Turnaround, 1959, 1999}};
+  Circuit ci;
+  ci.index = 1;
+  for (int i = 0; i < 2000; ++i) {
+    FibrePoint fp = test::helix_point(R2, -c2, turns2 * 2 * M_PI * i / 1999, psi2);
+    fp.position.z() += z_end;
+    ci.points.push_back(fp);
+  }
+  ci.segments.push_back({CircuitSegment::Kind::Pass, 0, 1999});
+  plan.circuits.push_back(ci);
+  plan.layers.resize(2);
+  plan.layers[0].circuit_count = 1;
+  plan.layers[1].first_circuit = 1;
+  plan.layers[1].circuit_count = 1;
+  const Mesh mandrel(test::open_cylinder(R, z_end + 100, 512, 200));
+  const Mesh built(test::open_cylinder(R2, z_end + 100, 512, 200));
+  std::string text =
+      "%\n(two layers, the second tied on before the first one's end)\nG21 G90 G93\n";
+  // `slack`: the eye starts with that fraction of its lead missing (the free fibre lifts off the
+  // first point: the contact stays on it), taken up over 100 blocks.
+  auto helix = [&](double r, double c, double n_turns, double psi, double z0, double slack) {
+    for (int i = 0; i < 1500; ++i) {
+      const double beta = std::acos(r / Re) * (1.0 - slack * std::max(0.0, 1.0 - i / 100.0));
+      const double phi = n_turns * 2 * M_PI * i / 1499;
+      char buf[128];
+      std::snprintf(buf, sizeof buf, "%s X%.4f A%.4f%s\n", i == 0 ? "G0" : "G1",
+                    z0 + c * phi + c * std::tan(beta), -(phi + psi + beta) * 180 / M_PI,
+                    i == 0 ? "" : " F600");
+      text += buf;
+    }
+  };
+  helix(R, c1, turns, 0.0, 0.0, 0.0);
+  helix(R2, -c2, turns2, psi2, z_end, 0.05);
+  text += "M2\n%\n";
+  const MachineOptions m = lathe2(Re);
+  const ReplayResult r =
+      replay_program(read_gcode(text, m, "layers.ngc"), plan, mandrel, m, {}, {nullptr, &built});
+  std::printf("%s\n", r.summary.c_str());
+  // 0.201 mm (the contact catching up as the eye takes up its lead); 5.28 mm with the track's
+  // window reaching back, 42.5 mm with it bounded at the layer's end only.
+  EXPECT_LT(r.max_deviation, 0.5) << "at line " << r.max_deviation_line;
+}
+
 TEST(Replay, OneMillimetreCarriageFaultIsCaught) {
   const double R = 50, Re = 70, alpha = 60, turns = 2;
   const WindingPlan plan = test::helix_plan(R, alpha, turns, 2000);

@@ -104,5 +104,40 @@ TEST(CellReach, InsideTheStretchButPastTheJointLimitsIsRefusedByTheInverseKinema
   }
 }
 
+// A layup's outer layers put the eye further from the axis than the bare mandrel: a cell with the
+// positioner above the robot's reach (its axis 1200 mm up, the eye above it) reaches a 50 mm
+// tube's eye (70 mm from the axis, up to 1270 mm high) but not that of a laminate 45 mm thick on
+// it (115 mm, 1315 mm high): refused naming the layer; the bare mandrel's check cannot see it.
+TEST(CellReach, ALaminateOutOfReachIsRefusedNamingTheLayer) {
+  MachineOptions m = kr16_cell("offset: -150\n");
+  m.robot.positioner.xyz = {900, 0, 1200};
+  m.robot.positioner.abc = {90, 0, 90};  // x = E1 along the cell's +y, y (the eye's side) up
+  const Tube t = tube(50, 300);
+  const Mesh laminate(test::open_cylinder(95, 300, 64, 40));
+  const CellReach r = check_cell_reach(t.mesh, t.axis, t.profile, m);
+  ASSERT_EQ(r.points.size(), 3u);
+  EXPECT_NEAR(r.points[1].cell.z(), 1200.0 + 70.0, 0.05);
+  try {
+    check_cell_reach_over(t.mesh, t.axis, laminate, m, "layers[1] (outer)");
+    FAIL() << "not refused";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    std::printf("%s\n", msg.c_str());
+    EXPECT_NE(msg.find("positioner_1axis.yaml: frame with machine.robot.offset -150.0 mm puts the "
+                       "laminate under layers[1] (outer) out of reach of the KUKA KR 16-2"),
+              std::string::npos)
+        << msg;
+    EXPECT_NE(msg.find(", 115.0 mm from it,"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("(checked before planning the layer)"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+  // The mandrel itself as the surface: the same eye points as check_cell_reach.
+  const CellReach same = check_cell_reach_over(t.mesh, t.axis, t.mesh, m, "layers[1] (outer)");
+  ASSERT_EQ(same.points.size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(same.points[i].distance, r.points[i].distance, 0.05);
+  }
+}
+
 }  // namespace
 }  // namespace windplan
