@@ -306,9 +306,9 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   if (program.blocks.empty()) throw InputError("the program has no moves");
   if (mandrel.num_faces() == 0) throw InputError("the mandrel mesh is empty");
   std::vector<Vec3> planned, planned_n;
-  std::vector<int> circuit_start;       // index of each circuit's first point in `planned`
-  std::vector<int> start_mesh;  // the surface (entry of surfaces_of.meshes) of the circuit there
-  std::vector<char> held;        // on a turnaround: a pin ring or boss holds the fibre there
+  std::vector<int> circuit_start;  // index of each circuit's first point in `planned`
+  std::vector<int> start_mesh;     // the surface (entry of surfaces_of.meshes) of the circuit there
+  std::vector<char> held;          // on a turnaround: a pin ring or boss holds the fibre there
   const CircuitSurfaces surfaces_of = distinct_circuit_surfaces(plan, mandrel, circuit_surfaces);
   for (std::size_t ci = 0; ci < plan.circuits.size(); ++ci) {
     const Circuit& c = plan.circuits[ci];
@@ -527,7 +527,9 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
             in_plane = options.touch > 0.0 && bend[i] != 0 &&
                        std::fabs(d.dot(pi.fn)) <= options.touch / probe * d.norm() &&
                        flat_around(i, pi);
-            if (!in_plane) return d.dot(planned_n[i]) < 0.0;
+            // An eye within `hold` below the pin's tangent plane is on it (the program's
+            // 4 decimals put an eye swung in that plane up to 2e-4 mm below): the pin holds.
+            if (!in_plane) return d.dot(planned_n[i]) < -options.hold;
             if (i + 1 <= last && held[i + 1]) {
               return bend[i] * pi.fn.dot(d.cross(planned[i + 1] - planned[i])) < 0.0;
             }
