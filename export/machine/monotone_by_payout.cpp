@@ -49,7 +49,7 @@ MonotoneByPayoutSummary monotone_by_payout(const AxisFrame& frame,
   if (!options.is_valid(&why)) throw ConfigError("monotone_by_payout: " + why);
   MonotoneByPayoutSummary sum;
   std::vector<MachineState>& st = *states;
-  if (end - begin < 2) return sum;  // NOLINT: one state has no direction to keep
+  if (end - begin < 2) return sum;  // one state has no direction to keep
   // The directions the axes must keep, from the unslid values (as monotone_axes.h takes them):
   // A its net change, X up to its first extreme, back to the other one, then on to the end.
   const double sa = st[end - 1].a_deg >= st[begin].a_deg ? 1.0 : -1.0;

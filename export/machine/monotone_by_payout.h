@@ -17,12 +17,15 @@
 // direction of its piece between the circuit's extremes, as monotone_axes.h cuts it). Along
 // the tangent line the angle about the axis changes monotonically and X linearly, so each bound
 // is one closed form: for A, the L at which the line crosses the previous eye's meridian half-
-// plane, for X the L at which it crosses that eye's station. The eye stays on the fibre's
-// tangent (the fibre leaves the mandrel where the plan lays it, with no lift below its tangent
-// plane), only farther out: its Y and B are recomputed, its free length and paid-out length grow
-// by the slide. A state the slide cannot level (its tangent slides the wrong way, or beyond
-// `max_slide`) is left for the least-squares fit, which is then applied as before (and changes
-// nothing where the slide made the axes monotone).
+// plane, for X the L at which it crosses that eye's station (X only where it steps back more than
+// 0.001 mm, ten times the program's last decimal, along a tangent at least 10 deg from
+// circumferential: a dwell's line barely moves in X, and levelling a 0.005 mm step there slid an
+// eye 100 mm out). The eye stays on the fibre's tangent (the fibre leaves the mandrel where the
+// plan lays it, with no lift below its tangent plane), only farther out: its Y and B are
+// recomputed, its free length and paid-out length grow by the slide. A state the slide cannot
+// level (its tangent slides the wrong way, or beyond `max_slide`) is left for the least-squares
+// fit, which is then applied as before (and changes nothing where the slide made the axes
+// monotone).
 #include <string>
 #include <vector>
 
