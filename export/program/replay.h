@@ -71,9 +71,10 @@ struct ReplayOptions {
   /// its plane, or below it): the contact moves on to where the fibre leaves the face; 0: never.
   double touch = 1e-3;
   /// mm: on a curved surface's turnaround, an eye this close below a pin's tangent plane is on
-  /// it and the pin holds the fibre (the program's 4 decimals put an eye that swings in the
-  /// plane, from a dwell arc's last eye to its pass's first, up to 2e-4 mm below it; judged
-  /// exactly, the fibre left the pin at the pass's next point, 0.4 mm off on the oval canister).
+  /// it and the pin holds the fibre (an eye swung in that plane, from a dwell arc's last eye to
+  /// its pass's first, is put a few 1e-4 mm below it by the program's 4 decimals and the plan's
+  /// tangent, normal to its normal to ~1e-6: 0.0003 mm at most over the oval canister's swings;
+  /// judged exactly, the fibre left the pin at the pass's next point, 0.4 mm off there).
   double hold = 1e-3;
 };
 
