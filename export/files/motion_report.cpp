@@ -40,6 +40,12 @@ void motion_json(JsonWriter& j, const Motion& mo, const ReplayResult* rp) {
   j.field("max_tangent_smoothing_deg", mo.max_tangent_change);
   j.field("max_monotone_change_X_mm", mo.max_monotone_change_x);
   j.field("max_monotone_change_A_deg", mo.max_monotone_change_a);
+  // lathe4's eyes slid along their tangents (export/machine/monotone_by_payout.h), only when some
+  // were: the other jobs' files stay as they were.
+  if (mo.payout_slid > 0) {
+    j.field("eyes_slid_along_tangent", mo.payout_slid);
+    j.field("max_eye_slide_mm", mo.max_payout_slide);
+  }
   j.field("max_velocity_ratio", mo.limits.velocity_ratio);
   j.field("max_acceleration_ratio", mo.limits.acceleration_ratio);
   j.field("wind_time_s", mo.wind_time);

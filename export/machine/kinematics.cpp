@@ -10,6 +10,7 @@
 #include "export/machine/clearance.h"
 #include "export/machine/clearance_eye.h"
 #include "export/machine/monotone_axes.h"
+#include "export/machine/monotone_by_payout.h"
 #include "export/machine/resample.h"
 #include "export/machine/tangent_smoothing.h"
 #include "geometry/base/errors.h"
@@ -588,6 +589,54 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     }
   });
 
+  // lathe4: the states [b, e) of circuit c slid along their tangents (monotone_by_payout.h); a
+  // slid eye is checked against the travel limits and the clearance as the others were above.
+  auto slide_monotone = [&](int b, int e, const ClosestPointQuery* q, const Circuit& c) {
+    // A circuit that goes on from the previous one's last point (its dwell arc carries on into
+    // this circuit's first pass) keeps the spindle going on across the two.
+    const MachineState* before =
+        b > 0 && (m.states[b - 1].position - m.states[b].position).norm() <= 1e-6 ? &m.states[b - 1]
+                                                                                  : nullptr;
+    const MachineState before_copy = before ? *before : MachineState{};
+    const MonotoneByPayoutSummary ms =
+        monotone_by_payout(frame, &m.states, b, e, before ? &before_copy : nullptr);
+    m.payout_slid += ms.slid;
+    m.max_payout_slide = std::max(m.max_payout_slide, ms.max_slide);
+    if (ms.slid == 0) return;
+    for (int i = b; i < e; ++i) {
+      const MachineState& st = m.states[i];
+      const double value[4] = {st.a_deg, st.x_mm, st.y_mm, st.b_deg};
+      for (int ax = 0; ax < n_axes; ++ax) {
+        const double mv = axes[ax]->sign * value[ax] + axes[ax]->offset;
+        if (mv < axes[ax]->min || mv > axes[ax]->max) {
+          throw InputError("machine.axes." + std::string(names[ax]) + ": axis " + names[ax] +
+                           " (letter " + axes[ax]->letter + ") would move to " + num(mv) + " " +
+                           units[ax] + ", outside its travel [" + num(axes[ax]->min) + ", " +
+                           num(axes[ax]->max) + "], at circuit " + std::to_string(c.index) +
+                           ", point " + std::to_string(st.index) + " (its eye slid along the " +
+                           "tangent to keep A and X monotone)");
+        }
+      }
+      m.y.min = std::min(m.y.min, st.y_mm);
+      m.y.max = std::max(m.y.max, st.y_mm);
+      m.b.min = std::min(m.b.min, st.b_deg);
+      m.b.max = std::max(m.b.max, st.b_deg);
+      m.free_length.max = std::max(m.free_length.max, st.free_length);
+      if (!q) continue;
+      const double dist = q->closest(st.eye).distance;
+      if (dist < m.required_clearance - opts.chord_tolerance) {
+        throw InputError("machine.envelope: circuit " + std::to_string(c.index) + ", point " +
+                         std::to_string(st.index) + ": the eye slid along its tangent is " +
+                         num(dist) + " mm from the mandrel, less than the clearance " +
+                         num(m.required_clearance) + " mm");
+      }
+      if (dist < min_clearance) {
+        min_clearance = dist;
+        m.min_clearance_circuit = c.index;
+        m.min_clearance_index = st.index;
+      }
+    }
+  };
   double laid_before = 0.0;
   bool first = true;
   MachineState prev;
@@ -673,6 +722,13 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     }
     if (opts.monotone_axes) {
       const int b = circuit_begin.back(), e = static_cast<int>(m.states.size());
+      if (opts.kind == "lathe4") {
+        // The eyes first slid along their own tangents where A or X would go back (a dwell arc's
+        // last eye to its pass's first: export/machine/monotone_by_payout.h); the fit below then
+        // changes nothing there.
+        const int so = surface_of[ordinal];
+        slide_monotone(b, e, so < 0 ? query.get() : surface_queries[so].get(), c);
+      }
       std::vector<double> xs(e), as(e);
       for (int i = b; i < e; ++i) {
         xs[i] = m.states[i].x_mm;

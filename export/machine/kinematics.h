@@ -54,7 +54,10 @@
 // required clearance minus chord_tolerance (a robot's true-distance eye: below the clearance) it is
 // an error naming the point.
 // Monotone axes (machine.monotone_axes, export/machine/monotone_axes.h): per circuit, A monotone
-// and X monotone between its turning points; the eye is then recomputed from the axes. Reversals: a
+// and X monotone between its turning points; the eye is then recomputed from the axes (lathe4:
+// first each eye whose A or X would go back is slid outward along its own fibre tangent, from the
+// previous circuit's last state too where the circuit goes on from it: export/machine/
+// monotone_by_payout.h; the fit then changes nothing there). Reversals: a
 // reversal of an axis is a sign change between consecutive non-zero moves of its resampled values;
 // a pass is a CircuitSegment of kind Pass.
 #include <array>
@@ -159,6 +162,10 @@ struct Motion {
   double max_tangent_change = 0.0;      ///< deg, largest change of the smoothed vs plan tangent
   double max_monotone_change_x = 0.0;   ///< mm, largest change of X by monotone_axes
   double max_monotone_change_a = 0.0;   ///< deg, largest change of A by monotone_axes
+  /// lathe4: eyes slid outward along their fibre tangent so that A and X do not go back
+  /// (export/machine/monotone_by_payout.h), and the largest extra free length given (mm).
+  int payout_slid = 0;
+  double max_payout_slide = 0.0;
 
   AxisLimitCheck limits;             ///< the feed plan measured against the axis limits
   std::vector<double> circuit_time;  ///< s per circuit (in order), the link move included

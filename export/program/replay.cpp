@@ -578,7 +578,9 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
             in_plane = options.touch > 0.0 && bend[i] != 0 &&
                        std::fabs(d.dot(pi.fn)) <= options.touch / probe * d.norm() &&
                        flat_around(i, pi);
-            if (!in_plane) return d.dot(planned_n[i]) < 0.0;
+            // An eye within `hold` below the pin's tangent plane is on it (the program's
+            // rounding puts an eye swung in that plane a few 1e-4 mm below): the pin holds.
+            if (!in_plane) return d.dot(planned_n[i]) < -options.hold;
             if (i + 1 <= last && held[i + 1]) {
               return bend[i] * pi.fn.dot(d.cross(planned[i + 1] - planned[i])) < 0.0;
             }

@@ -46,6 +46,7 @@
 // surface's interpolated normal, a flat face's own) and the contact leaves the arc at its end, at
 // the pass's first point. The catch distance is measured along the plan from the foot of the
 // contact on its planned segment (a straight pass on a flat face is one long segment).
+// On a curved surface's arc an eye less than `hold` below a pin's tangent plane counts as on it.
 // A layup's circuits are walked on the surface each layer was wound on
 // (circuit_surfaces below), not on the bare mandrel.
 //
@@ -77,6 +78,12 @@ struct ReplayOptions {
   /// mm: a point of a straight fibre this close to the surface lies on it (a flat face: the eye in
   /// its plane, or below it): the contact moves on to where the fibre leaves the face; 0: never.
   double touch = 1e-3;
+  /// mm: on a curved surface's turnaround, an eye this close below a pin's tangent plane is on
+  /// it and the pin holds the fibre (an eye swung in that plane, from a dwell arc's last eye to
+  /// its pass's first, is put a few 1e-4 mm below it by the program's 4 decimals and the plan's
+  /// tangent, normal to its normal to ~1e-6: 0.0003 mm at most over the oval canister's swings;
+  /// judged exactly, the fibre left the pin at the pass's next point, 0.4 mm off there).
+  double hold = 1e-3;
 };
 
 struct ReplayExcess;
