@@ -317,14 +317,24 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   std::vector<int> circuit_start;  // index of each circuit's first point in `planned`
   std::vector<int> start_mesh;     // the surface (entry of surfaces_of.meshes) of the circuit there
   std::vector<char> held;          // on a turnaround: a pin ring or boss holds the fibre there
-  std::vector<int> tie_on;         // index in `planned` of each later layer's first point
+  std::vector<int> tie_on;         // index in `planned` of each later layer's first point, sorted
   const CircuitSurfaces surfaces_of = distinct_circuit_surfaces(plan, mandrel, circuit_surfaces);
+  // Circuits that start a layer; a layer whose first circuits have no points starts at the next
+  // circuit that has some, and a layer of no circuits starts none.
+  std::vector<char> starts_layer(plan.circuits.size() + 1, 0);
+  for (const LayerSummary& l : plan.layers) {
+    if (l.circuit_count > 0 && l.first_circuit >= 0 &&
+        l.first_circuit < static_cast<int>(plan.circuits.size())) {
+      starts_layer[l.first_circuit] = 1;
+    }
+  }
+  bool layer_pending = false;  // a layer started at a circuit with no points
   for (std::size_t ci = 0; ci < plan.circuits.size(); ++ci) {
     const Circuit& c = plan.circuits[ci];
-    for (const LayerSummary& l : plan.layers) {
-      if (l.first_circuit == static_cast<int>(ci) && !planned.empty() && !c.points.empty()) {
-        tie_on.push_back(static_cast<int>(planned.size()));
-      }
+    layer_pending = layer_pending || starts_layer[ci];
+    if (layer_pending && !c.points.empty()) {
+      if (!planned.empty()) tie_on.push_back(static_cast<int>(planned.size()));
+      layer_pending = false;
     }
     std::vector<char> on_turn(c.points.size(), 0);
     for (const CircuitSegment& seg : c.segments) {
@@ -384,16 +394,15 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   // tie-on reached one segment back (the step between the layers), took it for the nearest and
   // put the contact back on the previous layer's last turnaround: a hoop's tie-on turn on the
   // taper of the helical layer under it replayed 4.11 mm off in the KR 16 cell (now 0.231).
+  std::vector<char> is_tie_on(planned.size() + 1, 0);
+  for (int t : tie_on) is_tie_on[t] = 1;
   std::vector<int> stretch_last(planned.size(), static_cast<int>(planned.size()) - 1);
   std::vector<int> stretch_first(planned.size(), 0);  // and its layer's first point
   for (int i = static_cast<int>(planned.size()) - 2; i >= 0; --i) {
-    const bool before_tie_on = std::find(tie_on.begin(), tie_on.end(), i + 1) != tie_on.end();
-    stretch_last[i] = before_tie_on ? i : stretch_last[i + 1];
+    stretch_last[i] = is_tie_on[i + 1] ? i : stretch_last[i + 1];
   }
   for (std::size_t i = 1; i < planned.size(); ++i) {
-    const bool tied_on =
-        std::find(tie_on.begin(), tie_on.end(), static_cast<int>(i)) != tie_on.end();
-    stretch_first[i] = tied_on ? static_cast<int>(i) : stretch_first[i - 1];
+    stretch_first[i] = is_tie_on[i] ? static_cast<int>(i) : stretch_first[i - 1];
   }
   // The first turnaround point at or after each planned point in its stretch (-1: none).
   std::vector<int> next_held(planned.size(), -1);

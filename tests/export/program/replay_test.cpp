@@ -35,6 +35,26 @@ std::string helix_program(double R, double Re, double c, double turns, int n, do
   return s + "M2\n%\n";
 }
 
+// 1500 blocks of one layer's helix (its pitch c per radian, n_turns turns from the angle psi and
+// the axial z0; c < 0 runs down), its eye on the cylinder Re by the closed form of helix_program,
+// the first block a G0 (the tow tied on). `slack`: the eye starts with that fraction of its lead
+// missing (the free fibre lifts off the first point: the contact stays on it), taken up over the
+// first 100 blocks.
+std::string helix_blocks(double r, double Re, double c, double n_turns, double psi, double z0,
+                         double slack = 0.0) {
+  std::string s;
+  for (int i = 0; i < 1500; ++i) {
+    const double beta = std::acos(r / Re) * (1.0 - slack * std::max(0.0, 1.0 - i / 100.0));
+    const double phi = n_turns * 2 * M_PI * i / 1499;
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "%s X%.4f A%.4f%s\n", i == 0 ? "G0" : "G1",
+                  z0 + c * phi + c * std::tan(beta), -(phi + psi + beta) * 180 / M_PI,
+                  i == 0 ? "" : " F600");
+    s += buf;
+  }
+  return s;
+}
+
 MachineOptions lathe2(double Re) {
   MachineOptions m;
   m.kind = "lathe2";
@@ -146,21 +166,9 @@ TEST(Replay, ALayersPinsDoNotCatchTheLayerBeforeIt) {
   // The program: the first two circuits' closed-form eyes on the cylinder Re (helix_program's
   // lead), a G0 before each layer.
   std::string text = "%\n(two layers, the second from where the first ends)\nG21 G90 G93\n";
-  int second_line = 0;
-  auto helix = [&](double r, double c, double n_turns, double psi, double z0) {
-    const double beta = std::acos(r / Re);
-    for (int i = 0; i < 1500; ++i) {
-      const double phi = n_turns * 2 * M_PI * i / 1499;
-      char buf[128];
-      std::snprintf(buf, sizeof buf, "%s X%.4f A%.4f%s\n", i == 0 ? "G0" : "G1",
-                    z0 + c * phi + c * std::tan(beta), -(phi + psi + beta) * 180 / M_PI,
-                    i == 0 ? "" : " F600");
-      text += buf;
-    }
-  };
-  helix(R, c1, turns, 0.0, 0.0);
-  second_line = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-  helix(R2, -c2, turns2, theta_end, z_end);
+  text += helix_blocks(R, Re, c1, turns, 0.0, 0.0);
+  const int second_line = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  text += helix_blocks(R2, Re, -c2, turns2, theta_end, z_end);
   text += "M2\n%\n";
   const MachineOptions m = lathe2(Re);
   const GcodeProgram p = read_gcode(text, m, "layers.ngc");
@@ -179,7 +187,8 @@ TEST(Replay, ALayersPinsDoNotCatchTheLayerBeforeIt) {
 // which then held it until the eye had passed it by acos(R / R_e) (a hoop's tie-on turn on the
 // taper of a helical layer in the KR 16 cell: 4.11 mm off). The track stays in the layer: the
 // second layer is laid from its own first point.
-TEST(Replay, ATieOnStartsFromTheLayersFirstPoint) {
+// The replay of that layup; `empty_first`: the second layer starts with a circuit of no points.
+ReplayResult replay_tied_on_before_the_end(bool empty_first) {
   const double R = 50, R2 = 52, Re = 75, turns = 2, turns2 = 1, a1 = 60, a2 = 50;  // mm, deg
   const double c1 = R / std::tan(a1 * M_PI / 180), c2 = R2 / std::tan(a2 * M_PI / 180);
   const double z_end = c1 * turns * 2 * M_PI, theta_end = turns * 2 * M_PI;
@@ -195,38 +204,49 @@ TEST(Replay, ATieOnStartsFromTheLayersFirstPoint) {
     ci.points.push_back(fp);
   }
   ci.segments.push_back({CircuitSegment::Kind::Pass, 0, 1999});
+  if (empty_first) {
+    Circuit none;
+    none.index = 1;
+    plan.circuits.push_back(none);
+    ci.index = 2;
+  }
   plan.circuits.push_back(ci);
   plan.layers.resize(2);
   plan.layers[0].circuit_count = 1;
   plan.layers[1].first_circuit = 1;
-  plan.layers[1].circuit_count = 1;
+  plan.layers[1].circuit_count = empty_first ? 2 : 1;
   const Mesh mandrel(test::open_cylinder(R, z_end + 100, 512, 200));
   const Mesh built(test::open_cylinder(R2, z_end + 100, 512, 200));
   std::string text =
       "%\n(two layers, the second tied on before the first one's end)\nG21 G90 G93\n";
-  // `slack`: the eye starts with that fraction of its lead missing (the free fibre lifts off the
-  // first point: the contact stays on it), taken up over 100 blocks.
-  auto helix = [&](double r, double c, double n_turns, double psi, double z0, double slack) {
-    for (int i = 0; i < 1500; ++i) {
-      const double beta = std::acos(r / Re) * (1.0 - slack * std::max(0.0, 1.0 - i / 100.0));
-      const double phi = n_turns * 2 * M_PI * i / 1499;
-      char buf[128];
-      std::snprintf(buf, sizeof buf, "%s X%.4f A%.4f%s\n", i == 0 ? "G0" : "G1",
-                    z0 + c * phi + c * std::tan(beta), -(phi + psi + beta) * 180 / M_PI,
-                    i == 0 ? "" : " F600");
-      text += buf;
-    }
-  };
-  helix(R, c1, turns, 0.0, 0.0, 0.0);
-  helix(R2, -c2, turns2, psi2, z_end, 0.05);
+  text += helix_blocks(R, Re, c1, turns, 0.0, 0.0);
+  // The second layer's eye starts 5 % short of its lead: the free fibre lifts off its first point.
+  text += helix_blocks(R2, Re, -c2, turns2, psi2, z_end, 0.05);
   text += "M2\n%\n";
   const MachineOptions m = lathe2(Re);
-  const ReplayResult r =
-      replay_program(read_gcode(text, m, "layers.ngc"), plan, mandrel, m, {}, {nullptr, &built});
+  const ReplayResult r = replay_program(read_gcode(text, m, "layers.ngc"), plan, mandrel, m, {},
+                                        {nullptr, &built, &built});
   std::printf("%s\n", r.summary.c_str());
+  return r;
+}
+
+TEST(Replay, ATieOnStartsFromTheLayersFirstPoint) {
+  const ReplayResult r = replay_tied_on_before_the_end(false);
   // 0.201 mm (the contact catching up as the eye takes up its lead); 5.28 mm with the track's
   // window reaching back, 42.5 mm with it bounded at the layer's end only.
   EXPECT_LT(r.max_deviation, 0.5) << "at line " << r.max_deviation_line;
+}
+
+// The same layup with a circuit of no points first in the second layer (WindingPlan allows
+// them; compute_motion skips them): the layer's tie-on is its first circuit with points, and
+// the replay is the same. (Before, a layer whose first circuit had no points had no tie-on: the
+// two layers were tracked as one stretch and the tow tied on at no layer.)
+TEST(Replay, ALayerStartingWithAnEmptyCircuitIsTiedOnAtItsFirstPoint) {
+  const ReplayResult with_empty = replay_tied_on_before_the_end(true);
+  const ReplayResult plain = replay_tied_on_before_the_end(false);
+  EXPECT_EQ(with_empty.max_deviation, plain.max_deviation);
+  EXPECT_EQ(with_empty.max_deviation_line, plain.max_deviation_line);
+  EXPECT_LT(with_empty.max_deviation, 0.5) << "at line " << with_empty.max_deviation_line;
 }
 
 TEST(Replay, OneMillimetreCarriageFaultIsCaught) {
