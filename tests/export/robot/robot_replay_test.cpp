@@ -227,37 +227,55 @@ TEST(RobotReplay, EachLayerIsReplayedOnTheSurfaceItWasWoundOn) {
   }
 }
 
+// The shipped KR 16 cell's profile (configs/machines/robot_cell_kr16.yaml), as a job names it.
+std::string kr16_profile() {
+  return (std::filesystem::path(WINDPLAN_SOURCE_DIR) / "configs" / "machines" /
+          "robot_cell_kr16.yaml")
+      .string();
+}
+
+// A layup job (`yaml`: its keys but machine) planned in the KR 16 cell, its KRL program written by
+// export/robot/robot_program, read back and replayed with each circuit on the surface it was wound
+// on (the planned motion's too). `path`: the job file's name in messages.
+struct CellLayupReplay {
+  Job job;
+  LayupResult layup;
+  Motion motion;
+  RobotReplayResult replay;
+};
+
+CellLayupReplay replay_layup_in_cell(const std::string& yaml, const std::string& path) {
+  CellLayupReplay c;
+  c.job = load_job_from_string(yaml + "machine:\n  profile: " + kr16_profile() + "\n", path);
+  c.layup = plan_layup(c.job);
+  const std::vector<const Mesh*> surfaces = layup_circuit_surfaces(c.layup);
+  const Mesh& mesh = c.layup.mandrel.mesh;
+  c.motion = compute_motion(c.layup.plan, c.job.machine, &mesh, surfaces);
+  const RobotMotion rm = compute_robot_motion(c.motion, c.layup.plan, c.job.machine);
+  std::map<std::string, std::string> texts;
+  const std::vector<ProgramFile> files = robot_program(rm, c.job.name, c.job.machine);
+  for (const ProgramFile& f : files) texts[f.name] = f.text;
+  c.replay = replay_robot_program(read_robot_program(texts, files.front().name, "krl"),
+                                  c.layup.plan, mesh, c.job.machine, &c.motion, {}, surfaces);
+  std::printf("%s\n", c.replay.summary.c_str());
+  return c;
+}
+
 // A hoop layer over a helical one on a pipe, in the KR 16 cell: the hoop's tie-on turn is a circle
 // whose end comes back to its start, and the eye-path check, following a window along the planned
 // eye path, had jumped to the circle's end and measured the targets after it against that: 4.954
 // mm "off" (just under the 5 mm at which it searched the whole path), a program refused for a
 // target on its plan. Each target is on the planned eye path; the fibre lands within 0.3 mm.
 TEST(RobotReplay, AHoopLayersTieOnTurnIsOnThePlannedEyePath) {
-  const Job job = load_job_from_string(
+  const CellLayupReplay c = replay_layup_in_cell(
       "name: hoop over helical\n"
       "mandrel: {source: pipe, angular_deflection: 3, pipe: {radius: 50, length: 300}}\n"
       "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
       "winding: {turns: 2, circuits: auto, band_width: 16}\n"
       "layers:\n  - {kind: helical, name: inner}\n"
-      "  - {kind: hoop, name: hoop, range: [20, 280]}\n"
-      "machine:\n  profile: " +
-          (std::filesystem::path(WINDPLAN_SOURCE_DIR) / "configs" / "machines" /
-           "robot_cell_kr16.yaml")
-              .string() +
-          "\n",
+      "  - {kind: hoop, name: hoop, range: [20, 280]}\n",
       "/tmp/hoop_over_helical.yaml");
-  const LayupResult layup = plan_layup(job);
-  const std::vector<const Mesh*> surfaces = layup_circuit_surfaces(layup);
-  const Mesh& mesh = layup.mandrel.mesh;
-  const Motion mo = compute_motion(layup.plan, job.machine, &mesh, surfaces);
-  const RobotMotion rm = compute_robot_motion(mo, layup.plan, job.machine);
-  std::map<std::string, std::string> texts;
-  const std::vector<ProgramFile> files = robot_program(rm, job.name, job.machine);
-  for (const ProgramFile& f : files) texts[f.name] = f.text;
-  const RobotReplayResult r =
-      replay_robot_program(read_robot_program(texts, files.front().name, "krl"), layup.plan, mesh,
-                           job.machine, &mo, {}, surfaces);
-  std::printf("%s\n", r.summary.c_str());
+  const RobotReplayResult& r = c.replay;
   EXPECT_LT(r.max_eye_deviation, 0.01) << r.max_eye_deviation_at;
   EXPECT_LT(r.fibre.max_deviation, 0.3);
 }
@@ -271,34 +289,18 @@ TEST(RobotReplay, AHoopLayersTieOnTurnIsOnThePlannedEyePath) {
 // (62.3 mm off when the window was bounded at the layer's end only). The track stays inside the
 // layer now (export/program/replay.cpp): within 0.3 mm (0.231 measured, lathe4's figure).
 TEST(RobotReplay, AHoopsTieOnTurnOnTheTaperOfTheLayerUnderIt) {
-  const Job job = load_job_from_string(
+  const CellLayupReplay c = replay_layup_in_cell(
       "name: hoop over helical\n"
       "mandrel: {source: pipe, angular_deflection: 3, pipe: {radius: 50, length: 300}}\n"
       "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
       "winding: {turns: 2, circuits: auto, band_width: 16}\n"
-      "layers:\n  - {kind: helical, name: inner}\n  - {kind: hoop, name: hoop}\n"
-      "machine:\n  profile: " +
-          (std::filesystem::path(WINDPLAN_SOURCE_DIR) / "configs" / "machines" /
-           "robot_cell_kr16.yaml")
-              .string() +
-          "\n",
+      "layers:\n  - {kind: helical, name: inner}\n  - {kind: hoop, name: hoop}\n",
       "/tmp/hoop_on_taper.yaml");
-  const LayupResult layup = plan_layup(job);
-  ASSERT_EQ(layup.plan.layers.size(), 2u);
-  const std::vector<const Mesh*> surfaces = layup_circuit_surfaces(layup);
-  const Mesh& mesh = layup.mandrel.mesh;
-  const Motion mo = compute_motion(layup.plan, job.machine, &mesh, surfaces);
-  const RobotMotion rm = compute_robot_motion(mo, layup.plan, job.machine);
-  std::map<std::string, std::string> texts;
-  const std::vector<ProgramFile> files = robot_program(rm, job.name, job.machine);
-  for (const ProgramFile& f : files) texts[f.name] = f.text;
-  const RobotReplayResult r =
-      replay_robot_program(read_robot_program(texts, files.front().name, "krl"), layup.plan, mesh,
-                           job.machine, &mo, {}, surfaces);
-  std::printf("%s\n", r.summary.c_str());
+  ASSERT_EQ(c.layup.plan.layers.size(), 2u);
+  const RobotReplayResult& r = c.replay;
   EXPECT_LT(r.fibre.max_deviation, 0.3) << r.max_deviation_at;
   EXPECT_LT(r.max_eye_deviation, 0.01) << r.max_eye_deviation_at;
-  EXPECT_TRUE(r.keeps_clearance(job.machine.envelope.clearance)) << r.summary;
+  EXPECT_TRUE(r.keeps_clearance(c.job.machine.envelope.clearance)) << r.summary;
 }
 
 // The eye never comes closer than the clearance, between targets too: a two-layer pipe in the
@@ -312,34 +314,18 @@ TEST(RobotReplay, AHoopsTieOnTurnOnTheTaperOfTheLayerUnderIt) {
 // tests/export/program/replay_test.cpp, ALayersPinsDoNotCatchTheLayerBeforeIt). `run` refuses a
 // program whose replayed eye comes closer (RobotReplayResult::keeps_clearance).
 TEST(RobotReplay, PipeLayupEyeKeepsTheClearanceBetweenTargets) {
-  const Job job = load_job_from_string(
+  const CellLayupReplay c = replay_layup_in_cell(
       "name: pipe layup\n"
       "mandrel: {source: pipe, linear_deflection: 0.25, angular_deflection: 3,\n"
       "          pipe: {radius: 50, length: 300}}\n"
       "material: {tex: 2400, fibre_density: 1.8, resin_density: 1.2, fibre_volume_fraction: 0.6,\n"
       "           tows: 8}\n"
       "winding: {turns: 2, circuits: auto, band_width: 16, beta: 0, mu: 0.2}\n"
-      "layers:\n  - {kind: helical, name: inner}\n  - {kind: helical, name: outer, turns: 1}\n"
-      "machine:\n  profile: " +
-          (std::filesystem::path(WINDPLAN_SOURCE_DIR) / "configs" / "machines" /
-           "robot_cell_kr16.yaml")
-              .string() +
-          "\n",
+      "layers:\n  - {kind: helical, name: inner}\n  - {kind: helical, name: outer, turns: 1}\n",
       "/tmp/pipe_layup_clearance.yaml");
-  const LayupResult layup = plan_layup(job);
-  const std::vector<const Mesh*> surfaces = layup_circuit_surfaces(layup);
-  const Mesh& mesh = layup.mandrel.mesh;
-  const Motion mo = compute_motion(layup.plan, job.machine, &mesh, surfaces);
-  const RobotMotion rm = compute_robot_motion(mo, layup.plan, job.machine);
-  std::map<std::string, std::string> texts;
-  const std::vector<ProgramFile> files = robot_program(rm, job.name, job.machine);
-  for (const ProgramFile& f : files) texts[f.name] = f.text;
-  const RobotReplayResult r =
-      replay_robot_program(read_robot_program(texts, files.front().name, "krl"), layup.plan, mesh,
-                           job.machine, &mo, {}, surfaces);
-  std::printf("%s\n", r.summary.c_str());
-  const double clearance = job.machine.envelope.clearance;
-  EXPECT_GE(mo.min_clearance, clearance);
+  const RobotReplayResult& r = c.replay;
+  const double clearance = c.job.machine.envelope.clearance;
+  EXPECT_GE(c.motion.min_clearance, clearance);
   EXPECT_GE(r.fibre.min_clearance, clearance - kBetweenTargets) << r.summary;
   EXPECT_TRUE(r.keeps_clearance(clearance)) << r.summary;
   EXPECT_LT(r.fibre.max_deviation, 0.3) << r.summary;
@@ -416,10 +402,7 @@ const BentTubeCell& bent_tube_cell() {
         "girth: {samples: 16}\n"
         "machine:\n"
         "  profile: " +
-        (std::filesystem::path(WINDPLAN_SOURCE_DIR) / "configs" / "machines" /
-         "robot_cell_kr16.yaml")
-            .string() +
-        "\n  replay_tolerance: 0.25\n  tangent_window: 0\n";
+        kr16_profile() + "\n  replay_tolerance: 0.25\n  tangent_window: 0\n";
     BentTubeCell c;
     c.job = load_job_from_string(yaml, "/tmp/small_bend.yaml");
     c.planned = plan_job(c.job);
