@@ -589,6 +589,21 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     }
   });
 
+  // A machine value of state st outside an axis's travel: an error naming the axis, the value,
+  // the circuit and point (st.circuit, st.index), and `why` after them.
+  auto check_travel = [&](const MachineState& st, const char* why) {
+    const double value[4] = {st.a_deg, st.x_mm, st.y_mm, st.b_deg};
+    for (int ax = 0; ax < n_axes; ++ax) {
+      const double mv = axes[ax]->sign * value[ax] + axes[ax]->offset;
+      if (mv < axes[ax]->min || mv > axes[ax]->max) {
+        throw InputError("machine.axes." + std::string(names[ax]) + ": axis " + names[ax] +
+                         " (letter " + axes[ax]->letter + ") would move to " + num(mv) + " " +
+                         units[ax] + ", outside its travel [" + num(axes[ax]->min) + ", " +
+                         num(axes[ax]->max) + "], at circuit " + std::to_string(st.circuit) +
+                         ", point " + std::to_string(st.index) + why);
+      }
+    }
+  };
   // lathe4: the states [b, e) of circuit c slid along their tangents (monotone_by_payout.h); a
   // slid eye is checked against the travel limits and the clearance as the others were above.
   auto slide_monotone = [&](int b, int e, const ClosestPointQuery* q, const Circuit& c) {
@@ -605,18 +620,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     if (ms.slid == 0) return;
     for (int i = b; i < e; ++i) {
       const MachineState& st = m.states[i];
-      const double value[4] = {st.a_deg, st.x_mm, st.y_mm, st.b_deg};
-      for (int ax = 0; ax < n_axes; ++ax) {
-        const double mv = axes[ax]->sign * value[ax] + axes[ax]->offset;
-        if (mv < axes[ax]->min || mv > axes[ax]->max) {
-          throw InputError("machine.axes." + std::string(names[ax]) + ": axis " + names[ax] +
-                           " (letter " + axes[ax]->letter + ") would move to " + num(mv) + " " +
-                           units[ax] + ", outside its travel [" + num(axes[ax]->min) + ", " +
-                           num(axes[ax]->max) + "], at circuit " + std::to_string(c.index) +
-                           ", point " + std::to_string(st.index) + " (its eye slid along the " +
-                           "tangent to keep A and X monotone)");
-        }
-      }
+      check_travel(st, " (its eye slid along the tangent to keep A and X monotone)");
       m.y.min = std::min(m.y.min, st.y_mm);
       m.y.max = std::max(m.y.max, st.y_mm);
       m.b.min = std::min(m.b.min, st.b_deg);
@@ -625,10 +629,11 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
       if (!q) continue;
       const double dist = q->closest(st.eye).distance;
       if (dist < m.required_clearance - opts.chord_tolerance) {
-        throw InputError("machine.envelope: circuit " + std::to_string(c.index) + ", point " +
-                         std::to_string(st.index) + ": the eye slid along its tangent is " +
-                         num(dist) + " mm from the mandrel, less than the clearance " +
-                         num(m.required_clearance) + " mm");
+        throw InputError(
+            "machine.envelope: circuit " + std::to_string(c.index) + ", point " +
+            std::to_string(st.index) + ": the eye slid along its tangent is " + num(dist) +
+            (q == query.get() ? " mm from the mandrel" : " mm from the surface it is wound on") +
+            ", less than the clearance " + num(m.required_clearance) + " mm");
       }
       if (dist < min_clearance) {
         min_clearance = dist;
@@ -692,17 +697,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
         }
         st.b_deg = first ? b_raw : unwrap_deg(b_raw, prev.b_deg);
       }
-      const double value[4] = {st.a_deg, st.x_mm, st.y_mm, st.b_deg};
-      for (int ax = 0; ax < n_axes; ++ax) {
-        const double mv = axes[ax]->sign * value[ax] + axes[ax]->offset;
-        if (mv < axes[ax]->min || mv > axes[ax]->max) {
-          throw InputError("machine.axes." + std::string(names[ax]) + ": axis " + names[ax] +
-                           " (letter " + axes[ax]->letter + ") would move to " + num(mv) + " " +
-                           units[ax] + ", outside its travel [" + num(axes[ax]->min) + ", " +
-                           num(axes[ax]->max) + "], at circuit " + std::to_string(c.index) +
-                           ", point " + std::to_string(k));
-        }
-      }
+      check_travel(st, "");
       auto grow = [first](Range* r, double v) {
         if (first) {
           r->min = r->max = v;

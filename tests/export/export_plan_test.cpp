@@ -442,19 +442,26 @@ TEST(ExportPlan, LatheOnABentTubeIsRefusedByItsReplay) {
   }
 }
 
+// The two-layer layup of the tests below: a pipe (radius 50 mm, 300 mm long), helical then
+// helical over it, thick tows (the outer layer wound 3.68 mm above the mandrel), no plots or CSV;
+// `machine`: its machine keys as a YAML line ("": the default), `path` the job file's name.
+Job pipe_layup_job(const std::string& machine, const std::string& path) {
+  return load_job_from_string(
+      "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 300}\n"
+      "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
+      "winding: {turns: 2, circuits: auto, band_width: 10}\n"
+      "layers:\n  - kind: helical\n    name: inner\n  - kind: helical\n    name: outer\n" +
+          machine + "output: {ply: false, svg: false, viewer: false, csv: false}\n",
+      path);
+}
+
 // A two-layer layup on a pipe (helical, then helical over it), thick tows so that the second
 // layer is wound millimetres above the mandrel: its program replays within 1 mm when each
 // circuit is walked on the surface its layer was wound on (ExportContext::circuit_surfaces; the
 // inner layer alone, on the mandrel, lays 0.58 mm off where the pins catch the fibre at a pipe
 // end), and far off the plan, in the second layer, when the bare mandrel is walked.
 TEST(ExportPlan, LayupReplaysEachLayerOnTheSurfaceItWasWoundOn) {
-  Job job = load_job_from_string(
-      "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 300}\n"
-      "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
-      "winding: {turns: 2, circuits: auto, band_width: 10}\n"
-      "layers:\n  - kind: helical\n    name: inner\n  - kind: helical\n    name: outer\n"
-      "output: {ply: false, svg: false, viewer: false, csv: false}\n",
-      "/jobs/pipe_layup.yaml");
+  Job job = pipe_layup_job("", "/jobs/pipe_layup.yaml");
   const LayupResult layup = plan_layup(job);
   ASSERT_EQ(layup.layers.size(), 2u);
   ASSERT_EQ(layup.layers[0].surface, nullptr);  // the inner layer: on the mandrel
@@ -505,14 +512,7 @@ TEST(ExportPlan, LayupReplaysEachLayerOnTheSurfaceItWasWoundOn) {
 // report's clearance is measured on it. With the bare mandrel's envelope the outer layer's eye was
 // 16.32 mm from the surface it is wound on while the motion reported 20.00 (on the mandrel).
 TEST(ExportPlan, LayupEyeKeepsTheClearanceFromTheLayerInWork) {
-  Job job = load_job_from_string(
-      "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 300}\n"
-      "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
-      "winding: {turns: 2, circuits: auto, band_width: 10}\n"
-      "layers:\n  - kind: helical\n    name: inner\n  - kind: helical\n    name: outer\n"
-      "machine: {kind: lathe4}\n"
-      "output: {ply: false, svg: false, viewer: false, csv: false}\n",
-      "/jobs/pipe_layup_clearance.yaml");
+  Job job = pipe_layup_job("machine: {kind: lathe4}\n", "/jobs/pipe_layup_clearance.yaml");
   const LayupResult layup = plan_layup(job);
   ASSERT_EQ(layup.layers.size(), 2u);
   const std::vector<const Mesh*> under = layup_circuit_surfaces(layup);
@@ -552,14 +552,8 @@ TEST(ExportPlan, LayupEyeKeepsTheClearanceFromTheLayerInWork) {
 // operator who skipped it) the replay keeps the mandrel's cylinder and finds the eye inside the
 // clearance.
 TEST(ExportPlan, LayupOnALathe2KeepsTheClearanceFromTheLayerInWork) {
-  Job job = load_job_from_string(
-      "mandrel:\n  source: pipe\n  pipe: {radius: 50, length: 300}\n"
-      "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
-      "winding: {turns: 2, circuits: auto, band_width: 10}\n"
-      "layers:\n  - kind: helical\n    name: inner\n  - kind: helical\n    name: outer\n"
-      "machine: {kind: lathe2, replay_tolerance: 1.0}\n"
-      "output: {ply: false, svg: false, viewer: false, csv: false}\n",
-      "/jobs/pipe_layup_lathe2.yaml");
+  Job job = pipe_layup_job("machine: {kind: lathe2, replay_tolerance: 1.0}\n",
+                           "/jobs/pipe_layup_lathe2.yaml");
   const LayupResult layup = plan_layup(job);
   ASSERT_EQ(layup.layers.size(), 2u);
   const std::vector<const Mesh*> under = layup_circuit_surfaces(layup);
