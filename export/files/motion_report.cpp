@@ -71,7 +71,8 @@ std::string motion_markdown(const Motion& mo, const ReplayResult* rp) {
   std::ostringstream o;
   o << "## Motion\n\n| figure | value |\n|---|---|\n"
     << "| eye envelope | " << mo.envelope << " |\n"
-    << "| min eye-mandrel distance | "
+    << (mo.clearance_on_layers ? "| min eye distance from the layer in work | "
+                               : "| min eye-mandrel distance | ")
     << (std::isnan(mo.min_clearance) ? std::string("not checked")
                                      : fmt("%.3f", mo.min_clearance) + " mm (required " +
                                            fmt("%.3f", mo.required_clearance) + " mm)")

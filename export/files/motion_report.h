@@ -1,7 +1,9 @@
 #pragma once
 // The motion figures of a plan (issue #13) for report.json, report.md and the run summary: the
-// eye envelope, the minimum eye-mandrel distance, axis reversals, the feed plan against the axis
-// limits, the wind time per circuit and the G-code replay. export/files/report.cpp calls these.
+// eye envelope, the eye's least distance from the surface it winds on (the mandrel; on a layup
+// the layer in work, labelled so in report.md: Motion::clearance_on_layers), axis reversals, the
+// feed plan against the axis limits, the wind time per circuit and the G-code replay.
+// export/files/report.cpp calls these.
 #include <string>
 
 #include "export/machine/kinematics.h"

@@ -253,6 +253,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
       }
       surface_of[ci] = static_cast<int>(it - surface_meshes.begin());
     }
+    m.clearance_on_layers = !surface_meshes.empty();
     if (!surface_meshes.empty() && layer_envelopes && lathe2 && !(opts.envelope.radius > 0.0)) {
       m.envelope = "cylinder per layer, largest radius of the layer in work + " +
                    num(opts.envelope.clearance) + " mm: r = " + num(env.r.front());

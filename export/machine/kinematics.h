@@ -50,7 +50,8 @@
 // minute F = 60 * |(delta of each machine axis)| / duration with degrees counted as mm (G94).
 // The first point of the plan has duration 0 and F 0 (a rapid positioning move); a move without
 // motion has duration 0 and keeps the previous F.
-// Clearance (with a mandrel mesh): every dense eye point's distance to the mesh; below the
+// Clearance (with a mandrel mesh): every dense eye point's distance to the surface its circuit is
+// wound on (the mesh, or on a layup the layer in work: Motion::clearance_on_layers); below the
 // required clearance minus chord_tolerance (a robot's true-distance eye: below the clearance) it is
 // an error naming the point.
 // Monotone axes (machine.monotone_axes, export/machine/monotone_axes.h): per circuit, A monotone
@@ -146,11 +147,16 @@ struct Motion {
 
   std::string envelope;  ///< the eye envelope of the machine kind, in words
 
-  /// Clearance: the smallest distance of a dense eye point to the mandrel mesh (NaN: no mesh
-  /// given), the clearance required (mm) and where the minimum is.
+  /// Clearance: the smallest distance of a dense eye point to the surface its circuit is wound
+  /// on (the mandrel mesh, or on a layup the layer in work; NaN: no mesh given), the clearance
+  /// required (mm) and where the minimum is.
   double min_clearance = std::nan("");
   double required_clearance = 0.0;
   int min_clearance_circuit = -1, min_clearance_index = -1;
+  /// True when some circuit's clearance was measured on a surface other than the mandrel (a
+  /// layup's layer in work, compute_motion's circuit_surfaces): min_clearance is then not an
+  /// eye-mandrel distance.
+  bool clearance_on_layers = false;
 
   /// Reversals of the carriage X and the spindle A (see the header comment).
   int carriage_reversals = 0;

@@ -53,8 +53,9 @@
 // Deviation: the distance of every sub-step's contact point to the planned fibre polyline (all
 // circuits in order), searched in a window of arc length that moves along it. With layers
 // (WindingPlan::layers) the window, the pins that catch the fibre and the contact stay within the
-// layer being laid, from its first point (reached by the rapid that ties the tow on) to its last:
-// the step from one layer's last point to the next one's first is no fibre.
+// layer being laid, from its first point (reached by the rapid that ties the tow on; that of its
+// first circuit with points) to its last: the step from one layer's last point to the next one's
+// first is no fibre.
 // Time: G93 blocks take 60 / F s; G94 blocks take distance / (F / 60) with the distance of the
 // driven axes (degrees counted as mm); a G0 takes the slowest axis at max_velocity.
 #include <string>

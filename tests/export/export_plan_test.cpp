@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "export/files/motion_report.h"
 #include "export/files/report.h"
 #include "export/program/gcode_reader.h"
 #include "geometry/base/atomic_file.h"
@@ -495,6 +496,8 @@ TEST(ExportPlan, LayupReplaysEachLayerOnTheSurfaceItWasWoundOn) {
   const fs::path b = temp_dir("layup_bare");
   const ExportResult bare = export_plan(layup.plan, layup.mandrel.mesh, job.machine, job.output, b);
   std::printf("bare mandrel: %s\n", bare.replay.summary.c_str());
+  EXPECT_TRUE(own.motion.clearance_on_layers);
+  EXPECT_FALSE(bare.motion.clearance_on_layers);  // measured on the mandrel: eye-mandrel
   EXPECT_GT(bare.replay.max_deviation, 0.4 * t);
   EXPECT_GT(bare.replay.max_deviation, 2 * own.replay.max_deviation);
   EXPECT_GT(bare.replay.max_deviation_line, outer_line);
@@ -541,6 +544,10 @@ TEST(ExportPlan, LayupEyeKeepsTheClearanceFromTheLayerInWork) {
   EXPECT_GE(r.motion.min_clearance, clearance - 0.01);
   EXPECT_GE(r.replay.min_clearance, clearance - job.machine.chord_tolerance);
   EXPECT_LT(r.replay.max_deviation, 1.0);
+  // report.md labels the figure by what it measures: the layer in work, not the mandrel.
+  EXPECT_TRUE(r.motion.clearance_on_layers);
+  EXPECT_NE(motion_markdown(r.motion, &r.replay).find("| min eye distance from the layer in work"),
+            std::string::npos);
 }
 
 // lathe2 (no cross-feed) on a layup: each layer's eye runs on its own cylinder, the largest
