@@ -510,24 +510,42 @@ TEST(ExportPlan, LayupReplaysEachLayerOnTheSurfaceItWasWoundOn) {
   EXPECT_EQ(gb.substr(gb.find("G21"), to - from), g.substr(from, to - from));
 }
 
+// pipe_layup_job with `machine`, planned and exported into temp_dir(`dir`) with each circuit on
+// the surface its layer is wound on; fatal failures when the layup is not two layers, the outer
+// one on a surface of its own, or the export did not replay its program.
+struct PipeLayupExport {
+  Job job;
+  LayupResult layup;
+  ExportContext ctx;  // circuit_surfaces: layup_circuit_surfaces(layup)
+  fs::path dir;
+  ExportResult r;
+};
+
+void export_pipe_layup(const std::string& machine, const std::string& dir, PipeLayupExport* x) {
+  x->job = pipe_layup_job(machine, "/jobs/pipe_" + dir + ".yaml");
+  x->layup = plan_layup(x->job);
+  ASSERT_EQ(x->layup.layers.size(), 2u);
+  x->ctx.circuit_surfaces = layup_circuit_surfaces(x->layup);
+  ASSERT_NE(x->ctx.circuit_surfaces.back(), nullptr);
+  x->dir = temp_dir(dir);
+  x->r = export_plan(x->layup.plan, x->layup.mandrel.mesh, x->job.machine, x->job.output, x->dir,
+                     x->ctx);
+  ASSERT_TRUE(x->r.has_replay);
+}
+
 // lathe4 on a layup keeps the clearance from the surface of the layer in work: each circuit's eye
 // envelope is that of the surface it is wound on (ExportContext::circuit_surfaces), and the
 // report's clearance is measured on it. With the bare mandrel's envelope the outer layer's eye was
 // 16.32 mm from the surface it is wound on while the motion reported 20.00 (on the mandrel).
 TEST(ExportPlan, LayupEyeKeepsTheClearanceFromTheLayerInWork) {
-  Job job = pipe_layup_job("machine: {kind: lathe4}\n", "/jobs/pipe_layup_clearance.yaml");
-  const LayupResult layup = plan_layup(job);
-  ASSERT_EQ(layup.layers.size(), 2u);
-  const std::vector<const Mesh*> under = layup_circuit_surfaces(layup);
-  ASSERT_NE(under.back(), nullptr);
+  PipeLayupExport x;
+  ASSERT_NO_FATAL_FAILURE(
+      export_pipe_layup("machine: {kind: lathe4, replay_tolerance: 1.0}\n", "layup_clearance", &x));
+  const Job& job = x.job;
+  const LayupResult& layup = x.layup;
+  const std::vector<const Mesh*>& under = x.ctx.circuit_surfaces;
   const double clearance = job.machine.envelope.clearance;
-  ExportContext ctx;
-  ctx.circuit_surfaces = under;
-  job.machine.replay_tolerance = 1.0;
-  const fs::path a = temp_dir("layup_clearance");
-  const ExportResult r =
-      export_plan(layup.plan, layup.mandrel.mesh, job.machine, job.output, a, ctx);
-  ASSERT_TRUE(r.has_replay);
+  const ExportResult& r = x.r;
   std::printf("%s\n", r.replay.summary.c_str());
   // Every eye of the outer layer, measured independently on the surface it is wound on.
   const ClosestPointQuery outer(*under.back());
@@ -559,19 +577,16 @@ TEST(ExportPlan, LayupEyeKeepsTheClearanceFromTheLayerInWork) {
 // operator who skipped it) the replay keeps the mandrel's cylinder and finds the eye inside the
 // clearance.
 TEST(ExportPlan, LayupOnALathe2KeepsTheClearanceFromTheLayerInWork) {
-  Job job = pipe_layup_job("machine: {kind: lathe2, replay_tolerance: 1.0}\n",
-                           "/jobs/pipe_layup_lathe2.yaml");
-  const LayupResult layup = plan_layup(job);
-  ASSERT_EQ(layup.layers.size(), 2u);
-  const std::vector<const Mesh*> under = layup_circuit_surfaces(layup);
-  ASSERT_NE(under.back(), nullptr);
+  PipeLayupExport x;
+  ASSERT_NO_FATAL_FAILURE(
+      export_pipe_layup("machine: {kind: lathe2, replay_tolerance: 1.0}\n", "layup_lathe2", &x));
+  Job& job = x.job;
+  const LayupResult& layup = x.layup;
+  const std::vector<const Mesh*>& under = x.ctx.circuit_surfaces;
   const double clearance = job.machine.envelope.clearance;
-  ExportContext ctx;
-  ctx.circuit_surfaces = under;
-  const fs::path a = temp_dir("layup_lathe2");
-  const ExportResult r =
-      export_plan(layup.plan, layup.mandrel.mesh, job.machine, job.output, a, ctx);
-  ASSERT_TRUE(r.has_replay);
+  const ExportContext& ctx = x.ctx;
+  const fs::path& a = x.dir;
+  const ExportResult& r = x.r;
   std::printf("lathe2 layup: %s\n", r.replay.summary.c_str());
   EXPECT_LT(r.replay.max_deviation, job.machine.replay_tolerance);
   EXPECT_GE(r.replay.min_clearance, clearance - job.machine.chord_tolerance);
