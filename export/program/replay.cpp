@@ -432,6 +432,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   };
   const Surface* surf = surface_at(0);
   ReplayResult r;
+  r.eye_radius_by_hand = machine.kind == "lathe2";
   r.blocks = static_cast<int>(program.blocks.size());
   r.min_clearance = std::numeric_limits<double>::infinity();
   Surface::Point P;
@@ -743,12 +744,13 @@ std::string ReplayResult::clearance_short(const std::string& program, double cle
                                           double slack, bool located) const {
   if (!(min_clearance < clearance - slack)) return "";
   char buf[240];
-  std::snprintf(buf, sizeof buf,
-                " %.3f mm from the surface of the layer in work%s, less than the clearance %.3f "
-                "mm (a lathe2 layup: does each layer's stop name its eye radius?)",
-                min_clearance,
-                located ? "" : (" at line " + std::to_string(min_clearance_line)).c_str(),
-                clearance);
+  std::snprintf(
+      buf, sizeof buf,
+      " %.3f mm from the surface of the layer in work%s, less than the clearance %.3f "
+      "mm%s",
+      min_clearance, located ? "" : (" at line " + std::to_string(min_clearance_line)).c_str(),
+      clearance,
+      eye_radius_by_hand ? " (a lathe2 layup: does each layer's stop name its eye radius?)" : "");
   if (located) {
     return program + ":" + std::to_string(min_clearance_line) + ": the replay puts the eye" + buf;
   }

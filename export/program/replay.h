@@ -98,8 +98,12 @@ struct ReplayResult {
   int max_deviation_line = 0;  ///< program line of the block where it is largest
   Vec3 max_deviation_point = Vec3::Zero();
   double mean_deviation = 0.0;  ///< mm, over sub-steps
-  double min_clearance = 0.0;   ///< mm, eye to the mandrel mesh over every sub-step
+  /// mm, the eye at each block's end to the surface walked there (the mandrel, or on a layup the
+  /// surface of the layer in work), and the program line of the least.
+  double min_clearance = 0.0;
   int min_clearance_line = 0;
+  /// lathe2: the eye's radius is set by hand at the operator stops (clearance_short says so).
+  bool eye_radius_by_hand = false;
   double wind_time = 0.0;  ///< s, from the feed words
   int carriage_reversals = 0;
   int spindle_reversals = 0;
@@ -115,7 +119,8 @@ struct ReplayResult {
   /// The eye's clearance in the replay (from the surface of the layer in work): "" when
   /// min_clearance >= clearance - slack (mm), else one line naming `program`, the line, the
   /// distance and the clearance ("machine.envelope.clearance: the replay of PROGRAM puts the eye
-  /// D mm from ... at line N ..."; `located`: "PROGRAM:N: the replay puts the eye ...").
+  /// D mm from ... at line N ..."; `located`: "PROGRAM:N: the replay puts the eye ..."; on a
+  /// lathe2, eye_radius_by_hand, it asks whether each layer's stop names its eye radius).
   std::string clearance_short(const std::string& program, double clearance, double slack,
                               bool located) const;
 };

@@ -76,6 +76,29 @@ TEST(Replay, HandMadeHelixProgramOnACylinderLaysTheHelix) {
   EXPECT_NEAR(r.min_clearance, Re - R, 0.01);
   EXPECT_EQ(r.carriage_reversals, 0);
   EXPECT_EQ(r.spindle_reversals, 0);
+  EXPECT_TRUE(r.eye_radius_by_hand);  // lathe2
+}
+
+// The clearance check's line: the program and line, the distance and the clearance; the question
+// about the stops' eye radii on a lathe2 only (a lathe4's eye has its Y axis, no stop sets it).
+TEST(Replay, ClearanceShortAsksForTheStopsEyeRadiusOnALathe2Only) {
+  ReplayResult r;
+  r.min_clearance = 16.3231;
+  r.min_clearance_line = 8577;
+  EXPECT_EQ(r.clearance_short("p.ngc", 20.0, 0.05, true),
+            "p.ngc:8577: the replay puts the eye 16.323 mm from the surface of the layer in work, "
+            "less than the clearance 20.000 mm");
+  EXPECT_EQ(r.clearance_short("p.ngc", 20.0, 0.05, false),
+            "machine.envelope.clearance: the replay of p.ngc puts the eye 16.323 mm from the "
+            "surface of the layer in work at line 8577, less than the clearance 20.000 mm; no "
+            "program written");
+  r.eye_radius_by_hand = true;
+  EXPECT_EQ(r.clearance_short("p.ngc", 20.0, 0.05, true),
+            "p.ngc:8577: the replay puts the eye 16.323 mm from the surface of the layer in work, "
+            "less than the clearance 20.000 mm (a lathe2 layup: does each layer's stop name its "
+            "eye radius?)");
+  r.min_clearance = 19.951;  // within chord_tolerance of the clearance
+  EXPECT_EQ(r.clearance_short("p.ngc", 20.0, 0.05, true), "");
 }
 
 // Two layers by hand: a helix on the mandrel cylinder R, then (after a G0 that ties the tow on
