@@ -175,11 +175,17 @@ std::string gcode_program(const Motion& motion, const std::string& job_name,
     w.line(s);
   };
 
-  // Layups: the layer whose first circuit circuit k is, or -1.
+  // Layups: the layer whose first circuit with points circuit k is, or -1 (a layer's first
+  // circuits may have no points, hence no states: its header goes before the first that has).
   auto layer_start = [&](int k) {
     const int ordinal = motion.states[circuit_starts[k]].ordinal;
+    const int before = k > 0 ? motion.states[circuit_starts[k - 1]].ordinal : -1;
     for (std::size_t l = 0; l < motion.layers.size(); ++l) {
-      if (motion.layers[l].first_circuit == ordinal) return static_cast<int>(l);
+      const LayerSummary& L = motion.layers[l];
+      if (L.circuit_count > 0 && before < L.first_circuit && L.first_circuit <= ordinal &&
+          ordinal < L.first_circuit + L.circuit_count) {
+        return static_cast<int>(l);
+      }
     }
     return -1;
   };

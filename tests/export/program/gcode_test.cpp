@@ -99,6 +99,38 @@ void check_readback(const std::string& kind, const std::string& dialect) {
   }
 }
 
+// A layup whose second layer starts with a circuit of no points (compute_motion skips it: no
+// states): the layer's stop, its eye radius (lathe2) and the rapid that ties the tow on go
+// before its first circuit with points, as without the empty circuit (they were left out).
+TEST(Gcode, ALayerStartingWithAnEmptyCircuitKeepsItsStop) {
+  WindingPlan plan = test::helix_plan(40, 50, 2, 600, 4);
+  plan.layers.resize(2);
+  plan.layers[0].name = "inner";
+  plan.layers[0].circuit_count = 2;
+  plan.layers[1].name = "outer";
+  plan.layers[1].first_circuit = 2;
+  plan.layers[1].circuit_count = 2;
+  WindingPlan with_empty = plan;
+  with_empty.circuits.insert(with_empty.circuits.begin() + 2, Circuit{});
+  with_empty.layers[1].circuit_count = 3;
+  for (const std::string dialect : {"linuxcnc", "marlin", "fanuc"}) {
+    SCOPED_TRACE(dialect);
+    const MachineOptions m = machine("lathe2", dialect);
+    const std::string a = gcode_program(compute_motion(plan, m), "t", m);
+    const std::string b = gcode_program(compute_motion(with_empty, m), "t", m);
+    const std::string stop = dialect == "fanuc" ? "M0 (EYE RADIUS " : "eye radius ";
+    ASSERT_NE(a.find(stop), std::string::npos);
+    EXPECT_NE(b.find(stop), std::string::npos) << b.substr(0, 2000);
+    // The same program but the layer comment's circuit range ("circuits 2 to 3" / "2 to 4").
+    std::string b_as_a = b;
+    const std::string range = dialect == "fanuc" ? "CIRCUITS 2 TO 4" : "circuits 2 to 4";
+    if (const auto at = b_as_a.find(range); at != std::string::npos) {
+      b_as_a.replace(at, range.size(), dialect == "fanuc" ? "CIRCUITS 2 TO 3" : "circuits 2 to 3");
+    }
+    EXPECT_EQ(b_as_a, a);
+  }
+}
+
 TEST(Gcode, LinuxcncReadbackReproducesAxes) {
   check_readback("lathe2", "linuxcnc");
   check_readback("lathe4", "linuxcnc");
