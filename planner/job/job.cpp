@@ -380,7 +380,7 @@ void decode_machine(ConfigNode n, const std::filesystem::path& base, MachineOpti
     if (!std::filesystem::exists(file)) {
       n.fail("profile", "the machine profile " + file.string() + " does not exist");
     }
-    ConfigNode p = ConfigNode::load_file(file);
+    ConfigNode p = ConfigNode::load_file(file, "machine profile");
     if (!p.present() || !p.yaml().IsMap()) {
       throw ConfigError(file.string() + ": a machine profile must be a map of machine keys");
     }

@@ -81,6 +81,12 @@ bool MachineOptions::is_valid(std::string* why) const {
     return fail(why, "kind must be lathe2, lathe4 or robot (got '" + kind + "')");
   }
   if (robot.has_arm() && kind != "robot") return fail(why, "robot.arm is for kind: robot");
+  if (envelope.radius > 0.0 && kind != "lathe2") {
+    // (A lathe4 job with envelope.radius: 90 was planned on its clearance envelope, the key
+    // silently unused.)
+    return fail(why, "envelope.radius is the eye cylinder of a lathe2 (no cross-feed); a " + kind +
+                         " follows the clearance envelope: give envelope.clearance instead");
+  }
   if (!std::isfinite(chord_tolerance) || chord_tolerance <= 0.0) {
     return fail(why, "chord_tolerance must be > 0 mm");
   }
