@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "geometry/base/format_number.h"
 #include "planner/job/options_check.h"
 
 namespace windplan {
@@ -16,13 +17,13 @@ std::string EnvelopeOptions::mode() const {
 
 bool EnvelopeOptions::is_valid(std::string* why) const {
   if (!std::isfinite(clearance) || clearance <= 0.0) {
-    return fail(why, "clearance must be > 0 mm (got " + std::to_string(clearance) + ")");
+    return fail(why, "clearance must be > 0 mm (got " + format_shortest(clearance) + ")");
   }
   if (!std::isfinite(free_length) || free_length < 0.0) {
-    return fail(why, "free_length must be >= 0 mm (got " + std::to_string(free_length) + ")");
+    return fail(why, "free_length must be >= 0 mm (got " + format_shortest(free_length) + ")");
   }
   if (!std::isfinite(radius) || radius < 0.0) {
-    return fail(why, "radius must be >= 0 mm (got " + std::to_string(radius) + ")");
+    return fail(why, "radius must be >= 0 mm (got " + format_shortest(radius) + ")");
   }
   if (radius > 0.0 && (!profile.empty() || free_length > 0.0)) {
     return fail(why,

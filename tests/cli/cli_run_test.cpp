@@ -605,12 +605,12 @@ TEST_F(CliRun, BadLayerInputIsExitOneWithTheKey) {
   }
 }
 
-// Screw tabs and flanges on the canister's ellipse, and envelope.radius off a lathe2
-// (docs/bad_inputs.md, "Third round"): one line naming the key, exit 1, before planning. Before:
-// count 1e9 and a tab or flange off the body were exit 3 ("internal error", OpenCASCADE's fuse),
-// 40 tabs fused into a collar planned for 29 s (exit 0), two rings of tabs overlapping and
-// envelope.radius on a lathe4 were taken silently.
-TEST_F(CliRun, BadTabsAndEnvelopeRadiusAreOneLineExitOne) {
+// Screw tabs and flanges on the canister's ellipse, envelope.radius off a lathe2, and turns beside
+// angle (docs/bad_inputs.md, "Third round"): one line naming the key, exit 1, before planning.
+// Before: count 1e9 and a tab or flange off the body were exit 3 ("internal error", OpenCASCADE's
+// fuse), 40 tabs fused into a collar planned for 29 s (exit 0), two rings of tabs overlapping and
+// envelope.radius on a lathe4 or turns beside angle on a mesh tube were taken silently (unused).
+TEST_F(CliRun, BadTabsEnvelopeRadiusAndTurnsAreOneLineExitOne) {
   const std::string canister =
       "name: c\nmandrel:\n  source: section\n"
       "  section: {shape: ellipse, semi_axes: [80, 50], length: 300}\n"
@@ -660,6 +660,11 @@ TEST_F(CliRun, BadTabsAndEnvelopeRadiusAreOneLineExitOne) {
            config("machines/lathe4.yaml").string() + ", envelope: {radius: 90}}\n",
        "envelope.radius is the eye cylinder of a lathe2 (no cross-feed); a lathe4 follows the "
        "clearance envelope"},
+      {"name: t\nmandrel: {source: mesh, file: " + config("meshes/tube.obj").string() +
+           ", units: mm, repair: true}\nwinding: {angle: 40, turns: 2, circuits: 4, band_width: "
+           "10}\n",
+       ":3: key 'winding.turns': give one of turns, angle or turnaround: each fixes the turnaround "
+       "radius c, and angle would leave turns unused"},
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {
     SCOPED_TRACE(cases[i].says);
