@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "export/files/robot_report.h"
 #include "export/machine/kinematics.h"
+#include "export/program/check_program_extent.h"
 #include "export/program/gcode_reader.h"
 #include "export/program/replay.h"
 #include "export/robot/robot_program_reader.h"
@@ -132,6 +133,8 @@ int run_simulate(const std::vector<std::string>& argv) {
   // A layup: every layer, each circuit replayed on the surface its layer was wound on.
   const PlannedJob pj = plan_as_run(job);
   const WindingPlan& plan = pj.plan();
+  // The stops' eye radii outside the part and the eye's travel bounded, before the sub-steps.
+  check_program_extent(program, plan, pj.mesh(), job.machine, program_file.string());
   const ReplayResult rp = replay_program(program, plan, pj.mesh(), job.machine, {}, pj.surfaces());
 
   JsonWriter j(2, 10);

@@ -29,16 +29,29 @@ struct Line {
 };
 
 // The radius of "eye radius R mm" in a comment (lower case): > 0 when found, 0 when the comment
-// does not name one, -1 when it names one that is not a positive number of mm.
+// does not name one, -1 when it names one that is not a positive decimal number of mm, -2 when it
+// names more than one. R is written in decimal (digits, a point, an exponent): strtod alone also
+// read "0x49" as 73 mm, and "inf" or "nan".
 double eye_radius_in(const std::string& comment) {
   const std::string key = "eye radius";
   const std::size_t at = comment.find(key);
   if (at == std::string::npos) return 0.0;
-  const char* begin = comment.c_str() + at + key.size();
+  if (comment.find(key, at + key.size()) != std::string::npos) return -2.0;
+  std::size_t i = at + key.size();
+  while (i < comment.size() && comment[i] == ' ') ++i;
+  const std::size_t start = i;
+  while (i < comment.size() &&
+         (std::isdigit(static_cast<unsigned char>(comment[i])) || comment[i] == '.' ||
+          comment[i] == '+' || comment[i] == '-' || comment[i] == 'e')) {
+    ++i;
+  }
+  const std::string token = comment.substr(start, i - start);
   char* end = nullptr;
-  const double r = std::strtod(begin, &end);
-  if (end == begin || !std::isfinite(r) || !(r > 0.0) || r > kMaxLinearTravel) return -1.0;
-  std::size_t i = static_cast<std::size_t>(end - comment.c_str());
+  const double r = std::strtod(token.c_str(), &end);
+  if (token.empty() || end != token.c_str() + token.size() || !std::isfinite(r) || !(r > 0.0) ||
+      r > kMaxLinearTravel) {
+    return -1.0;
+  }
   while (i < comment.size() && comment[i] == ' ') ++i;
   if (comment.compare(i, 2, "mm") != 0) return -1.0;
   return r;
@@ -132,8 +145,16 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
              "an eye radius set by hand: only a lathe2 (no cross-feed) sets its eye so; a " +
                  machine.kind + " moves it with its axes");
       }
-      if (eye_radius_in(ln.comment) < 0.0) {
-        fail(number, "the comment names an eye radius but not as \"eye radius R mm\" with R > 0");
+      const double named = eye_radius_in(ln.comment);
+      if (named == -2.0) {
+        fail(number,
+             "the comment names the eye radius more than once; an operator stop sets one radius "
+             "(\"eye radius R mm\")");
+      }
+      if (named < 0.0) {
+        fail(number,
+             "the comment names an eye radius but not as \"eye radius R mm\" with R a decimal "
+             "number, 0 < R <= 100000");
       }
     }
     std::size_t i = 0;
@@ -344,6 +365,7 @@ GcodeProgram read_gcode(const std::string& text, const MachineOptions& machine,
              "axis words");
       }
       eye_radius = r;
+      prog.eye_stops.push_back({ln.number, r});
     }
     if (move && !g92) {
       if (motion < 0) fail(ln.number, "an axis word before any G0 or G1");

@@ -5,9 +5,10 @@
 //
 // Accepted, per dialect (anything else is an error naming the line):
 //   all:      G0, G1 (modal), G21, G90, G94, F, M0 (the pause between layers; lathe2: its comment
-//             "eye radius R mm", case-insensitive, sets the eye radius of the moves after it,
-//             export/program/gcode.h; a comment naming an eye radius anywhere else, or in
-//             another kind's program, is an error), the machine's axis
+//             "eye radius R mm", case-insensitive, R in decimal, 0 < R <= 100 m, sets the eye
+//             radius of the moves after it, export/program/gcode.h; a comment naming an eye
+//             radius anywhere else, twice, or in another kind's program, is an error), the
+//             machine's axis
 //   letters (lathe2: X and A;
 //             lathe4: X, Y, A, B, as named in machine.axes), blank lines;
 //   linuxcnc: "%" lines, ( ) and ; comments, G93, M2, M30;
@@ -37,10 +38,17 @@ struct GcodeBlock {
   double eye_radius = 0.0;
 };
 
+/// lathe2: an operator stop (M0) naming the eye radius of the layer after it.
+struct GcodeEyeStop {
+  int line = 0;         ///< 1-based line number of the M0
+  double radius = 0.0;  ///< mm, > 0
+};
+
 struct GcodeProgram {
-  std::vector<GcodeBlock> blocks;  ///< motion blocks in execution order
-  bool inverse_time = false;       ///< G93 seen
-  bool ended = false;              ///< reached its end code
+  std::vector<GcodeBlock> blocks;       ///< motion blocks in execution order
+  std::vector<GcodeEyeStop> eye_stops;  ///< lathe2: the stops naming an eye radius, in order
+  bool inverse_time = false;            ///< G93 seen
+  bool ended = false;                   ///< reached its end code
 };
 
 /// \param text the program; \param name the file name for messages

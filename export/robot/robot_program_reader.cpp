@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "geometry/base/errors.h"
+#include "geometry/base/format_number.h"
 #include "geometry/base/input_file.h"
 
 namespace windplan {
@@ -90,6 +91,28 @@ double number(const std::string& s, const std::string& file, int line, const std
   return v;
 }
 
+constexpr double kMaxPosition = 1e5;  // mm: a target beyond 100 m is no cell's (gcode_reader too)
+constexpr double kMaxAngle = 360.0;   // deg: KUKA's A, B, C
+constexpr double kMaxE1 = 1e9;        // deg: the positioner's E1 (many turns, but a number)
+
+/// A position component: finite (number()) and within 100 m.
+double position(double v, const std::string& file, int line, const std::string& what) {
+  if (std::fabs(v) > kMaxPosition) {
+    bad(file, line,
+        what + " = " + format_shortest(v) +
+            " mm is beyond 100 m: no robot cell reaches so far (a value in microns, or a typo?)");
+  }
+  return v;
+}
+
+/// A configuration status (KUKA's S, ABB's cfx): a whole number 0 to 7.
+int status(double v, const std::string& file, int line, const std::string& what) {
+  if (!(v == std::floor(v) && v >= 0.0 && v <= 7.0)) {
+    bad(file, line, what + " = " + format_shortest(v) + ": a status is a whole number 0 to 7");
+  }
+  return static_cast<int>(v);
+}
+
 Eigen::Matrix3d kuka_abc(double a, double b, double c) {
   return (Eigen::AngleAxisd(a * kRad, Vec3::UnitZ()) * Eigen::AngleAxisd(b * kRad, Vec3::UnitY()) *
           Eigen::AngleAxisd(c * kRad, Vec3::UnitX()))
@@ -127,6 +150,15 @@ Eigen::Isometry3d krl_pose(const Aggregate& a, const std::string& file, int line
   for (const char* k : {"X", "Y", "Z", "A", "B", "C"}) {
     if (!a.count(k)) bad(file, line, std::string("the frame has no ") + k);
   }
+  for (const char* k : {"X", "Y", "Z"})
+    position(a.at(k), file, line, std::string("component ") + k);
+  for (const char* k : {"A", "B", "C"}) {
+    if (std::fabs(a.at(k)) > kMaxAngle) {
+      bad(file, line,
+          std::string("component ") + k + " = " + format_shortest(a.at(k)) +
+              " deg: an orientation angle lies within -360 to 360 deg");
+    }
+  }
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   t.linear() = kuka_abc(a.at("A"), a.at("B"), a.at("C"));
   t.translation() = Vec3(a.at("X"), a.at("Y"), a.at("Z"));
@@ -142,6 +174,9 @@ struct KrlReader {
   double vel_extax = 100.0;                                          // % of E1's max_velocity
   bool have_tool = false, have_base = false;
   int depth = 0;
+  /// Modules read so far (upper case) -> where they were called ("the main program" for it): each
+  /// part runs once (a part called 3000 times was read and replayed 3000 times, for minutes).
+  std::map<std::string, std::string> called;
 
   /// Reads NAME.dat: declarations by upper-case name.
   std::map<std::string, std::pair<Aggregate, std::string>> read_dat(
@@ -166,21 +201,36 @@ struct KrlReader {
       if (ut != "FRAME" && ut != "E6POS" && ut != "POS") {
         bad(t.name, ln, "unsupported KRL data type '" + type + "' (FRAME, POS, E6POS)");
       }
+      if (const auto it = decl.find(name); it != decl.end()) {
+        // (The second silently replaced the first: a target moved by hand was replayed as the
+        // copy, a TOOL_EYE redeclared as the other.)
+        bad(t.name, ln,
+            "'" + trim(rest.substr(0, eq)) + "' is declared a second time (first on " +
+                it->second.second + "); each name is declared once");
+      }
       decl[name] = {krl_aggregate(rest.substr(eq + 1), t.name, ln),
                     t.name + ":" + std::to_string(ln)};
     }
     return decl;
   }
 
-  void read_src(const std::string& module, bool main) {
-    if (++depth > 8) throw InputError(module + ".src: calls nested deeper than 8");
+  /// `from` is the call ("wp.src:9"), empty for the main program.
+  void read_src(const std::string& module, bool main, const std::string& from = "") {
+    if (const auto it = called.find(upper(module)); it != called.end()) {
+      throw InputError(from + ": calls " + module + ", which runs already (" + it->second +
+                       "); a windplan program runs each part once");
+    }
+    called[upper(module)] = main ? "the main program" : "called on " + from;
+    if (++depth > 8) throw InputError(from + ": calls " + module + " nested deeper than 8");
     const std::filesystem::path src = dir / (module + ".src");
     const std::filesystem::path dat = dir / (module + ".dat");
     std::map<std::string, std::pair<Aggregate, std::string>> local;
     if (main) {
       if (source.exists(dat)) globals = read_dat(dat);
     } else {
-      if (!source.exists(src)) throw IoError(src.string() + ": the called part is missing");
+      if (!source.exists(src)) {
+        throw IoError(from + ": calls " + module + ", but " + src.string() + " is missing");
+      }
       if (source.exists(dat)) local = read_dat(dat);
     }
     const Text t = source.load(src);
@@ -208,6 +258,12 @@ struct KrlReader {
         } else if (var == "$VEL.CP") {
           vel_cp = number(val, t.name, ln, "$VEL.CP");
           if (!(vel_cp > 0.0)) bad(t.name, ln, "$VEL.CP must be > 0 m/s");
+          if (vel_cp < 1e-6 || vel_cp > 10.0) {
+            bad(t.name, ln,
+                "$VEL.CP = " + val +
+                    " m/s: a path speed lies within 1e-6 to 10 m/s (no arm "
+                    "moves its tool faster; slower, one move would take days)");
+          }
         } else if (var == "$VEL_EXTAX[1]") {
           vel_extax = number(val, t.name, ln, var);
           if (!(vel_extax > 0.0 && vel_extax <= 100.0))
@@ -237,7 +293,10 @@ struct KrlReader {
         r.pose = krl_pose(a, t.name, ln);
         if (!a.count("E1")) bad(t.name, ln, target + " has no E1 (the positioner)");
         r.e1 = a.at("E1");
-        r.status = a.count("S") ? static_cast<int>(a.at("S")) : -1;
+        if (std::fabs(r.e1) > kMaxE1) {
+          bad(t.name, ln, target + "'s E1 = " + format_shortest(r.e1) + " deg is beyond 1e9 deg");
+        }
+        r.status = a.count("S") ? status(a.at("S"), t.name, ln, target + "'s S") : -1;
         r.vel_cp = vel_cp;
         r.vel_extax = vel_extax;
         out->targets.push_back(r);
@@ -247,7 +306,7 @@ struct KrlReader {
       const std::size_t par = s.find('(');
       if (par != std::string::npos &&
           (trim(s.substr(par)) == "( )" || trim(s.substr(par)) == "()")) {
-        read_src(trim(s.substr(0, par)), false);
+        read_src(trim(s.substr(0, par)), false, t.name + ":" + std::to_string(ln));
         continue;
       }
       bad(t.name, ln, "unknown KRL statement '" + s + "'");
@@ -330,8 +389,10 @@ Eigen::Isometry3d rapid_pose(const Value& v, const std::string& file, int line,
   const Value& p = item(v, 0, 2, file, line, what);
   const Value& q = item(v, 1, 2, file, line, what);
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  for (int k = 0; k < 3; ++k)
-    t.translation()(k) = num(item(p, k, 3, file, line, what + " pos"), file, line, what);
+  for (int k = 0; k < 3; ++k) {
+    t.translation()(k) = position(num(item(p, k, 3, file, line, what + " pos"), file, line, what),
+                                  file, line, what + " pos[" + std::to_string(k) + "]");
+  }
   const Eigen::Quaterniond qq(num(item(q, 0, 4, file, line, what + " orient"), file, line, what),
                               num(q.items[1], file, line, what), num(q.items[2], file, line, what),
                               num(q.items[3], file, line, what));
@@ -367,11 +428,19 @@ struct RapidReader {
   RobotProgram* out = nullptr;
   std::map<std::string, Eigen::Isometry3d> tools, wobjs;
   std::map<std::string, Value> robtargets;
+  std::map<std::string, std::string> declared;  // upper-case name -> "file:line"
+  std::map<std::string, std::string> called;    // module (upper case) -> its call
 
-  void read_module(const std::string& name, bool main) {
+  /// `from` is the call ("wp.mod:7"), empty for the main module.
+  void read_module(const std::string& name, bool main, const std::string& from = "") {
     const std::filesystem::path file = dir / (name + ".mod");
+    if (const auto it = called.find(upper(name)); it != called.end()) {
+      throw InputError(from + ": calls " + name + ", which runs already (" + it->second +
+                       "); a windplan program runs each part once");
+    }
+    called[upper(name)] = main ? "the main module" : "called on " + from;
     if (!main && !source.exists(file)) {
-      throw IoError(file.string() + ": the called part is missing");
+      throw IoError(from + ": calls " + name + ", but " + file.string() + " is missing");
     }
     const Text t = source.load(file);
     out->files.push_back(t.name);
@@ -406,6 +475,12 @@ struct RapidReader {
         ValueParser vp{rhs, 0, t.name, ln};
         const Value v = vp.parse();
         const std::string ut = upper(type);
+        if (const auto it = declared.find(upper(var)); it != declared.end()) {
+          bad(t.name, ln,
+              "'" + var + "' is declared a second time (first on " + it->second +
+                  "); each name is declared once");
+        }
+        declared[upper(var)] = t.name + ":" + std::to_string(ln);
         if (ut == "TOOLDATA") {
           tools[upper(var)] =
               rapid_pose(item(v, 1, 3, t.name, ln, "tooldata"), t.name, ln, "tframe");
@@ -448,7 +523,8 @@ struct RapidReader {
         pose.items = {target.items[0], target.items[1]};
         r.pose = rapid_pose(pose, t.name, ln, "robtarget");
         const Value& cf = item(target, 2, 4, t.name, ln, "robtarget");
-        r.status = static_cast<int>(num(item(cf, 3, 4, t.name, ln, "confdata"), t.name, ln, "cfx"));
+        r.status = status(num(item(cf, 3, 4, t.name, ln, "confdata"), t.name, ln, "cfx"), t.name,
+                          ln, "cfx");
         const Value& ext = item(target, 3, 4, t.name, ln, "robtarget");
         r.e1 = num(item(ext, 0, 6, t.name, ln, "extjoint"), t.name, ln, "eax_a");
         if (std::fabs(r.e1) >= 9e8) bad(t.name, ln, "eax_a (the positioner E1) is not set");
@@ -457,6 +533,9 @@ struct RapidReader {
         if (tt != std::string::npos) {
           r.time = number(speed.substr(tt + 4), t.name, ln, "\\T");
           if (!(r.time >= 0.0)) bad(t.name, ln, "\\T must be >= 0 s");
+          if (r.time > 86400.0) {
+            bad(t.name, ln, "\\T = " + format_shortest(r.time) + " s: one move of more than a day");
+          }
         }
         if (upper(speed).rfind("V", 0) != 0) bad(t.name, ln, "unknown speeddata '" + speed + "'");
         const std::string tool_arg = args[3];
@@ -472,8 +551,11 @@ struct RapidReader {
         continue;
       }
       if (w2.empty() && main) {  // a call of a part
-        read_module(trim(w1), false);
+        read_module(trim(w1), false, t.name + ":" + std::to_string(ln));
         continue;
+      }
+      if (w2.empty() && !main) {
+        bad(t.name, ln, "'" + s + "': a part calls no other module (only the main module does)");
       }
       bad(t.name, ln, "unknown RAPID statement '" + s + "'");
     }

@@ -14,7 +14,10 @@
 // [cf...], [E1, ...]] with speeddata (v<n> or v<n>\T:=seconds), a zone and the tool\WObj. Comments
 // start with '!'. Anything else (an unknown statement, a variable never declared, a malformed
 // aggregate, a missing part file, a tool or work object not declared): InputError naming the file
-// and line.
+// and line. Also refused, naming the line: a part called twice, or calling itself or the main
+// program (each part runs once); a name declared twice (in one .dat, or in the RAPID modules); a
+// position beyond 100 m, an angle A, B or C beyond +-360 deg, an E1 beyond 1e9 deg; S or cfx not
+// a whole number 0 to 7; $VEL.CP outside [1e-6, 10] m/s; \T over a day; a RAPID part that calls.
 #include <filesystem>
 #include <map>
 #include <string>

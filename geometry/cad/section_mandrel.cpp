@@ -270,6 +270,11 @@ bool MandrelFeatures::is_valid(std::string* why, const std::string& key) const {
     if (!std::isfinite(t.at) || !std::isfinite(t.angle))
       return fail(why, k + ".at and .angle must be finite");
     if (t.count < 1) return fail(why, k + ".count must be >= 1");
+    if (t.count > 360) {
+      // (count: 1e9 ran into OpenCASCADE's fuse and exit 3.)
+      return fail(
+          why, k + ".count must be <= 360 (one tab a degree; got " + std::to_string(t.count) + ")");
+    }
     if (!positive(t.reach) || !positive(t.width) || !positive(t.thickness)) {
       return fail(why, k + ": reach, width and thickness must be > 0 mm");
     }
@@ -281,6 +286,53 @@ bool MandrelFeatures::is_valid(std::string* why, const std::string& key) const {
   }
   return true;
 }
+
+namespace {
+
+// The angle (radians) half a tab spans about the axis where it leaves the wall.
+double tab_half_angle(const TabParams& t, double r_wall) {
+  return std::atan2(0.5 * t.width, r_wall);
+}
+
+// Tabs are separate blocks: neither the tabs of one ring (40 tabs 20 mm wide on a 50 mm wall
+// fused into a collar, 29 s, exit 0) nor those of two rings at overlapping heights may overlap
+// where they leave the wall.
+void check_tabs_apart(const std::vector<TabParams>& tabs,
+                      const std::function<double(double)>& outline) {
+  auto angle_of = [](const TabParams& t, int k) {
+    return t.angle * M_PI / 180.0 + 2.0 * M_PI * k / t.count;
+  };
+  auto apart = [](double a, double b) {
+    const double d = std::fmod(std::fabs(a - b), 2.0 * M_PI);
+    return std::min(d, 2.0 * M_PI - d);
+  };
+  for (std::size_t i = 0; i < tabs.size(); ++i) {
+    for (std::size_t j = i; j < tabs.size(); ++j) {
+      const TabParams &a = tabs[i], &b = tabs[j];
+      if (j > i && !(a.at < b.at + b.thickness && b.at < a.at + a.thickness)) continue;
+      for (int ka = 0; ka < a.count; ++ka) {
+        for (int kb = (j == i ? ka + 1 : 0); kb < b.count; ++kb) {
+          const double ta = angle_of(a, ka), tb = angle_of(b, kb);
+          const double d = apart(ta, tb);
+          const double need = tab_half_angle(a, outline(ta)) + tab_half_angle(b, outline(tb));
+          if (d < need) {
+            const std::string ki = "mandrel.features.tabs[" + std::to_string(i) + "]";
+            const std::string kj = "mandrel.features.tabs[" + std::to_string(j) + "]";
+            throw ConfigError(
+                (j == i ? ki + ": its " + std::to_string(a.count) + " tabs overlap one another"
+                        : ki + " and " + kj + " overlap") +
+                " where they leave the wall (" + num(std::round(d * 1800.0 / M_PI) / 10.0) +
+                " deg apart, " + num(std::round(need * 1800.0 / M_PI) / 10.0) + " deg needed for " +
+                num(a.width) + " mm wide tabs there): " +
+                (j == i ? "fewer or narrower tabs" : "move one ring's at or angle"));
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
 
 CadShape add_mandrel_features(const CadShape& body_in, const MandrelFeatures& f,
                               const std::function<double(double)>& outline) {
@@ -296,6 +348,29 @@ CadShape add_mandrel_features(const CadShape& body_in, const MandrelFeatures& f,
     double x0, y0, z0, x1, y1, z1;
     box.Get(x0, y0, z0, x1, y1, z1);
     const double span = z1 - z0;
+    // Each flange and tab touches the body (a tab at 1000 mm on a 300 mm body, or a flange off
+    // its shafts, left three solids: exit 3, "expected one solid").
+    const double lo = z0 - f.shaft_start.length, hi = z1 + f.shaft_end.length;
+    for (std::size_t i = 0; i < f.flanges.size(); ++i) {
+      const FlangeParams& fl = f.flanges[i];
+      if (!(fl.at < hi && fl.at + fl.thickness > lo)) {
+        throw ConfigError("mandrel.features.flanges[" + std::to_string(i) + "].at = " + num(fl.at) +
+                          " mm puts the flange (" + num(fl.at) + " to " +
+                          num(fl.at + fl.thickness) +
+                          " mm along the axis) off the mandrel, which " + "spans " + num(lo) +
+                          " to " + num(hi) + " mm");
+      }
+    }
+    for (std::size_t i = 0; i < f.tabs.size(); ++i) {
+      const TabParams& t = f.tabs[i];
+      if (!(t.at < z1 && t.at + t.thickness > z0)) {
+        throw ConfigError("mandrel.features.tabs[" + std::to_string(i) + "].at = " + num(t.at) +
+                          " mm puts the tabs (" + num(t.at) + " to " + num(t.at + t.thickness) +
+                          " mm along the axis) off the body's wall, which spans " + num(z0) +
+                          " to " + num(z1) + " mm");
+      }
+    }
+    check_tabs_apart(f.tabs, outline);
     if (f.shaft_start.radius > 0.0) {
       body = fuse(body, cylinder(f.shaft_start.radius, z0 - f.shaft_start.length, z0 + 1e-3 * span),
                   "start shaft");

@@ -212,12 +212,15 @@ ConfigNode::ConfigNode(YAML::Node node, std::string file, std::string path)
   }
 }
 
-ConfigNode ConfigNode::load_file(const std::filesystem::path& file) {
-  const std::string text = read_input_file(file, kJobFileCap, "a job file (YAML)");
-  return load_string(text, file.string());
+ConfigNode ConfigNode::load_file(const std::filesystem::path& file, const std::string& what) {
+  const bool vowel = !what.empty() && std::string("aeiou").find(what[0]) != std::string::npos;
+  const std::string text =
+      read_input_file(file, kJobFileCap, (vowel ? "an " : "a ") + what + " (YAML)");
+  return load_string(text, file.string(), what);
 }
 
-ConfigNode ConfigNode::load_string(const std::string& text, const std::string& file) {
+ConfigNode ConfigNode::load_string(const std::string& text, const std::string& file,
+                                   const std::string& what) {
   YAML::Node root;
   try {
     // First the events: one document, no tags, aliases bounded; then the tree.
@@ -236,8 +239,12 @@ ConfigNode ConfigNode::load_string(const std::string& text, const std::string& f
     throw ConfigError(file + ":" + std::to_string(e.mark.line + 1) + ": " +
                       plain_yaml_error(text, e.mark.line, e.msg));
   }
-  if (!root.IsDefined() || root.IsNull()) throw ConfigError(file + ": the job file is empty");
-  if (!root.IsMap()) throw ConfigError(file + ": the job file must be a YAML map of sections");
+  if (!root.IsDefined() || root.IsNull()) throw ConfigError(file + ": the " + what + " is empty");
+  if (!root.IsMap()) {
+    // (An arm profile named by mistake as a mesh said "the job file must be ...".)
+    throw ConfigError(file + ": the " + what + " must be a YAML map of " +
+                      (what == "job file" ? "sections" : "keys"));
+  }
   check_keys(root, file, "", 0);
   return ConfigNode(root, file, "");
 }

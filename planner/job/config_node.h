@@ -29,9 +29,12 @@ class ConfigNode {
   ConfigNode(YAML::Node node, std::string file, std::string path);
 
   /// Parses a job file. \throw IoError if missing, ConfigError on a YAML syntax error.
-  static ConfigNode load_file(const std::filesystem::path& file);
+  /// `what` names the file in messages ("job file", "arm profile", ...).
+  static ConfigNode load_file(const std::filesystem::path& file,
+                              const std::string& what = "job file");
   /// Parses YAML text (tests); `file` names it in messages.
-  static ConfigNode load_string(const std::string& text, const std::string& file);
+  static ConfigNode load_string(const std::string& text, const std::string& file,
+                                const std::string& what = "job file");
 
   bool present() const { return node_.IsDefined() && !node_.IsNull(); }
   bool has(const std::string& key) const;

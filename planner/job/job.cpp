@@ -380,7 +380,7 @@ void decode_machine(ConfigNode n, const std::filesystem::path& base, MachineOpti
     if (!std::filesystem::exists(file)) {
       n.fail("profile", "the machine profile " + file.string() + " does not exist");
     }
-    ConfigNode p = ConfigNode::load_file(file);
+    ConfigNode p = ConfigNode::load_file(file, "machine profile");
     if (!p.present() || !p.yaml().IsMap()) {
       throw ConfigError(file.string() + ": a machine profile must be a map of machine keys");
     }
@@ -492,6 +492,13 @@ void decode_girth(ConfigNode n, GirthOptions* g) {
 void decode_winding(ConfigNode n, WindingOptions* w) {
   if (!n.present()) return;
   w->turns_given = n.get("turns", &w->turns);
+  if (w->turns_given && (n.has("angle") || n.has("turnaround"))) {
+    // Each fixes the turnaround radius c; beside angle or turnaround, turns was ignored without a
+    // word (a pipe and a mesh tube wound byte-identically with and without it).
+    n.fail("turns", std::string("give one of turns, angle or turnaround: each fixes the turnaround "
+                                "radius c, and ") +
+                        (n.has("angle") ? "angle" : "turnaround") + " would leave turns unused");
+  }
   std::string circuits;
   if (n.has("pattern")) {
     std::string word;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "geometry/base/format_number.h"
 #include "planner/job/options_check.h"
 
 namespace windplan {
@@ -16,13 +17,13 @@ std::string EnvelopeOptions::mode() const {
 
 bool EnvelopeOptions::is_valid(std::string* why) const {
   if (!std::isfinite(clearance) || clearance <= 0.0) {
-    return fail(why, "clearance must be > 0 mm (got " + std::to_string(clearance) + ")");
+    return fail(why, "clearance must be > 0 mm (got " + format_shortest(clearance) + ")");
   }
   if (!std::isfinite(free_length) || free_length < 0.0) {
-    return fail(why, "free_length must be >= 0 mm (got " + std::to_string(free_length) + ")");
+    return fail(why, "free_length must be >= 0 mm (got " + format_shortest(free_length) + ")");
   }
   if (!std::isfinite(radius) || radius < 0.0) {
-    return fail(why, "radius must be >= 0 mm (got " + std::to_string(radius) + ")");
+    return fail(why, "radius must be >= 0 mm (got " + format_shortest(radius) + ")");
   }
   if (radius > 0.0 && (!profile.empty() || free_length > 0.0)) {
     return fail(why,
@@ -81,6 +82,12 @@ bool MachineOptions::is_valid(std::string* why) const {
     return fail(why, "kind must be lathe2, lathe4 or robot (got '" + kind + "')");
   }
   if (robot.has_arm() && kind != "robot") return fail(why, "robot.arm is for kind: robot");
+  if (envelope.radius > 0.0 && kind != "lathe2") {
+    // (A lathe4 job with envelope.radius: 90 was planned on its clearance envelope, the key
+    // silently unused.)
+    return fail(why, "envelope.radius is the eye cylinder of a lathe2 (no cross-feed); a " + kind +
+                         " follows the clearance envelope: give envelope.clearance instead");
+  }
   if (!std::isfinite(chord_tolerance) || chord_tolerance <= 0.0) {
     return fail(why, "chord_tolerance must be > 0 mm");
   }

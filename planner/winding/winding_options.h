@@ -112,13 +112,13 @@ struct WindingOptions {
     }
     if (meridians < 4) return fail("meridians must be >= 4");
     if (std::isfinite(turnaround) && !(turnaround > 0.0)) {
-      return fail("turnaround must be > 0 mm (got " + std::to_string(turnaround) + ")");
+      return fail("turnaround must be > 0 mm (got " + format_shortest(turnaround) + ")");
     }
     if (std::isnan(turnaround) == false && !std::isfinite(turnaround)) {
       return fail("turnaround must be a finite radius in mm");
     }
     if (!std::isnan(angle) && !(angle > 0.0 && angle < 90.0)) {
-      return fail("angle must be in (0, 90) deg (got " + std::to_string(angle) + ")");
+      return fail("angle must be in (0, 90) deg (got " + format_shortest(angle) + ")");
     }
     if (!std::isnan(turnaround) && !std::isnan(angle)) {
       return fail("give turnaround or angle, not both");

@@ -18,7 +18,7 @@ bool have_ccx() { return std::system("command -v ccx > /dev/null 2>&1") == 0; }
 // at 45 deg t_hoop / t_hel = 3 cos^2 - 1 = 0.5).
 const char* const kPipe =
     "name: pipe_design\nmandrel:\n  source: pipe\n  pipe: {radius: 40, length: 200}\n"
-    "winding: {turns: 1, circuits: 6, band_width: 10, angle: 60}\nmaterial: {tows: 2}\n";
+    "winding: {circuits: 6, band_width: 10, angle: 60}\nmaterial: {tows: 2}\n";
 
 class CliCheckFea : public CliTest {};
 

@@ -2,8 +2,11 @@
 // reads the program back and replays it, an edited target is caught at its line, and bad input
 // (an unknown dialect, a cell whose mandrel is out of reach, a malformed program) is one line,
 // exit 1.
+#include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
@@ -115,6 +118,176 @@ TEST_F(CliRobot, BadInputIsOneLineExitOne) {
   r = run({"simulate", (dir_ / "job.yaml").string(), (dir_ / "p.src").string()});
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("p.src:2"), std::string::npos) << r.err;
+}
+
+std::string slurp_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// `text` with the first `from` replaced by `to` (the test fails when `from` is absent).
+std::string edit(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t p = text.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  if (p != std::string::npos) text.replace(p, from.size(), to);
+  return text;
+}
+
+void expect_one_line(const RunResult& r, const std::string& says) {
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+// Edited KRL and RAPID programs (docs/bad_inputs.md, "Third round"): one line naming the file and
+// line, exit 1, and no JSON report. Before: a part called 3000 times read and replayed it for
+// more than 60 s; a second declaration of a name silently replaced the first (TOOL_EYE: exit 0);
+// S or cfx 1e300 went through an undefined int cast; A 1e300, \T 1e300, $VEL.CP 1e300 were taken.
+TEST_F(CliRobot, BadRobotProgramsAreOneLineExitOne) {
+  for (const std::string dialect : {"krl", "rapid"}) {
+    SCOPED_TRACE(dialect);
+    write_job(", dialect: " + dialect);
+    const fs::path out = dir_ / ("out_" + dialect);
+    ASSERT_EQ(run({"run", (dir_ / "job.yaml").string(), "--out", out.string()}).code, 0);
+    const bool krl = dialect == "krl";
+    const std::string main = krl ? "wp_cell.src" : "wp_cell.mod";
+    const std::string part = krl ? "wp_cell_p01.src" : "wp_cell_p01.mod";
+    const std::string data = krl ? "wp_cell_p01.dat" : "wp_cell_p01.mod";
+    struct Case {
+      std::string file, from, to, says;
+    };
+    const std::string call = krl ? "wp_cell_p01( )\n" : "    wp_cell_p01;\n";
+    std::vector<Case> cases = {
+        {main, call, call + call,
+         main + ":" + (krl ? "11" : "8") + ": calls wp_cell_p01, which runs already (called on " +
+             main + ":" + (krl ? "10" : "7") + ")"},
+    };
+    std::string many;
+    for (int i = 0; i < 3000; ++i) many += call;
+    cases.push_back({main, call, many, "calls wp_cell_p01, which runs already"});
+    if (krl) {
+      const std::string xp5 = "DECL E6POS XP5={X -62.4991,Y 3.6861,Z -69.9980,A -90.0000";
+      cases.push_back({part, "PTP XP1\n", "PTP XP1\nwp_cell_p01( )\n",
+                       part + ":6: calls wp_cell_p01, which runs already"});
+      cases.push_back({part, "PTP XP1\n", "PTP XP1\nwp_cell( )\n",
+                       part + ":6: calls wp_cell, which runs already (the main program)"});
+      cases.push_back({data, "DECL E6POS XP6=", "DECL E6POS XP5=",
+                       data + ":9: 'XP5' is declared a second time (first on " + data + ":8)"});
+      cases.push_back({"wp_cell.dat", "ENDDAT",
+                       "DECL FRAME TOOL_EYE={X 0,Y 0,Z 0,A 0,B 0,C 0}\nENDDAT",
+                       "'TOOL_EYE' is declared a second time (first on wp_cell.dat:4)"});
+      cases.push_back({data, xp5 + ",B 0.0000,C 0.0000,S 6", xp5 + ",B 0.0000,C 0.0000,S 1e300",
+                       "XP5's S = 1e+300: a status is"});
+      cases.push_back({data, xp5, "DECL E6POS XP5={X -62.4991,Y 3.6861,Z -69.9980,A 1e300",
+                       "component A = 1e+300 deg: an orientation angle lies within"});
+      cases.push_back(
+          {data, "XP5={X -62.4991", "XP5={X 1e300", "component X = 1e+300 mm is beyond 100 m"});
+      cases.push_back(
+          {data, "XP5={X -62.4991", "XP5={X nan", data + ":8: component X: 'nan' is not a number"});
+      cases.push_back({data, ",E1 -142.4199", "", "XP5 has no E1 (the positioner)"});
+      cases.push_back({part, "$VEL.CP = 0.048941403", "$VEL.CP = 1e300",
+                       part + ":6: $VEL.CP = 1e300 m/s: a path speed lies within"});
+      cases.push_back({main, "$VEL_EXTAX[1] = 100", "$VEL_EXTAX[1] = 0",
+                       main + ":8: $VEL_EXTAX[1] must be in (0, 100]"});
+      cases.push_back({main, "$VEL_EXTAX[1] = 100", "$VEL_EXTAX[1] = -5",
+                       main + ":8: $VEL_EXTAX[1] must be in (0, 100]"});
+    } else {
+      cases.push_back({main, "  PROC main",
+                       "  PERS tooldata tEye := [TRUE,[[0,0,0],[1,0,0,0]],[1,[0,0,50],[1,0,0,0],"
+                       "0,0,0]];\n  PROC main",
+                       main + ":6: 'tEye' is declared a second time (first on " + main + ":4)"});
+      cases.push_back({part, "[0,0,-1,6],[-142.4199", "[0,0,-1,1e300],[-142.4199",
+                       "cfx = 1e+300: a status is a whole number 0 to 7"});
+      cases.push_back({part, "T:=0.044756", "T:=1e300", "\\T = 1e+300 s: one move of more"});
+      cases.push_back({part, "[[-62.4991", "[[1e300", "robtarget pos[0] = 1e+300 mm is beyond"});
+      cases.push_back({part, "PROC wp_cell_p01()\n", "PROC wp_cell_p01()\n    wp_cell_p01;\n",
+                       part + ":4: 'wp_cell_p01': a part calls no other module"});
+    }
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const Case& c = cases[i];
+      SCOPED_TRACE(c.says);
+      const fs::path d = dir_ / (dialect + "_case" + std::to_string(i));
+      fs::create_directories(d);
+      for (const auto& e : fs::directory_iterator(out)) {
+        if (e.path().filename().string().rfind("wp_cell", 0) == 0)
+          fs::copy_file(e.path(), d / e.path().filename());
+      }
+      const std::string edited = edit(slurp_text(d / c.file), c.from, c.to);
+      std::ofstream(d / c.file, std::ios::trunc) << edited;
+      const RunResult r = run({"simulate", (dir_ / "job.yaml").string(), (d / main).string(),
+                               "--json", (d / "sim.json").string()});
+      expect_one_line(r, c.says);
+      EXPECT_FALSE(fs::exists(d / "sim.json"));
+    }
+    // A part that is missing, a directory or a link to /dev/zero.
+    const fs::path d = dir_ / (dialect + "_files");
+    fs::create_directories(d);
+    fs::copy_file(out / main, d / main);
+    if (krl) fs::copy_file(out / "wp_cell.dat", d / "wp_cell.dat");
+    RunResult r = run({"simulate", (dir_ / "job.yaml").string(), (d / main).string()});
+    expect_one_line(r, main + ":" + (krl ? "10" : "7") + ": calls wp_cell_p01, but " +
+                           (d / part).string() + " is missing");
+    fs::create_directories(d / part);
+    r = run({"simulate", (dir_ / "job.yaml").string(), (d / main).string()});
+    expect_one_line(r, (d / part).string() + ": is a directory, not a file");
+    fs::remove(d / part);
+    fs::create_symlink("/dev/zero", d / part);
+    r = run({"simulate", (dir_ / "job.yaml").string(), (d / main).string()});
+    expect_one_line(r, (d / part).string() + ": is a character device");
+  }
+}
+
+// Cell profiles (docs/bad_inputs.md, "Third round"): one line naming the profile file and key, or
+// the job's key, exit 1, before planning. Before: a tool or arm origin of 1e300 mm and a home pose
+// outside its joint's limits were blamed on the positioner's frame (after 38 s for the origin);
+// joint limits of +-1e300 deg and e1_max_velocity 1e300 deg/s were taken; an arm profile that is a
+// mesh was "the job file".
+TEST_F(CliRobot, BadCellProfilesAreOneLineExitOne) {
+  const std::string arm = slurp_text(source_dir() / "configs" / "machines" / "kuka_kr16_2.yaml");
+  const std::string pos =
+      slurp_text(source_dir() / "configs" / "machines" / "positioner_1axis.yaml");
+  auto profile = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  };
+  struct Case {
+    std::string keys, says;
+  };
+  const std::vector<Case> cases = {
+      {", tool: {xyz: [1e300, 0, 0], abc: [0, 0, 0]}",
+       "job.yaml:6: key 'machine.robot.tool.xyz': 1e+300 mm is beyond 100 m"},
+      {", tool: {xyz: [250, 0, 0], abc: [1e300, 0, 0]}",
+       "job.yaml:6: key 'machine.robot.tool.abc': 1e+300 deg: an orientation angle"},
+      {", tool: {xyz: [.nan, 0, 0], abc: [0, 0, 0]}", "key 'machine.robot.tool.xyz'"},
+      {", arm: " +
+           profile("origin.yaml", edit(arm, "origin: [260, 0, 0]", "origin: [1e300, 0, 0]")),
+       "origin.yaml:11: key 'joints[1].origin': 1e+300 mm is beyond 10 m"},
+      {", arm: " + profile("limits.yaml", edit(arm, "min: -350, max: 350, max_velocity: 615",
+                                               "min: -1e300, max: 1e300, max_velocity: 615")),
+       "limits.yaml:15: key 'joints[5].min': a joint limit lies within -720 to 720 deg"},
+      {", arm: " + profile("home.yaml", edit(arm, "home: [0, -90, 90, 0, 45, 0]",
+                                             "home: [0, -90, 90, 0, 45, 900]")),
+       "home.yaml:17: key 'home': element 5 (900 deg) is outside A6's limits [-350, 350] deg"},
+      {", arm: " + profile("zero.yaml", edit(arm, "min: -130, max: 130", "min: 0, max: 0")),
+       "zero.yaml:14: key 'joints[4].max': must be > min"},
+      {", arm: " + (source_dir() / "configs" / "meshes" / "tube.obj").string(),
+       "tube.obj: the arm profile must be a YAML map of keys"},
+      {", arm: " + (source_dir() / "configs" / "machines" / "positioner_1axis.yaml").string(),
+       "key 'joints': needs 6 revolute joints (got 0)"},
+      {", positioner: " +
+           profile("fast.yaml", edit(pos, "e1_max_velocity: 180", "e1_max_velocity: 1e300")),
+       "fast.yaml:9: key 'e1_max_velocity': 1e+300 deg/s is beyond 3600 deg/s"},
+      {", positioner: " +
+           profile("still.yaml", edit(pos, "e1_max_velocity: 180", "e1_max_velocity: 0")),
+       "still.yaml:9: key 'e1_max_velocity': must be > 0 deg/s"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.says);
+    write_job(c.keys);
+    const RunResult r = run({"run", (dir_ / "job.yaml").string(), "--out", (dir_ / "o").string()});
+    expect_one_line(r, c.says);
+    EXPECT_FALSE(fs::exists(dir_ / "o"));
+  }
 }
 
 // Reach over the laminate: a cell whose positioner holds the pipe high (axis 1200 mm up, the eye

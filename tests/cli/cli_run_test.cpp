@@ -605,5 +605,84 @@ TEST_F(CliRun, BadLayerInputIsExitOneWithTheKey) {
   }
 }
 
+// Screw tabs and flanges on the canister's ellipse, envelope.radius off a lathe2, and turns beside
+// angle (docs/bad_inputs.md, "Third round"): one line naming the key, exit 1, before planning.
+// Before: count 1e9 and a tab or flange off the body were exit 3 ("internal error", OpenCASCADE's
+// fuse), 40 tabs fused into a collar planned for 29 s (exit 0), two rings of tabs overlapping and
+// envelope.radius on a lathe4 or turns beside angle on a mesh tube were taken silently (unused).
+TEST_F(CliRun, BadTabsEnvelopeRadiusAndTurnsAreOneLineExitOne) {
+  const std::string canister =
+      "name: c\nmandrel:\n  source: section\n"
+      "  section: {shape: ellipse, semi_axes: [80, 50], length: 300}\n"
+      "  region: {start: 30, end: 270}\n  features:\n";
+  // A ring of tabs as the canister's, with the keys in `keys` changed.
+  auto tab = [](const std::string& at, const std::string& keys = "") {
+    std::string t = "{at: " + at + ", width: 20, thickness: 8";
+    for (const char* k : {"count: 2", "reach: 25", "hole_radius: 4"}) {
+      const std::string name = std::string(k).substr(0, std::string(k).find(':') + 1);
+      if (keys.find(name) == std::string::npos) t += std::string(", ") + k;
+    }
+    return t + (keys.empty() ? "" : ", " + keys) + "}";
+  };
+  const std::string tail =
+      "winding: {turns: 1, circuits: 4, band_width: 10}\n"
+      "machine: {profile: " +
+      config("machines/lathe4.yaml").string() + "}\n";
+  struct Case {
+    std::string yaml, says;
+  };
+  const std::vector<Case> cases = {
+      {canister + "    tabs:\n      - " + tab("10", "count: 1000000000") + "\n" + tail,
+       "features.tabs[0].count must be <= 360"},
+      {canister + "    tabs:\n      - " + tab("10", "count: 40") + "\n" + tail,
+       "mandrel.features.tabs[0]: its 40 tabs overlap one another where they leave the wall (9 "
+       "deg apart, 14.4 deg needed"},
+      {canister + "    tabs:\n      - " + tab("1000") + "\n" + tail,
+       "mandrel.features.tabs[0].at = 1000 mm puts the tabs (1000 to 1008 mm along the axis) off "
+       "the body's wall, which spans 0 to 300 mm"},
+      {canister + "    tabs:\n      - " + tab("-100") + "\n" + tail,
+       "mandrel.features.tabs[0].at = -100 mm puts the tabs"},
+      {canister + "    tabs:\n      - " + tab("10") + "\n      - " + tab("12", "angle: 5") + "\n" +
+           tail,
+       "mandrel.features.tabs[0] and mandrel.features.tabs[1] overlap where they leave the wall "
+       "(5 deg apart"},
+      {canister + "    tabs:\n      - " + tab("10", "reach: 0") + "\n" + tail,
+       "features.tabs[0]: reach, width and thickness must be > 0 mm"},
+      {canister + "    tabs:\n      - " + tab("10", "hole_radius: 30") + "\n" + tail,
+       "features.tabs[0].hole_radius (30 mm) must be >= 0 and below half the tab's width and "
+       "reach"},
+      {canister + "    flanges:\n      - {at: 1000, radius: 90, thickness: 12}\n" + tail,
+       "mandrel.features.flanges[0].at = 1000 mm puts the flange (1000 to 1012 mm along the axis) "
+       "off the mandrel"},
+      {"name: p\nmandrel: {source: pipe, pipe: {radius: 50, length: 300}}\n"
+       "winding: {turns: 2, circuits: 4, band_width: 10}\n"
+       "machine: {profile: " +
+           config("machines/lathe4.yaml").string() + ", envelope: {radius: 90}}\n",
+       "envelope.radius is the eye cylinder of a lathe2 (no cross-feed); a lathe4 follows the "
+       "clearance envelope"},
+      {"name: t\nmandrel: {source: mesh, file: " + config("meshes/tube.obj").string() +
+           ", units: mm, repair: true}\nwinding: {angle: 40, turns: 2, circuits: 4, band_width: "
+           "10}\n",
+       ":3: key 'winding.turns': give one of turns, angle or turnaround: each fixes the turnaround "
+       "radius c, and angle would leave turns unused"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE(cases[i].says);
+    const fs::path job = dir_ / ("bad_tabs_" + std::to_string(i) + ".yaml");
+    std::ofstream(job) << cases[i].yaml;
+    const Proc r = run({"run", job.string(), "--out", (dir_ / "o").string()});
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find(cases[i].says), std::string::npos) << r.err;
+    std::size_t errors = 0;
+    for (std::size_t p = r.err.find("error"); p != std::string::npos;
+         p = r.err.find("error", p + 1)) {
+      ++errors;
+    }
+    EXPECT_EQ(errors, 1u) << r.err;
+    EXPECT_EQ(r.err.find("girth"), std::string::npos) << r.err;  // refused before planning
+    EXPECT_FALSE(fs::exists(dir_ / "o"));
+  }
+}
+
 }  // namespace
 }  // namespace windplan

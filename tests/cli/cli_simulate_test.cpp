@@ -5,6 +5,7 @@
 #include <iterator>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
@@ -233,6 +234,82 @@ TEST_F(CliSimulate, Lathe4LaysABoomAndAnOvalCanisterWithinTheReplayTolerance) {
       EXPECT_GE(report["circuits"].size(), 21u);
     }
   }
+}
+
+// lathe2's operator stops (docs/bad_inputs.md, "Third round"): every bad eye radius named at the
+// stop between a two-layer pipe's layers is one line naming the program line, exit 1, before the
+// replay (no JSON written). Before: two radii took the first, 0x49 read as 73 mm, a radius inside
+// the part was a deviation at a later line, 99999 mm replayed for more than 60 s.
+TEST_F(CliSimulate, BadEyeRadiusStopsAreOneLineExitOne) {
+  write(dir_ / "layup.yaml",
+        "name: layup\n"
+        "mandrel: {source: pipe, pipe: {radius: 50, length: 300}}\n"
+        "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
+        "winding: {turns: 2, circuits: auto, band_width: 10}\n"
+        "layers:\n  - {kind: helical, name: inner}\n  - {kind: helical, name: outer}\n"
+        "machine: {replay_tolerance: 1}\n"
+        "output: {ply: false, svg: false, viewer: false}\n");
+  ASSERT_EQ(run({"run", (dir_ / "layup.yaml").string(), "--out", (dir_ / "o").string()}).code, 0);
+  std::ifstream in(dir_ / "o" / "toolpath.ngc");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t stop = text.find("\nM0 (eye radius ") + 1;
+  ASSERT_NE(stop, 0u);
+  const std::size_t stop_end = text.find('\n', stop);
+  const std::string line = std::to_string(std::count(text.begin(), text.begin() + stop, '\n') + 1);
+  struct Case {
+    std::string stop, says;
+  };
+  const std::string bad_form = ": the comment names an eye radius but not as \"eye radius R mm\"";
+  const std::vector<Case> cases = {
+      {"M0 (eye radius -73 mm)", line + bad_form},
+      {"M0 (eye radius 0 mm)", line + bad_form},
+      {"M0 (eye radius nan mm)", line + bad_form},
+      {"M0 (eye radius inf mm)", line + bad_form},
+      {"M0 (eye radius 1e308 mm)", line + bad_form},
+      {"M0 (eye radius 1" + std::string(400, '0') + " mm)", line + bad_form},
+      {"M0 (eye radius 0x49 mm)", line + bad_form},
+      {"M0 (eye radius 73.6774 mm eye radius 90 mm)", line + ": the comment names the eye radius "
+                                                             "more than once"},
+      {"M0 (eye radius 90 mm) (eye radius 73.6774 mm)", line + ": the comment names the eye "
+                                                               "radius more than once"},
+      {"M0 (eye radius 30 mm)", line + ": the stop sets the eye at radius 30 mm, inside the part: "
+                                       "layer 2 (outer) is wound on a surface reaching radius "
+                                       "53.68 mm"},
+      {"M0 (eye radius 1e-9 mm)", line + ": the stop sets the eye at radius 1e-09 mm, inside"},
+      {"M0 (eye radius 99999 mm)", ": the eye has travelled more than 10 km by this move"},
+      {"(eye radius 73.6774 mm)", line + ": an eye radius is set by hand at an operator stop"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE(cases[i].stop);
+    const fs::path prog = dir_ / ("stop" + std::to_string(i) + ".ngc");
+    write(prog, text.substr(0, stop) + cases[i].stop + text.substr(stop_end));
+    const fs::path json = dir_ / ("stop" + std::to_string(i) + ".json");
+    const RunResult r =
+        run({"simulate", (dir_ / "layup.yaml").string(), prog.string(), "--json", json.string()});
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_NE(r.err.find(prog.string() + ":"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(cases[i].says), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(json));
+  }
+  // The same stop in a lathe4 job's program: only a lathe2 sets its eye by hand.
+  write(dir_ / "l4.yaml", std::string(kJob) + "machine: {profile: " +
+                              (source_dir() / "configs" / "machines" / "lathe4.yaml").string() +
+                              "}\n");
+  ASSERT_EQ(run({"run", (dir_ / "l4.yaml").string(), "--out", (dir_ / "l4").string()}).code, 0);
+  std::ifstream in4(dir_ / "l4" / "toolpath.ngc");
+  std::string t4((std::istreambuf_iterator<char>(in4)), std::istreambuf_iterator<char>());
+  const std::size_t end4 = t4.rfind("\nM2");
+  ASSERT_NE(end4, std::string::npos);
+  t4.insert(end4 + 1, "M0 (eye radius 90 mm)\n");
+  write(dir_ / "l4.ngc", t4);
+  const RunResult r4 = run({"simulate", (dir_ / "l4.yaml").string(), (dir_ / "l4.ngc").string()});
+  EXPECT_EQ(r4.code, 1);
+  EXPECT_NE(r4.err.find("an eye radius set by hand: only a lathe2 (no cross-feed) sets its eye so; "
+                        "a lathe4 moves it with its axes"),
+            std::string::npos)
+      << r4.err;
+  EXPECT_EQ(std::count(r4.err.begin(), r4.err.end(), '\n'), 1) << r4.err;
 }
 
 TEST_F(CliSimulate, EveryShippedJobMovesAsAMachineShould) {
