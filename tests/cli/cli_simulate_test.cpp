@@ -28,6 +28,17 @@ const char* const kJob =
     "mandrel: {source: pipe, pipe: {radius: 50, length: 200}}\n"
     "winding: {turns: 1, circuits: 2}\n";
 
+// Two helical layers on a pipe (lathe2, the default machine): each layer's stop names its eye
+// radius.
+const char* const kPipeLayupJob =
+    "name: layup\n"
+    "mandrel: {source: pipe, pipe: {radius: 50, length: 300}}\n"
+    "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
+    "winding: {turns: 2, circuits: auto, band_width: 10}\n"
+    "layers:\n  - {kind: helical, name: inner}\n  - {kind: helical, name: outer}\n"
+    "machine: {replay_tolerance: 1}\n"
+    "output: {ply: false, svg: false, viewer: false}\n";
+
 class CliSimulate : public CliTest {};
 
 TEST_F(CliSimulate, RunThenSimulateTheProgramWritesTheJson) {
@@ -53,14 +64,7 @@ TEST_F(CliSimulate, RunThenSimulateTheProgramWritesTheJson) {
 // within 1 mm (before: simulate replayed the layup's program against one layer on the bare
 // mandrel and refused it).
 TEST_F(CliSimulate, ALayupReplaysOnItsOwnSurfacesAsRunDoes) {
-  write(dir_ / "layup.yaml",
-        "name: layup\n"
-        "mandrel: {source: pipe, pipe: {radius: 50, length: 300}}\n"
-        "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
-        "winding: {turns: 2, circuits: auto, band_width: 10}\n"
-        "layers:\n  - {kind: helical, name: inner}\n  - {kind: helical, name: outer}\n"
-        "machine: {replay_tolerance: 1}\n"
-        "output: {ply: false, svg: false, viewer: false}\n");
+  write(dir_ / "layup.yaml", kPipeLayupJob);
   const RunResult w =
       run({"run", (dir_ / "layup.yaml").string(), "--out", (dir_ / "layup").string()});
   ASSERT_EQ(w.code, 0) << w.err;
@@ -241,14 +245,7 @@ TEST_F(CliSimulate, Lathe4LaysABoomAndAnOvalCanisterWithinTheReplayTolerance) {
 // replay (no JSON written). Before: two radii took the first, 0x49 read as 73 mm, a radius inside
 // the part was a deviation at a later line, 99999 mm replayed for more than 60 s.
 TEST_F(CliSimulate, BadEyeRadiusStopsAreOneLineExitOne) {
-  write(dir_ / "layup.yaml",
-        "name: layup\n"
-        "mandrel: {source: pipe, pipe: {radius: 50, length: 300}}\n"
-        "material: {tex: 2400, fibre_density: 1.8, fibre_volume_fraction: 0.6, tows: 8}\n"
-        "winding: {turns: 2, circuits: auto, band_width: 10}\n"
-        "layers:\n  - {kind: helical, name: inner}\n  - {kind: helical, name: outer}\n"
-        "machine: {replay_tolerance: 1}\n"
-        "output: {ply: false, svg: false, viewer: false}\n");
+  write(dir_ / "layup.yaml", kPipeLayupJob);
   ASSERT_EQ(run({"run", (dir_ / "layup.yaml").string(), "--out", (dir_ / "o").string()}).code, 0);
   std::ifstream in(dir_ / "o" / "toolpath.ngc");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

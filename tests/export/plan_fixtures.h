@@ -49,4 +49,16 @@ inline WindingPlan helix_plan(double R, double alpha_deg, double turns, int n, i
   return plan;
 }
 
+/// helix_plan(40, 50, 2, 600, 4) as a layup of two layers ("inner": circuits 0-1, "outer": 2-3).
+inline WindingPlan two_layer_helix_plan() {
+  WindingPlan plan = helix_plan(40, 50, 2, 600, 4);
+  plan.layers.resize(2);
+  plan.layers[0].name = "inner";
+  plan.layers[0].circuit_count = 2;
+  plan.layers[1].name = "outer";
+  plan.layers[1].first_circuit = 2;
+  plan.layers[1].circuit_count = 2;
+  return plan;
+}
+
 }  // namespace windplan::test

@@ -114,13 +114,7 @@ TEST(GcodeReader, AsStrictAsLinuxCnc) {
 // operator sets by hand; the moves after it carry it (0 before any stop: the machine's own).
 // Written by gcode_program in every dialect with the second layer's eye 6.25 mm further out.
 TEST(GcodeReader, Lathe2StopsNameEachLayersEyeRadius) {
-  WindingPlan plan = test::helix_plan(40, 50, 2, 600, 4);
-  plan.layers.resize(2);
-  plan.layers[0].name = "inner";
-  plan.layers[0].circuit_count = 2;
-  plan.layers[1].name = "outer";
-  plan.layers[1].first_circuit = 2;
-  plan.layers[1].circuit_count = 2;
+  WindingPlan plan = test::two_layer_helix_plan();
   for (const std::string dialect : {"linuxcnc", "marlin", "fanuc"}) {
     SCOPED_TRACE(dialect);
     const MachineOptions m = machine("lathe2", dialect);

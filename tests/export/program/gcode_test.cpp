@@ -103,13 +103,7 @@ void check_readback(const std::string& kind, const std::string& dialect) {
 // states): the layer's stop, its eye radius (lathe2) and the rapid that ties the tow on go
 // before its first circuit with points, as without the empty circuit (they were left out).
 TEST(Gcode, ALayerStartingWithAnEmptyCircuitKeepsItsStop) {
-  WindingPlan plan = test::helix_plan(40, 50, 2, 600, 4);
-  plan.layers.resize(2);
-  plan.layers[0].name = "inner";
-  plan.layers[0].circuit_count = 2;
-  plan.layers[1].name = "outer";
-  plan.layers[1].first_circuit = 2;
-  plan.layers[1].circuit_count = 2;
+  WindingPlan plan = test::two_layer_helix_plan();
   WindingPlan with_empty = plan;
   with_empty.circuits.insert(with_empty.circuits.begin() + 2, Circuit{});
   with_empty.layers[1].circuit_count = 3;
