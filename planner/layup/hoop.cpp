@@ -6,6 +6,7 @@
 #include "geometry/base/errors.h"
 #include "geometry/base/format_number.h"
 #include "planner/winding/fibre_metrics.h"
+#include "planner/winding/winding_options.h"
 
 namespace windplan {
 
@@ -38,8 +39,8 @@ bool HoopOptions::is_valid(std::string* why) const {
                 format_number("%.6g", overlap) + ")");
   }
   if (passes < 1) return fail("passes must be >= 1 (got " + std::to_string(passes) + ")");
-  if (!(mu > 0.0) || !std::isfinite(mu)) {
-    return fail("mu must be > 0 for a hoop layer: its reversals need friction (got " +
+  if (!(mu > 0.0 && mu <= kMaxMu)) {
+    return fail("mu must be in (0, 2] for a hoop layer: its reversals need friction (got " +
                 format_number("%.6g", mu) + ")");
   }
   if (!(reversal_friction > 0.0 && reversal_friction <= 1.0)) {

@@ -22,6 +22,10 @@ inline std::string format_turns(double n) {
 /// The most circuits a plan may have, given or auto (count; JobLimits::max_circuits).
 constexpr int kMaxCircuits = 10000;
 
+/// The largest friction coefficient a job may give (winding.mu): measured fibre-mandrel values are
+/// about 0.1-0.5.
+constexpr double kMaxMu = 2.0;
+
 struct WindingOptions {
   /// N: turns of each pass about the axis, from one end of the wound region to the other
   /// (turns, finite, > 0; need not be whole: a geodesic pass between the polar openings of a
@@ -35,7 +39,8 @@ struct WindingOptions {
   /// Density exponent: rho = (g / mean g)^(-beta) with g the girth (dimensionless, [0, 1]).
   /// 0: plain geodesics (most stable); 1: equally spaced helices.
   double beta = 0.0;
-  /// Friction coefficient between fibre and mandrel for the slippage check (dimensionless, >= 0).
+  /// Friction coefficient between fibre and mandrel for the slippage check (dimensionless, in
+  /// [0, 2]: measured fibre-mandrel values are about 0.1-0.5; above 2 is a typo, not a material).
   double mu = 0.2;
   /// Slippage lambda = |k_g / k_n| the planner may use on purpose (dimensionless, in [0, mu];
   /// 0: geodesic passes only). On shapes of revolution the passes then turn around by friction
@@ -97,8 +102,9 @@ struct WindingOptions {
     if (!(beta >= 0.0 && beta <= 1.0)) {
       return fail("beta must be in [0, 1] (got " + format_shortest(beta) + ")");
     }
-    if (!(mu >= 0.0) || !std::isfinite(mu)) {
-      return fail("mu must be >= 0 (got " + format_shortest(mu) + ")");
+    if (!(mu >= 0.0 && mu <= kMaxMu)) {
+      return fail("mu must be in [0, 2] (a fibre's friction coefficient on the mandrel; got " +
+                  format_shortest(mu) + ")");
     }
     if (!(slippage >= 0.0) || !std::isfinite(slippage)) {
       return fail("slippage must be >= 0 (got " + format_turns(slippage) + ")");

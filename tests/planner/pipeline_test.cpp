@@ -469,6 +469,7 @@ TEST(Pipeline, WindingSectionErrorsNameTheKey) {
   expect_error("  beta: 2\n", "beta");
   expect_error("  band_width: -1\n", "band_width");
   expect_error("  mu: -0.1\n", "mu");
+  expect_error("  mu: 1e9\n", "mu must be in [0, 2]");
   expect_error("  turn: 3\n", "turn");  // unknown key
   const Job a = load_job_from_string(
       "mandrel:\n  source: pipe\n  pipe: {radius: 40, length: 200}\nwinding:\n  circuits: auto\n",

@@ -144,6 +144,10 @@ TEST(Hoop, InvalidOptions) {
   EXPECT_FALSE(o.is_valid(&why));
   EXPECT_NE(why.find("mu"), std::string::npos);
   o = {};
+  o.mu = 1e9;
+  EXPECT_FALSE(o.is_valid(&why));
+  EXPECT_NE(why.find("mu must be in (0, 2]"), std::string::npos) << why;
+  o = {};
   o.x0 = 10.0;
   o.x1 = 5.0;
   EXPECT_FALSE(o.is_valid(&why));
