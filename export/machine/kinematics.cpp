@@ -191,6 +191,15 @@ void count_circuit_reversals(const Circuit& c, const std::vector<MachineState>& 
   });
 }
 
+// The eye of a clearance-eye solution, as the envelope's solver gives it.
+EyeSolution eye_solution(const ClearanceEye& ce) {
+  EyeSolution es;
+  es.eye = ce.eye;
+  es.free_length = ce.free_length;
+  es.iterations = ce.iterations;
+  return es;
+}
+
 }  // namespace
 
 Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const Mesh* mandrel,
@@ -324,12 +333,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     const Vec3 t = (std::sin((1.0 - f) * ang) * ta + std::sin(f * ang) * tb) / std::sin(ang);
     const ClearanceEye ce = solve_clearance_eye(mesh, q, p, t, clearance);
     if (ce.enters) ++cm->fibre_into_mandrel;
-    TurnedEye out;
-    out.t = t.normalized();
-    out.es.eye = ce.eye;
-    out.es.free_length = ce.free_length;
-    out.es.iterations = ce.iterations;
-    return out;
+    return TurnedEye{t.normalized(), eye_solution(ce)};
   };
   auto insert_corner_eyes = [&](const Mesh& mesh, const ClosestPointQuery& q, double clearance,
                                 const std::vector<double>& s_dense, std::vector<Vec3>* fibre,
@@ -430,15 +434,12 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
     if (!per_circuit[ci].tangent.empty()) last_tangent[ci] = per_circuit[ci].tangent.back();
   }
   if (true_distance) {
+    const std::vector<char> layer_start = layer_start_circuits(plan);
     int prev_ordinal = -1;
     for (std::size_t ci = 0; ci < plan.circuits.size(); ++ci) {
       const Circuit& c = plan.circuits[ci];
       if (c.points.empty()) continue;
-      bool layer_start = false;
-      for (const LayerSummary& l : plan.layers) {
-        if (l.first_circuit == static_cast<int>(ci)) layer_start = true;
-      }
-      if (prev_ordinal >= 0 && !layer_start && surface_of[prev_ordinal] == surface_of[ci] &&
+      if (prev_ordinal >= 0 && !layer_start[ci] && surface_of[prev_ordinal] == surface_of[ci] &&
           (plan.circuits[prev_ordinal].points.back().position - c.points.front().position).norm() <=
               1e-6) {
         link_from[ci] = prev_ordinal;
@@ -519,9 +520,7 @@ Motion compute_motion(const WindingPlan& plan, const MachineOptions& opts, const
           if (true_distance) {
             const ClearanceEye ce =
                 solve_clearance_eye(*surface, *surface_query, fibre[i], tangent[i], eye_clearance);
-            sol[i].eye = ce.eye;
-            sol[i].free_length = ce.free_length;
-            sol[i].iterations = ce.iterations;
+            sol[i] = eye_solution(ce);
             if (ce.enters) ++cm.fibre_into_mandrel;
           } else {
             sol[i] =

@@ -319,23 +319,10 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   std::vector<char> held;          // on a turnaround: a pin ring or boss holds the fibre there
   std::vector<int> tie_on;         // index in `planned` of each later layer's first point, sorted
   const CircuitSurfaces surfaces_of = distinct_circuit_surfaces(plan, mandrel, circuit_surfaces);
-  // Circuits that start a layer; a layer whose first circuits have no points starts at the next
-  // circuit that has some, and a layer of no circuits starts none.
-  std::vector<char> starts_layer(plan.circuits.size() + 1, 0);
-  for (const LayerSummary& l : plan.layers) {
-    if (l.circuit_count > 0 && l.first_circuit >= 0 &&
-        l.first_circuit < static_cast<int>(plan.circuits.size())) {
-      starts_layer[l.first_circuit] = 1;
-    }
-  }
-  bool layer_pending = false;  // a layer started at a circuit with no points
+  const std::vector<char> starts_layer = layer_start_circuits(plan);
   for (std::size_t ci = 0; ci < plan.circuits.size(); ++ci) {
     const Circuit& c = plan.circuits[ci];
-    layer_pending = layer_pending || starts_layer[ci];
-    if (layer_pending && !c.points.empty()) {
-      if (!planned.empty()) tie_on.push_back(static_cast<int>(planned.size()));
-      layer_pending = false;
-    }
+    if (starts_layer[ci] && !planned.empty()) tie_on.push_back(static_cast<int>(planned.size()));
     std::vector<char> on_turn(c.points.size(), 0);
     for (const CircuitSegment& seg : c.segments) {
       if (seg.kind != CircuitSegment::Kind::Turnaround) continue;
@@ -432,7 +419,7 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
   };
   const Surface* surf = surface_at(0);
   ReplayResult r;
-  r.eye_radius_by_hand = machine.kind == "lathe2";
+  r.eye_radius_by_hand = lathe2;
   r.blocks = static_cast<int>(program.blocks.size());
   r.min_clearance = std::numeric_limits<double>::infinity();
   Surface::Point P;

@@ -71,12 +71,10 @@ RobotMotion compute_robot_motion(const Motion& motion, const WindingPlan& plan,
   m.min_wrist_angle = std::numeric_limits<double>::infinity();
   const Eigen::Isometry3d tool_inv = m.tool.inverse();
 
-  // Layer starts: the tow is tied on again there.
+  // Layer starts: the tow is tied on again there (per circuit ordinal).
+  const std::vector<char> starts_layer = layer_start_circuits(plan);
   auto layer_start = [&](int ordinal) {
-    for (const LayerSummary& l : motion.layers) {
-      if (l.first_circuit == ordinal) return true;
-    }
-    return false;
+    return ordinal >= 0 && ordinal < static_cast<int>(starts_layer.size()) && starts_layer[ordinal];
   };
 
   // E1 monotone and smooth within every circuit (export/robot/positioner_e1.h); the arm puts the

@@ -5,6 +5,7 @@
 // Frames: all positions and directions are in the mandrel frame (the frame of the mesh).
 // The spindle axis is a line (origin, unit direction) in that frame; "axial position" of a point
 // p is (p - origin) . direction, its "radius" the distance from the axis line.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -215,5 +216,23 @@ struct WindingPlan {
   /// for a job without `layers:`.
   std::vector<LayerSummary> layers;
 };
+
+/// Per circuit of a layup's plan, 1 at the circuit where a layer starts (the tow is tied on
+/// there): the layer's first circuit that has points; a layer whose first circuits have none
+/// starts at the next one that has, and a layer with no circuit that has points starts nowhere.
+/// All 0 for a plan without layers.
+inline std::vector<char> layer_start_circuits(const WindingPlan& plan) {
+  const int n = static_cast<int>(plan.circuits.size());
+  std::vector<char> starts(plan.circuits.size(), 0);
+  for (const LayerSummary& l : plan.layers) {
+    const int end = std::min(n, l.first_circuit + l.circuit_count);
+    for (int c = std::max(0, l.first_circuit); c < end; ++c) {
+      if (plan.circuits[c].points.empty()) continue;
+      starts[c] = 1;
+      break;
+    }
+  }
+  return starts;
+}
 
 }  // namespace windplan
