@@ -73,6 +73,8 @@ struct alignas(64) Window {
   int parent;     // window propagated into this one; < 0: lit by vertex -(parent + 1)
   int next = -1;  // the next window on the same edge (Scratch::head), -1: last
   char state = kQueued;
+  char linked = 0;  // in its halfedge's list
+  char pinned = 0;  // a full run keeps its slot: it gave a saddle vertex its distance
   double b0, b1;
   Vec2 source;         // I in h's frame
   double sigma;        // distance of the pseudo-source from the source
@@ -170,7 +172,8 @@ class Search {
         queue_(scratch_.queue),
         outgoing_(scratch_.outgoing),
         best_(options.upper_bound),
-        distance_order_(target < 0 || std::isfinite(options.upper_bound)) {
+        distance_order_(target < 0 || std::isfinite(options.upper_bound)),
+        recycle_(target < 0 && options.reuse_windows) {
     scratch_.begin(mesh);
     if (landmarks_ != nullptr) {
       const int k = landmarks_->count;
@@ -209,9 +212,11 @@ class Search {
       // Keys never exceed bounds: once a key reaches the best length, every bound left does.
       if (e.key >= best_) break;
       if (e.index >= 0) {
-        if (windows_[e.index].bound >= best_) continue;
-        propagate(e.index);
-        ++result.windows_propagated;
+        if (windows_[e.index].bound < best_) {
+          propagate(e.index);
+          ++result.windows_propagated;
+        }
+        if (recycle_) release(e.index);
       } else {
         // Expanded once per distance it gets: the first of its events to come out expands it
         // at its current distance, the others are stale.
@@ -223,7 +228,8 @@ class Search {
         }
       }
     }
-    result.windows = static_cast<long>(windows_.size());
+    result.windows = created_;
+    result.window_slots = static_cast<long>(windows_.size());
     result.vertex_events = vertex_events_;
     result.complete = !aborted_;
     if (target_ < 0 || aborted_ || !(dist(target_) < options_.upper_bound)) return result;
@@ -246,6 +252,8 @@ class Search {
     if (!(d < dist(v))) return;
     VertexRecord& r = scratch_.vertices[v];
     r = VertexRecord{scratch_.stamp, window, from_vertex, d, false};
+    // Its expansion reads the providing window (continuation_range): that slot is kept.
+    if (recycle_ && window >= 0 && pseudo_[v]) windows_[window].pinned = 1;
     if (v == target_) {
       best_ = std::min(best_, d);
       return;
@@ -398,16 +406,49 @@ class Search {
   // `order`: the queue key; `bound`: the A* bound against the best length.
   void push_window(const Window& w, double order, double bound) {
     if (!(bound < best_)) return;
-    const int index = static_cast<int>(windows_.size());
+    int index = static_cast<int>(windows_.size());
+    if (!free_.empty()) {
+      index = free_.back();
+      free_.pop_back();
+      windows_[index] = w;
+    } else {
+      windows_.push_back(w);
+    }
     int& first = insert_after_ >= 0 ? windows_[insert_after_].next : head(w.h);
-    const int next = first;
+    Window& x = windows_[index];
+    x.next = first;
+    if (recycle_) {
+      if (before_.size() < windows_.size()) before_.resize(windows_.size());
+      before_[index] = insert_after_;
+      if (first >= 0) before_[first] = index;
+    }
     first = index;
-    windows_.push_back(w);
-    windows_.back().bound = bound;
-    windows_.back().next = next;
+    x.bound = bound;
+    x.linked = 1;
     push({order, index});
-    if (options_.max_windows > 0 && static_cast<long>(windows_.size()) > options_.max_windows)
-      aborted_ = true;
+    ++created_;
+    if (options_.max_windows > 0 && created_ > options_.max_windows) aborted_ = true;
+  }
+
+  // A full run's window, out of the queue, gives its slot to a later one (unless a saddle's
+  // expansion will read it): only the wavefront stays in memory (bench/README.md, session 11:
+  // 13.6M windows made at 300K faces, a few 10K alive at a time).
+  void release(int index) {
+    Window& w = windows_[index];
+    if (w.pinned) return;
+    if (w.linked) {
+      const int before = before_[index];
+      unlink(before >= 0 ? &windows_[before].next : &head(w.h), before, w);
+    }
+    free_.push_back(index);
+  }
+
+  // Takes o, which *link names (the next of window `before`, or its halfedge's head when
+  // before < 0), out of its halfedge's list.
+  void unlink(int* link, int before, Window& o) {
+    *link = o.next;
+    if (recycle_ && o.next >= 0) before_[o.next] = before;
+    o.linked = 0;
   }
 
   // The endpoint vertices' distances along the edge against the window's: g_A(x) = d(A) + x -
@@ -462,10 +503,11 @@ class Search {
       HalfedgeRecord& r = scratch_.halfedges[sides[side]];
       if (r.stamp != scratch_.stamp) continue;
       int* link = &r.head;
+      int before = -1;  // the window whose next is *link (-1: the head)
       while (*link >= 0) {
         Window& o = windows_[*link];
         if (o.state != Window::kQueued) {
-          *link = o.next;
+          unlink(link, before, o);
           continue;
         }
         // A halfedge's list is kept in the order of b0 (new windows are inserted there; a cut
@@ -539,9 +581,10 @@ class Search {
           }
         }
         if (o_beaten) {
-          *link = o.next;
+          unlink(link, before, o);
         } else {
           if (side == 0 && o.b0 <= w->b0) insert_after_ = *link;
+          before = *link;
           link = &o.next;
         }
       }
@@ -689,6 +732,11 @@ class Search {
   double best_;
   int insert_after_ = -1;  // compete's place for w in its halfedge's list (-1: the head)
   const bool distance_order_;
+  // A full run (no target, no path to build) reuses the slots of windows out of the queue.
+  const bool recycle_;
+  std::vector<int> free_;
+  std::vector<int> before_;  // per window slot: the one before it in its list (-1: the head)
+  long created_ = 0;
   long vertex_events_ = 0;
   bool aborted_ = false;
 };
@@ -733,10 +781,14 @@ void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
 }  // namespace
 
 std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
-                                                  int source) {
+                                                  int source, const WindowSearchOptions& options,
+                                                  WindowSearchResult* stats) {
   check_inputs(mesh, window_mesh, {source});
-  Search search(mesh, window_mesh, source, -1, WindowSearchOptions{});
-  search.run();
+  std::string why;
+  if (!options.is_valid(&why)) throw ConfigError("window search: " + why);
+  Search search(mesh, window_mesh, source, -1, options);
+  const WindowSearchResult r = search.run();
+  if (stats != nullptr) *stats = r;
   return search.distances();
 }
 

@@ -44,6 +44,11 @@ struct WindowSearchOptions {
   /// about 100 bytes per window with its queue entry (bench/README.md, session 6: median 10K
   /// windows at 20K faces, 274K and a p90 of 1.35M at 300K faces).
   long max_windows = 0;
+  /// A full run (geodesic_distances_by_windows) gives the slot of a window out of the queue to
+  /// a later one, so that only the wavefront stays in memory (at 300K faces 106 MB against
+  /// 1.17 GB, bench/README.md, session 11). No effect on a search to a target, whose path is
+  /// built back through its windows.
+  bool reuse_windows = true;
 
   bool is_valid(std::string* why) const;
 };
@@ -60,6 +65,7 @@ struct WindowSearchResult {
   SurfacePath path;
   std::vector<int> vertices_passed;  ///< pseudo-source vertices on the path, source side first
   long windows = 0;                  ///< windows created
+  long window_slots = 0;             ///< the most windows held in memory at once
   long windows_propagated = 0;       ///< windows taken from the queue and propagated
   long vertex_events = 0;            ///< pseudo-source vertices expanded
   double time_ms = 0.0;
@@ -100,8 +106,11 @@ Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh, int
 /// Exact geodesic distances from vertex `source` to every vertex (+infinity on other
 /// components): the full window propagation.
 /// \throw InputError when the vertex is out of range.
+/// `stats` (optional) receives the run's counts (no distance, path or time).
 std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
-                                                  int source);
+                                                  int source,
+                                                  const WindowSearchOptions& options = {},
+                                                  WindowSearchResult* stats = nullptr);
 
 /// The shortest path from vertex `source` to vertex `target` if it is shorter than
 /// options.upper_bound. `window_mesh` is prepare_window_mesh(mesh); `landmarks` (optional)

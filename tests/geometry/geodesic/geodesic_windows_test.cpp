@@ -173,6 +173,42 @@ TEST(WindowSearch, FullFieldAndLandmarksEqualCgal) {
   }
 }
 
+// A full run gives the slots of windows out of the queue to later ones and keeps only those
+// whose rays reached a saddle vertex (its expansion reads the arrival direction from it): on
+// meshes with many saddles (hills and a pit, a rough torus) every vertex's distance equals
+// CGAL's, from several sources; the run makes the same windows and vertex events as without
+// reuse (a saddle that misread its arrival would light all its faces and make more), bit for bit
+// the same field, and holds far fewer windows at once.
+TEST(WindowSearch, FullFieldWithReusedWindowSlotsEqualsCgal) {
+  for (const bool torus : {false, true}) {
+    const Mesh mesh = torus ? Mesh(rough_torus(0.03, 11)) : Mesh(hills(24, 10.0));
+    const WindowMesh wm = prepare_window_mesh(mesh);
+    std::vector<SurfacePoint> all;
+    for (int v = 0; v < mesh.num_vertices(); ++v) all.push_back(SurfacePoint::at_vertex(v));
+    int saddles = 0;
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+      saddles += !mesh.is_boundary_vertex(v) && wm.pseudo_source[v];
+    EXPECT_GT(saddles, 30) << (torus ? "torus" : "hills");
+    for (const int source : {0, mesh.num_vertices() / 3, mesh.num_vertices() - 1}) {
+      const std::vector<double> exact =
+          exact_geodesic_distances(mesh, SurfacePoint::at_vertex(source), all);
+      WindowSearchResult reused, kept;
+      const std::vector<double> field = geodesic_distances_by_windows(mesh, wm, source, {}, &reused);
+      for (int v = 0; v < mesh.num_vertices(); ++v)
+        ASSERT_NEAR(field[v], exact[v], 1e-12 * (1.0 + exact[v]))
+            << (torus ? "torus" : "hills") << ": " << source << " -> " << v;
+      WindowSearchOptions no_reuse;
+      no_reuse.reuse_windows = false;
+      EXPECT_EQ(geodesic_distances_by_windows(mesh, wm, source, no_reuse, &kept), field);
+      EXPECT_EQ(reused.windows, kept.windows);
+      EXPECT_EQ(reused.vertex_events, kept.vertex_events);
+      EXPECT_EQ(kept.window_slots, kept.windows);
+      EXPECT_LT(reused.window_slots * 3, reused.windows)
+          << reused.window_slots << " slots for " << reused.windows << " windows";
+    }
+  }
+}
+
 // The landmark bound of an edge interval never exceeds the exact distance from the target to any
 // point of the interval (CGAL's, at sampled points), is at least the plain per-end bracket's
 // (d(L, a) +- s1, d(L, b) +- (length - s0)), and is far from zero for targets far from x.
