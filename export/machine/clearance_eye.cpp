@@ -90,9 +90,17 @@ ClearanceEye solve_clearance_eye(const Mesh& mesh, const ClosestPointQuery& quer
       throw InputError(at + buf);
     }
   }
+  // Only whether a point is nearer than the clearance matters here: a query bounded just above
+  // it prunes the far parts of the mesh, and when it finds a point, that is closest()'s hit.
+  const double bound = clearance * (1.0 + 1e-9) + 1e-9;
+  auto nearer_than_clearance = [&](double l) {
+    const ClosestPointQuery::Hit h = query.closest_within(p + l * t, bound * bound);
+    ++s.iterations;
+    return h.point.element >= 0 && h.distance < clearance;
+  };
   while (hi - lo > tolerance) {
     const double mid = 0.5 * (lo + hi);
-    if (dist(mid) < clearance) {
+    if (nearer_than_clearance(mid)) {
       lo = mid;
     } else {
       hi = mid;

@@ -92,8 +92,12 @@ class Surface {
   /// The closest point with its interpolated normal. On a crease (an edge or vertex shared by
   /// faces more than 40 deg apart, e.g. a tube's rim) the face whose normal is closest to `ref`
   /// (the walking contact's normal) is taken, so that the walk stays on its side of the crease.
-  Point project(const Vec3& q, const Vec3* ref = nullptr) const {
-    const ClosestPointQuery::Hit h = query_.closest(q);
+  /// `within` (mm): a surface point is known to lie within it of q (the query then prunes far
+  /// parts of the mesh early and gives the same hit).
+  Point project(const Vec3& q, const Vec3* ref = nullptr,
+                double within = std::numeric_limits<double>::infinity()) const {
+    ClosestPointQuery::Hit h = query_.closest_within(q, within * within);
+    if (h.point.element < 0) h = query_.closest(q);
     Point out;
     out.p = h.position;
     int f = containing_face(mesh_, h.point);
@@ -164,7 +168,10 @@ void advance(const Surface& surf, const Vec3& eye, Surface::Point* P, double* h_
     if (!(wn > 1e-12)) return;
     const Vec3 dir = w.normalized();
     const Vec3 ref = P->n;
-    auto at = [&](double h) { return surf.project(P->p + h * dir, &ref); };
+    // P is on the surface, |h dir| from the point projected.
+    auto at = [&](double h) {
+      return surf.project(P->p + h * dir, &ref, std::abs(h) * (1.0 + 1e-9) + 1e-9);
+    };
     double h_lo = 0.0, f_lo = f0;
     Surface::Point lo = *P, hi;
     double h = std::clamp(*h_guess, 1e-4, wn), f_hi = 0.0;

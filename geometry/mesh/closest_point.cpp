@@ -60,6 +60,13 @@ ClosestPointQuery::ClosestPointQuery(const Mesh& mesh) : mesh_(mesh) {
   }
   nodes_.reserve(2 * static_cast<std::size_t>(nf / 4 + 1));
   if (nf > 0) build(0, nf);
+  // The leaves' corners side by side in the hierarchy's order: a leaf reads one stretch of
+  // memory instead of three vertex records per face at random places.
+  corners_.resize(3 * static_cast<std::size_t>(nf));
+  for (int i = 0; i < nf; ++i) {
+    const Tri& t = mesh.triangle(order_[i]);
+    for (int k = 0; k < 3; ++k) corners_[3 * static_cast<std::size_t>(i) + k] = mesh.position(t[k]);
+  }
 }
 
 int ClosestPointQuery::build(int begin, int end) {
@@ -105,34 +112,40 @@ ClosestPointQuery::Hit ClosestPointQuery::closest_within(const Vec3& q, double b
     const Vec3 d = (n.lo - q).cwiseMax(q - n.hi).cwiseMax(Vec3::Zero());
     return d.squaredNorm();
   };
-  std::vector<int> stack = {0};
-  while (!stack.empty()) {
-    const int id = stack.back();
-    stack.pop_back();
-    const Node& n = nodes_[id];
-    if (box_dist2(n) >= best2) continue;
+  // Nodes to visit with their boxes' squared distances (computed once, when pushed). The
+  // median split keeps the depth near log2(F / 4), and the stack holds at most one node per
+  // level beside the path down.
+  struct Entry {
+    int id;
+    double dist2;
+  };
+  Entry stack[2 * kMaxDepth];
+  int top = 0;
+  stack[top++] = {0, box_dist2(nodes_[0])};
+  while (top > 0) {
+    const Entry e = stack[--top];
+    if (e.dist2 >= best2) continue;
+    const Node& n = nodes_[e.id];
     if (n.left < 0) {
       for (int i = n.begin; i < n.end; ++i) {
-        const int f = order_[i];
-        const Tri& t = mesh_.triangle(f);
+        const Vec3* t = &corners_[3 * static_cast<std::size_t>(i)];
         Vec3 b;
-        const Vec3 c = closest_point_on_triangle(q, mesh_.position(t[0]), mesh_.position(t[1]),
-                                                 mesh_.position(t[2]), &b);
+        const Vec3 c = closest_point_on_triangle(q, t[0], t[1], t[2], &b);
         const double d2 = (c - q).squaredNorm();
         if (d2 < best2) {
           best2 = d2;
-          best.point = SurfacePoint::in_face(f, b);
+          best.point = SurfacePoint::in_face(order_[i], b);
           best.position = c;
         }
       }
     } else {
       const double dl = box_dist2(nodes_[n.left]), dr = box_dist2(nodes_[n.right]);
       if (dl < dr) {
-        stack.push_back(n.right);
-        stack.push_back(n.left);
+        stack[top++] = {n.right, dr};
+        stack[top++] = {n.left, dl};
       } else {
-        stack.push_back(n.left);
-        stack.push_back(n.right);
+        stack[top++] = {n.left, dl};
+        stack[top++] = {n.right, dr};
       }
     }
   }

@@ -33,8 +33,11 @@ class ClosestPointQuery {
     int begin = 0, end = 0;     // face range in order_ for leaves
   };
   int build(int begin, int end);
+  /// Deepest hierarchy: a median split of leaves of <= 4 faces stays far below it.
+  static constexpr int kMaxDepth = 64;
   const Mesh& mesh_;
   std::vector<int> order_;
+  std::vector<Vec3> corners_;  ///< 3 per face, in order_'s order
   std::vector<Node> nodes_;
   std::vector<Vec3> centroid_;
 };
