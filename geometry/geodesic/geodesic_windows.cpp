@@ -153,6 +153,13 @@ struct Scratch {
   }
 };
 
+// One set of buffers per thread, shared by both kinds of search (a thread that builds landmark
+// fields and then searches paths keeps one, not two).
+Scratch& thread_scratch() {
+  static thread_local Scratch scratch;
+  return scratch;
+}
+
 // kReuse: a full run that gives the slots of windows out of the queue to later ones (its own
 // instantiation, so that the searches to a target, which build their path back through their
 // windows, pay nothing for the bookkeeping: 4-8 % per path when it was a run-time flag).
@@ -242,10 +249,6 @@ class Search {
   }
 
  private:
-  static Scratch& thread_scratch() {
-    static thread_local Scratch scratch;
-    return scratch;
-  }
   double dist(int v) const {
     const VertexRecord& r = scratch_.vertices[v];
     return r.stamp == scratch_.stamp ? r.dist : std::numeric_limits<double>::infinity();
@@ -794,6 +797,9 @@ std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const Window
   check_inputs(mesh, window_mesh, {source});
   std::string why;
   if (!options.is_valid(&why)) throw ConfigError("window search: " + why);
+  // A bound or a cap would leave some distances too long or missing without a word.
+  if (options.max_windows != 0 || std::isfinite(options.upper_bound))
+    throw ConfigError("window search: a full run takes neither max_windows nor upper_bound");
   const auto full_run = [&](auto&& search) {
     const WindowSearchResult r = search.run();
     if (stats != nullptr) *stats = r;

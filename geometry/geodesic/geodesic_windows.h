@@ -40,9 +40,10 @@ namespace windplan {
 struct WindowSearchOptions {
   /// Only paths strictly shorter than this are looked for (mesh units; +infinity: any).
   double upper_bound = std::numeric_limits<double>::infinity();
-  /// Give up (complete = false) after this many windows were created (0: no limit). Memory is
-  /// about 100 bytes per window with its queue entry (bench/README.md, session 6: median 10K
-  /// windows at 20K faces, 274K and a p90 of 1.35M at 300K faces).
+  /// Give up (complete = false) after this many windows were created (0: no limit; searches to
+  /// a target only). A search to a target holds every window it makes, about 100 bytes each
+  /// with its queue entry (bench/README.md, session 6: median 10K windows at 20K faces, 274K and
+  /// a p90 of 1.35M at 300K faces).
   long max_windows = 0;
   /// A full run (geodesic_distances_by_windows) gives the slot of a window out of the queue to
   /// a later one, so that only the wavefront stays in memory (at 300K faces 106 MB against
@@ -106,7 +107,8 @@ Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh, int
 /// Exact geodesic distances from vertex `source` to every vertex (+infinity on other
 /// components): the full window propagation.
 /// \throw InputError when the vertex is out of range.
-/// `stats` (optional) receives the run's counts (no distance, path or time).
+/// `stats` (optional) receives the run's counts (no distance, path or time). `options` may only
+/// switch reuse_windows (a full run has no upper_bound and no max_windows: ConfigError).
 std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
                                                   int source,
                                                   const WindowSearchOptions& options = {},

@@ -21,8 +21,8 @@ class ClosestPointQuery {
   /// The closest surface point to q. An empty mesh gives distance = +inf and point.element -1.
   Hit closest(const Vec3& q) const;
   /// The closest surface point to q among those strictly nearer than sqrt(bound2) (mm^2): when
-  /// there is one, the same hit as closest(q) (the same nodes are visited in the same order,
-  /// only fewer pruned late); otherwise distance = +inf and point.element -1. For a minimum over
+  /// there is one, the same hit as closest(q) (it visits a subset of closest(q)'s nodes in the
+  /// same order, pruning more of them); otherwise distance = +inf and point.element -1. For a minimum over
   /// many points, whose far ones are then rejected near the tree's root.
   Hit closest_within(const Vec3& q, double bound2) const;
 

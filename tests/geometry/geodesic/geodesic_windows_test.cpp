@@ -207,6 +207,14 @@ TEST(WindowSearch, FullFieldWithReusedWindowSlotsEqualsCgal) {
           << reused.window_slots << " slots for " << reused.windows << " windows";
     }
   }
+  // A full run with a bound or a cap would leave distances too long or missing: refused.
+  const Mesh small(hills(8, 10.0));
+  const WindowMesh wm = prepare_window_mesh(small);
+  WindowSearchOptions capped, bounded;
+  capped.max_windows = 100;
+  bounded.upper_bound = 1.0;
+  EXPECT_THROW(geodesic_distances_by_windows(small, wm, 0, capped), ConfigError);
+  EXPECT_THROW(geodesic_distances_by_windows(small, wm, 0, bounded), ConfigError);
 }
 
 // The landmark bound of an edge interval never exceeds the exact distance from the target to any
