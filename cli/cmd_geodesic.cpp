@@ -93,7 +93,7 @@ const char* const kGeodesicHelp =
     "                     take 7.3 s on 2 cores and cut the median path from 31 to 15.5 ms:\n"
     "                     worth it past about 500 pairs; Euclidean metric only). Each field\n"
     "                     is a full window propagation holding only its wavefront: at 300K\n"
-    "                     faces 8 fields took 35 s on 2 threads, 0.54 GB (bench/README.md)\n"
+    "                     faces 8 fields took 35 s on 2 threads, 0.56 GB (bench/README.md)\n"
     "  --exact            also compute the exact polyhedral geodesic distance (CGAL, Euclidean\n"
     "                     metric only; seconds and GBs above 100K faces) and the relative\n"
     "                     excess (length - exact) / exact; JSON keys exact_length, excess\n"
