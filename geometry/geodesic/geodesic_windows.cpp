@@ -415,7 +415,9 @@ class Search {
   void push_window(const Window& w, double order, double bound) {
     if (!(bound < best_)) return;
     int index = static_cast<int>(windows_.size());
-    if (!free_.empty()) {
+    bool reused = false;
+    if constexpr (kReuse) reused = !free_.empty();  // only a full run frees slots
+    if (reused) {
       index = free_.back();
       free_.pop_back();
       windows_[index] = w;
