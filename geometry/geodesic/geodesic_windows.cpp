@@ -31,8 +31,10 @@ bool WindowSearchOptions::is_valid(std::string* why) const {
   return true;
 }
 
-WindowMesh prepare_window_mesh(const Mesh& mesh) {
+WindowMesh prepare_window_mesh(const Mesh& original) {
   WindowMesh w;
+  w.order = order_for_locality(original);
+  const Mesh& mesh = w.order.mesh;
   w.pseudo_source.assign(mesh.num_vertices(), 0);
   constexpr double kTwoPi = 6.283185307179586;
   for (int v = 0; v < mesh.num_vertices(); ++v) {
@@ -170,16 +172,19 @@ Scratch& thread_scratch() {
 template <bool kReuse>
 class Search {
  public:
-  // target < 0: every vertex's distance (Dijkstra order, no bound).
-  Search(const Mesh& mesh, const WindowMesh& window_mesh, int source, int target,
+  // On the window mesh's renumbered copy: source and target are its vertices (target < 0:
+  // every vertex's distance, Dijkstra order, no bound). Landmark fields are in the original
+  // numbering.
+  Search(const WindowMesh& window_mesh, int source, int target,
          const WindowSearchOptions& options, const Landmarks* landmarks = nullptr)
-      : mesh_(mesh),
+      : mesh_(window_mesh.order.mesh),
+        original_(window_mesh.order.vertex_from_local.data()),
         pseudo_(window_mesh.pseudo_source),
         frame_(window_mesh.frame.data()),
         source_(source),
         target_(target),
         options_(options),
-        target_position_(target >= 0 ? mesh.position(target) : Vec3::Zero()),
+        target_position_(target >= 0 ? mesh_.position(target) : Vec3::Zero()),
         landmarks_(target >= 0 && landmarks != nullptr && landmarks->count > 0 ? landmarks
                                                                                : nullptr),
         scratch_(thread_scratch()),
@@ -188,11 +193,12 @@ class Search {
         outgoing_(scratch_.outgoing),
         best_(options.upper_bound),
         distance_order_(target < 0 || std::isfinite(options.upper_bound)) {
-    scratch_.begin(mesh);
+    scratch_.begin(mesh_);
     if (landmarks_ != nullptr) {
       const int k = landmarks_->count;
-      target_landmark_.assign(landmarks_->dist.begin() + static_cast<std::size_t>(target) * k,
-                              landmarks_->dist.begin() + static_cast<std::size_t>(target + 1) * k);
+      const std::size_t t = original_[target];
+      target_landmark_.assign(landmarks_->dist.begin() + t * k,
+                              landmarks_->dist.begin() + (t + 1) * k);
     }
   }
 
@@ -392,8 +398,9 @@ class Search {
     double key = w.sigma + norm(X - I) + norm(T - X);
     if (landmarks_ != nullptr) {
       key = std::max(
-          key, nearest + landmark_edge_bound(*landmarks_, target_landmark_.data(), mesh_.from(w.h),
-                                             mesh_.to(w.h), len, w.b0, w.b1));
+          key, nearest + landmark_edge_bound(*landmarks_, target_landmark_.data(),
+                                             original_[mesh_.from(w.h)], original_[mesh_.to(w.h)],
+                                             len, w.b0, w.b1));
     }
     push_window(w, distance_order_ ? nearest : key, key);
   }
@@ -402,7 +409,7 @@ class Search {
   double landmark_bound(int v) const {
     if (landmarks_ == nullptr) return 0.0;
     const int k = landmarks_->count;
-    const double* lv = landmarks_->dist.data() + static_cast<std::size_t>(v) * k;
+    const double* lv = landmarks_->dist.data() + static_cast<std::size_t>(original_[v]) * k;
     double bound = 0.0;
     for (int i = 0; i < k; ++i)
       bound = std::max({bound, target_landmark_[i] - lv[i], lv[i] - target_landmark_[i]});
@@ -750,7 +757,8 @@ class Search {
     return true;
   }
 
-  const Mesh& mesh_;
+  const Mesh& mesh_;      // the renumbered copy
+  const int* original_;  // its vertex -> the original vertex
   const std::vector<char>& pseudo_;
   const double* frame_;
   const int source_, target_;
@@ -805,7 +813,10 @@ void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
                        std::to_string(mesh.num_vertices()) + " vertices)");
     }
   }
-  if (static_cast<int>(window_mesh.pseudo_source.size()) != mesh.num_vertices() ||
+  const Mesh& local = window_mesh.order.mesh;
+  if (local.num_vertices() != mesh.num_vertices() || local.num_faces() != mesh.num_faces() ||
+      local.num_halfedges() != mesh.num_halfedges() ||
+      static_cast<int>(window_mesh.pseudo_source.size()) != mesh.num_vertices() ||
       window_mesh.frame.size() != 3 * static_cast<std::size_t>(mesh.num_interior_halfedges())) {
     throw ConfigError("window search: the window mesh (prepare_window_mesh) is not this mesh's");
   }
@@ -825,11 +836,14 @@ std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const Window
   const auto full_run = [&](auto&& search) {
     const WindowSearchResult r = search.run();
     if (stats != nullptr) *stats = r;
-    return search.distances();
+    const std::vector<double> local = search.distances();
+    std::vector<double> d(local.size());
+    for (std::size_t v = 0; v < d.size(); ++v) d[v] = local[window_mesh.order.vertex_to_local[v]];
+    return d;
   };
-  if (options.reuse_windows)
-    return full_run(Search<true>(mesh, window_mesh, source, -1, options));
-  return full_run(Search<false>(mesh, window_mesh, source, -1, options));
+  const int s = window_mesh.order.vertex_to_local[source];
+  if (options.reuse_windows) return full_run(Search<true>(window_mesh, s, -1, options));
+  return full_run(Search<false>(window_mesh, s, -1, options));
 }
 
 Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh, int count) {
@@ -884,8 +898,16 @@ WindowSearchResult shortest_path_by_windows(const Mesh& mesh, const WindowMesh& 
       landmarks->dist.size() != static_cast<std::size_t>(mesh.num_vertices()) * landmarks->count)
     throw ConfigError("window search: landmark fields do not match the mesh");
   WindowSearchResult result;
-  if (source != target)
-    result = Search<false>(mesh, window_mesh, source, target, options, landmarks).run();
+  if (source != target) {
+    const MeshOrder& order = window_mesh.order;
+    result = Search<false>(window_mesh, order.vertex_to_local[source],
+                           order.vertex_to_local[target], options, landmarks)
+                 .run();
+    if (result.found) {
+      result.path = order.path_from_local(mesh, result.path);
+      for (int& v : result.vertices_passed) v = order.vertex_from_local[v];
+    }
+  }
   result.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   return result;
 }

@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "geometry/mesh/mesh.h"
+#include "geometry/mesh/mesh_order.h"
 #include "geometry/mesh/surface_path.h"
 
 namespace windplan {
@@ -76,8 +77,11 @@ struct WindowSearchResult {
   double time_ms = 0.0;
 };
 
-/// Per-mesh data of the window search, built once per mesh (O(V + F)).
+/// Per-mesh data of the window search, built once per mesh (O(V log V + F log F)). The search
+/// runs on a copy of the mesh renumbered for memory locality (geometry/mesh/mesh_order.h) and
+/// answers in the mesh's own numbering; the arrays below are in the copy's.
 struct WindowMesh {
+  MeshOrder order;
   /// Per vertex: 1 for the vertices geodesics may pass through (saddle: cone angle >=
   /// 2 pi - 1e-9, flat and boundary vertices), 0 for the others.
   std::vector<char> pseudo_source;
