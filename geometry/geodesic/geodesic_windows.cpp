@@ -67,9 +67,9 @@ double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
 double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
 double norm(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 
-// One cache line: the walk along an edge's windows (Search::compete) reads the b0, b1, next
-// and state of one listed window after another, at random places in memory (7.4 windows per
-// new window at 100K faces, most not overlapping it: bench/README.md, session 9).
+// One cache line: the walk along an edge's windows (Search::compete) reads the b0, b1 and next
+// of one listed window after another, at random places in memory (8.4 windows per new window
+// at 100K faces, most not overlapping it: bench/README.md, sessions 9 and 12).
 struct alignas(64) Window {
   int h;          // its edge's length is WindowMesh::frame[3 h] (Search::length)
   int parent;     // window propagated into this one; < 0: lit by vertex -(parent + 1)
@@ -99,7 +99,7 @@ Window make_window(int h, double b0, double b1, Vec2 source, double sigma, int p
 
 struct Event {
   double key;
-  int index;  // >= 0: halfedge (its list of queued windows); < 0: vertex -(index + 1)
+  int index;         // >= 0: halfedge (its list of queued windows); < 0: vertex -(index + 1)
   unsigned tag = 0;  // a halfedge's: current while equal to its record's tag
 };
 
@@ -166,7 +166,7 @@ Scratch& thread_scratch() {
   return scratch;
 }
 
-// kReuse: a full run that gives the slots of windows out of the queue to later ones (its own
+// kReuse: a full run that gives the slots of windows propagated or dead to later ones (its own
 // instantiation, so that the searches to a target, which build their path back through their
 // windows, pay nothing for the bookkeeping: 4-8 % per path when it was a run-time flag).
 template <bool kReuse>
@@ -175,8 +175,8 @@ class Search {
   // On the window mesh's renumbered copy: source and target are its vertices (target < 0:
   // every vertex's distance, Dijkstra order, no bound). Landmark fields are in the original
   // numbering.
-  Search(const WindowMesh& window_mesh, int source, int target,
-         const WindowSearchOptions& options, const Landmarks* landmarks = nullptr)
+  Search(const WindowMesh& window_mesh, int source, int target, const WindowSearchOptions& options,
+         const Landmarks* landmarks = nullptr)
       : mesh_(window_mesh.order.mesh),
         original_(window_mesh.order.vertex_from_local.data()),
         pseudo_(window_mesh.pseudo_source),
@@ -229,7 +229,10 @@ class Search {
     expand_vertex(source_, 0.0);
     while (!queue_.empty() && !aborted_) {
       const Event e = queue_.pop();
-      // Keys never exceed bounds: once a key reaches the best length, every bound left does.
+      // A halfedge's entry has a key at most every order key, hence every bound, of the
+      // windows queued on it, unless the queue raised it to the key last popped (which was at
+      // most the bound of the parent, hence of every path through the window): once a key
+      // reaches the best length, nothing shorter is left.
       if (e.key >= best_) break;
       if (e.index >= 0) {
         result.windows_propagated += propagate_list(e);
@@ -397,10 +400,9 @@ class Search {
     const Vec2 X{x, 0.0};
     double key = w.sigma + norm(X - I) + norm(T - X);
     if (landmarks_ != nullptr) {
-      key = std::max(
-          key, nearest + landmark_edge_bound(*landmarks_, target_landmark_.data(),
-                                             original_[mesh_.from(w.h)], original_[mesh_.to(w.h)],
-                                             len, w.b0, w.b1));
+      key = std::max(key, nearest + landmark_edge_bound(*landmarks_, target_landmark_.data(),
+                                                        original_[mesh_.from(w.h)],
+                                                        original_[mesh_.to(w.h)], len, w.b0, w.b1));
     }
     push_window(w, distance_order_ ? nearest : key, key);
   }
@@ -445,7 +447,9 @@ class Search {
   // windows queued on it since it last came out (lazily: a smaller key makes a new entry and
   // leaves the old one stale).
   void schedule(int h, double key) {
-    HalfedgeRecord& r = scratch_.halfedges[h];  // (push_window made it: head(h))
+    // (h's record is this query's: push_window linked the window into h's list through
+    // head(h), or after a window that compete found in it.)
+    HalfedgeRecord& r = scratch_.halfedges[h];
     if (key < r.queued_key) {
       r.queued_key = key;
       push({key, h, ++r.tag});
@@ -457,7 +461,9 @@ class Search {
   // and windows are read while they are in cache, and its windows leave its list as they go.
   // (Keys order the work and never decide it: a window propagated before its turn is still a
   // real ray, and every window whose bound is below the best length is propagated before the
-  // search stops. Measured: 2-7 % more windows, 10-20 % less time per path, session 12.)
+  // search stops. bench/README.md, session 12: 2-7 % more windows, 9-13 % less thread CPU per
+  // path at the median, 16-25 % at the mean.) A cap on the windows (max_windows) is checked
+  // between lists, so a search may end a list past it.
   // Windows whose bound reached the best length die here. Returns the number propagated.
   long propagate_list(const Event& e) {
     const int h = e.index;
@@ -757,7 +763,7 @@ class Search {
     return true;
   }
 
-  const Mesh& mesh_;      // the renumbered copy
+  const Mesh& mesh_;     // the renumbered copy
   const int* original_;  // its vertex -> the original vertex
   const std::vector<char>& pseudo_;
   const double* frame_;
@@ -775,7 +781,7 @@ class Search {
   double best_;
   int insert_after_ = -1;  // compete's place for w in its halfedge's list (-1: the head)
   const bool distance_order_;
-  // A full run (no target, no path to build) reuses the slots of windows out of the queue.
+  // A full run (no target, no path to build) reuses the slots of windows propagated or dead.
   std::vector<int> free_;
   long created_ = 0;
   long vertex_events_ = 0;

@@ -27,7 +27,8 @@
 // at the smallest key of the windows queued on it, and a halfedge out of the queue propagates
 // all of them at once (Qin et al.'s list at a time, "Fast and exact discrete geodesic
 // computation based on triangle-oriented wavefront propagation", SIGGRAPH 2016): its data is
-// read once while in cache (bench/README.md, session 12: 2-7 % more windows, 9-25 % less time).
+// read once while in cache (bench/README.md, session 12: 2-7 % more windows, 9-13 % less time
+// per path at the median, 16-25 % at the mean).
 // The queue is a radix heap (geometry/geodesic/radix_queue.h): both orders are monotone.
 // Euclidean metric only (the geodesic core uses it for Euclidean queries between vertices; see
 // geodesic_between in geometry/geodesic/geodesic.h). No CGAL: geometry/geodesic/exact_geodesic.h is
@@ -46,14 +47,15 @@ struct WindowSearchOptions {
   /// Only paths strictly shorter than this are looked for (mesh units; +infinity: any).
   double upper_bound = std::numeric_limits<double>::infinity();
   /// Give up (complete = false) after this many windows were created (0: no limit; searches to
-  /// a target only). A search to a target holds every window it makes, about 100 bytes each
+  /// a target only; checked after each halfedge's list, so a search may end a list past it).
+  /// A search to a target holds every window it makes, about 100 bytes each
   /// with its queue entry (bench/README.md, session 6: median 10K windows at 20K faces, 274K and
   /// a p90 of 1.35M at 300K faces).
   long max_windows = 0;
-  /// A full run (geodesic_distances_by_windows) gives the slot of a window out of the queue to
-  /// a later one, so that only the wavefront stays in memory (at 300K faces 106 MB against
-  /// 1.17 GB, bench/README.md, session 11). No effect on a search to a target, whose path is
-  /// built back through its windows.
+  /// A full run (geodesic_distances_by_windows) gives the slot of a window it has propagated
+  /// (or that died) to a later one, so that only the wavefront stays in memory (at 300K faces
+  /// 106 MB against 1.17 GB, bench/README.md, session 11). No effect on a search to a target, whose
+  /// path is built back through its windows.
   bool reuse_windows = true;
 
   bool is_valid(std::string* why) const;
@@ -72,14 +74,15 @@ struct WindowSearchResult {
   std::vector<int> vertices_passed;  ///< pseudo-source vertices on the path, source side first
   long windows = 0;                  ///< windows created
   long window_slots = 0;             ///< the most windows held in memory at once
-  long windows_propagated = 0;       ///< windows taken from the queue and propagated
+  long windows_propagated = 0;       ///< windows propagated
   long vertex_events = 0;            ///< pseudo-source vertices expanded
   double time_ms = 0.0;
 };
 
 /// Per-mesh data of the window search, built once per mesh (O(V log V + F log F)). The search
 /// runs on a copy of the mesh renumbered for memory locality (geometry/mesh/mesh_order.h) and
-/// answers in the mesh's own numbering; the arrays below are in the copy's.
+/// answers in the mesh's own numbering; the arrays below are in the copy's. (The copy costs
+/// as much memory as the mesh, and its maps 8 bytes per face: about 20 MB at 300K faces.)
 struct WindowMesh {
   MeshOrder order;
   /// Per vertex: 1 for the vertices geodesics may pass through (saddle: cone angle >=

@@ -31,9 +31,15 @@ SurfacePoint MeshOrder::point_from_local(const Mesh& original, const SurfacePoin
   SurfacePoint q = p;
   if (p.element < 0) return q;
   switch (p.kind) {
-    case SurfacePoint::Kind::Vertex: q.element = vertex_from_local[p.element]; break;
-    case SurfacePoint::Kind::Edge: q.element = halfedge_from_local(original, p.element); break;
-    case SurfacePoint::Kind::Face: q.element = face_from_local[p.element]; break;
+    case SurfacePoint::Kind::Vertex:
+      q.element = vertex_from_local[p.element];
+      break;
+    case SurfacePoint::Kind::Edge:
+      q.element = halfedge_from_local(original, p.element);
+      break;
+    case SurfacePoint::Kind::Face:
+      q.element = face_from_local[p.element];
+      break;
   }
   return q;
 }
@@ -56,8 +62,9 @@ MeshOrder order_for_locality(const Mesh& mesh) {
   for (int v = 0; v < nv; ++v) {
     std::uint64_t c = 0;
     for (int a = 0; a < 3; ++a) {
-      const double t = size[a] > 0.0 ? (mesh.position(v)[a] - box.min[a]) / size[a] : 0.0;
-      const auto q = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 2097151.0);
+      double t = size[a] > 0.0 ? (mesh.position(v)[a] - box.min[a]) / size[a] : 0.0;
+      if (!(t >= 0.0)) t = 0.0;  // (NaN too: a mesh built in code; readers refuse them)
+      const auto q = static_cast<std::uint64_t>(std::min(t, 1.0) * 2097151.0);
       c |= spread(q) << a;
     }
     code[v] = c;
@@ -73,8 +80,8 @@ MeshOrder order_for_locality(const Mesh& mesh) {
   std::vector<int> first(nf);
   for (int f = 0; f < nf; ++f) {
     const Tri& t = mesh.triangle(f);
-    first[f] = std::min({o.vertex_to_local[t[0]], o.vertex_to_local[t[1]],
-                         o.vertex_to_local[t[2]]});
+    first[f] =
+        std::min({o.vertex_to_local[t[0]], o.vertex_to_local[t[1]], o.vertex_to_local[t[2]]});
   }
   o.face_from_local.resize(nf);
   std::iota(o.face_from_local.begin(), o.face_from_local.end(), 0);
@@ -87,8 +94,7 @@ MeshOrder order_for_locality(const Mesh& mesh) {
   soup.triangles.resize(nf);
   for (int i = 0; i < nf; ++i) {
     const Tri& t = mesh.triangle(o.face_from_local[i]);
-    soup.triangles[i] = {o.vertex_to_local[t[0]], o.vertex_to_local[t[1]],
-                         o.vertex_to_local[t[2]]};
+    soup.triangles[i] = {o.vertex_to_local[t[0]], o.vertex_to_local[t[1]], o.vertex_to_local[t[2]]};
   }
   o.mesh = Mesh(std::move(soup));
   return o;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <numeric>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -173,9 +174,9 @@ TEST(WindowSearch, FullFieldAndLandmarksEqualCgal) {
   }
 }
 
-// A full run gives the slots of windows out of the queue to later ones and keeps only those
-// whose rays reached a saddle vertex (its expansion reads the arrival direction from it): on
-// meshes with many saddles (hills and a pit, a rough torus) every vertex's distance equals
+// A full run gives the slots of windows it has propagated (or that died) to later ones and keeps
+// only those whose rays reached a saddle vertex (its expansion reads the arrival direction from
+// it): on meshes with many saddles (hills and a pit, a rough torus) every vertex's distance equals
 // CGAL's, from several sources; the run makes the same windows and vertex events as without
 // reuse (a saddle that misread its arrival would light all its faces and make more), bit for bit
 // the same field, and holds far fewer windows at once.
@@ -187,13 +188,14 @@ TEST(WindowSearch, FullFieldWithReusedWindowSlotsEqualsCgal) {
     for (int v = 0; v < mesh.num_vertices(); ++v) all.push_back(SurfacePoint::at_vertex(v));
     int saddles = 0;
     for (int v = 0; v < mesh.num_vertices(); ++v)
-      saddles += !mesh.is_boundary_vertex(v) && wm.pseudo_source[v];
+      saddles += !mesh.is_boundary_vertex(v) && wm.pseudo_source[wm.order.vertex_to_local[v]];
     EXPECT_GT(saddles, 30) << (torus ? "torus" : "hills");
     for (const int source : {0, mesh.num_vertices() / 3, mesh.num_vertices() - 1}) {
       const std::vector<double> exact =
           exact_geodesic_distances(mesh, SurfacePoint::at_vertex(source), all);
       WindowSearchResult reused, kept;
-      const std::vector<double> field = geodesic_distances_by_windows(mesh, wm, source, {}, &reused);
+      const std::vector<double> field =
+          geodesic_distances_by_windows(mesh, wm, source, {}, &reused);
       for (int v = 0; v < mesh.num_vertices(); ++v)
         ASSERT_NEAR(field[v], exact[v], 1e-12 * (1.0 + exact[v]))
             << (torus ? "torus" : "hills") << ": " << source << " -> " << v;
@@ -220,6 +222,90 @@ TEST(WindowSearch, FullFieldWithReusedWindowSlotsEqualsCgal) {
 // The landmark bound of an edge interval never exceeds the exact distance from the target to any
 // point of the interval (CGAL's, at sampled points), is at least the plain per-end bracket's
 // (d(L, a) +- s1, d(L, b) +- (length - s0)), and is far from zero for targets far from x.
+/// The soup with its vertices and faces numbered at random, each face's corners rotated;
+/// perm[v] is the new index of vertex v.
+TriangleSoup renumbered(const TriangleSoup& soup, unsigned seed, std::vector<int>* perm) {
+  std::mt19937 rng(seed);
+  std::vector<int> vperm(soup.points.size()), fperm(soup.triangles.size());
+  std::iota(vperm.begin(), vperm.end(), 0);
+  std::iota(fperm.begin(), fperm.end(), 0);
+  std::shuffle(vperm.begin(), vperm.end(), rng);
+  std::shuffle(fperm.begin(), fperm.end(), rng);
+  TriangleSoup out;
+  out.points.resize(soup.points.size());
+  for (std::size_t v = 0; v < vperm.size(); ++v) out.points[vperm[v]] = soup.points[v];
+  for (const int f : fperm) {
+    const Tri& t = soup.triangles[f];
+    const int r = f % 3;
+    out.triangles.push_back({vperm[t[r]], vperm[t[(r + 1) % 3]], vperm[t[(r + 2) % 3]]});
+  }
+  *perm = std::move(vperm);
+  return out;
+}
+
+// The search runs on a copy renumbered for locality (geometry/mesh/mesh_order.h) and answers in
+// the mesh's own numbering: on hills with a hole, beside a torus, with a vertex of no face, all
+// numbered at random, the fields equal those of the same surface numbered in order (through the
+// permutation), every path between vertices of the hills has the field's length, starts and
+// ends at its vertices and is a valid path of the renumbered mesh, and every vertex it is said
+// to pass lies on a shortest path (d(a, v) + d(v, b) = d(a, b)); no path joins the two parts.
+TEST(WindowSearch, ARandomlyNumberedMeshIsAnsweredInItsOwnNumbering) {
+  TriangleSoup base = hills(16, 6.0);
+  {
+    std::vector<Tri> kept;
+    for (const Tri& t : base.triangles) {
+      const Vec3 c = (base.points[t[0]] + base.points[t[1]] + base.points[t[2]]) / 3.0;
+      if (std::hypot(c.x() - 3.6, c.y() - 1.8) > 0.6) kept.push_back(t);
+    }
+    base.triangles = kept;
+  }
+  const int hills_vertices = static_cast<int>(base.points.size());
+  const TriangleSoup ring = test::torus(2.0, 0.7, 16, 8);
+  for (const Tri& t : ring.triangles)
+    base.triangles.push_back({t[0] + hills_vertices, t[1] + hills_vertices, t[2] + hills_vertices});
+  for (const Vec3& p : ring.points) base.points.push_back(p + Vec3(12.0, 3.0, 0.0));
+  base.points.push_back(Vec3(-3.0, 40.0, 7.0));  // no face
+  std::vector<int> perm;
+  const Mesh ordered(base), mesh(renumbered(base, 5, &perm));
+  const WindowMesh wm0 = prepare_window_mesh(ordered), wm = prepare_window_mesh(mesh);
+  for (const int s0 : {0, 100, 200, hills_vertices + 10, hills_vertices + 100}) {
+    const std::vector<double> f0 = geodesic_distances_by_windows(ordered, wm0, s0);
+    const std::vector<double> f = geodesic_distances_by_windows(mesh, wm, perm[s0]);
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      if (std::isinf(f0[v])) {
+        ASSERT_TRUE(std::isinf(f[perm[v]])) << s0 << " -> " << v;
+      } else {
+        ASSERT_NEAR(f[perm[v]], f0[v], 1e-12 * (1.0 + f0[v])) << s0 << " -> " << v;
+      }
+    }
+  }
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> pick(0, hills_vertices - 1);
+  int passed = 0;
+  for (int i = 0; i < 30; ++i) {
+    const int a = perm[pick(rng)], b = perm[pick(rng)];
+    if (a == b || mesh.vertex_halfedge(a) < 0 || mesh.vertex_halfedge(b) < 0) continue;
+    const std::vector<double> fa = geodesic_distances_by_windows(mesh, wm, a);
+    const std::vector<double> fb = geodesic_distances_by_windows(mesh, wm, b);
+    const WindowSearchResult r = shortest_path_by_windows(mesh, wm, a, b);
+    ASSERT_TRUE(r.found) << a << " -> " << b;
+    EXPECT_NEAR(r.distance, fa[b], 1e-12 * fa[b]) << a << " -> " << b;
+    std::string why;
+    EXPECT_TRUE(is_valid_path(mesh, r.path, &why)) << a << " -> " << b << ": " << why;
+    EXPECT_EQ(r.path.start.element, a);
+    EXPECT_EQ(r.path.end.element, b);
+    for (const int v : r.vertices_passed) {
+      ++passed;
+      EXPECT_NEAR(fa[v] + fb[v], r.distance, 1e-9 * r.distance) << a << " -> " << b << " via " << v;
+    }
+  }
+  EXPECT_GT(passed, 5) << "the pairs should pass saddle vertices of the hills";
+  const WindowSearchResult across =
+      shortest_path_by_windows(mesh, wm, perm[0], perm[hills_vertices]);
+  EXPECT_FALSE(across.found);
+  EXPECT_TRUE(across.complete);
+}
+
 TEST(WindowSearch, LandmarkEdgeBoundIsALowerBound) {
   const Mesh mesh(rough_torus(0.03, 11));
   const WindowMesh wm = prepare_window_mesh(mesh);
