@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <numeric>
+#include <random>
 #include <vector>
 
 #include "geometry/mesh/mesh.h"
@@ -113,6 +115,29 @@ inline std::array<std::vector<int>, 2> revolution_loops(int n, int m) {
 /// Outward normals. Two boundary loops, genus 0, an annulus.
 inline TriangleSoup open_cylinder(double r, double len, int n, int m) {
   return revolution([r](double) { return r; }, 0.0, len, n, m);
+}
+
+/// The soup with its vertices and faces numbered at random and each face's corners rotated (the
+/// same surface, as meshes written by remeshers often are numbered); perm[v] (optional) receives
+/// the new index of vertex v.
+inline TriangleSoup renumbered_at_random(const TriangleSoup& soup, unsigned seed,
+                                         std::vector<int>* perm = nullptr) {
+  std::mt19937 rng(seed);
+  std::vector<int> vperm(soup.points.size()), fperm(soup.triangles.size());
+  std::iota(vperm.begin(), vperm.end(), 0);
+  std::iota(fperm.begin(), fperm.end(), 0);
+  std::shuffle(vperm.begin(), vperm.end(), rng);
+  std::shuffle(fperm.begin(), fperm.end(), rng);
+  TriangleSoup out;
+  out.points.resize(soup.points.size());
+  for (std::size_t v = 0; v < vperm.size(); ++v) out.points[vperm[v]] = soup.points[v];
+  for (const int f : fperm) {
+    const Tri& t = soup.triangles[f];
+    const int r = f % 3;
+    out.triangles.push_back({vperm[t[r]], vperm[t[(r + 1) % 3]], vperm[t[(r + 2) % 3]]});
+  }
+  if (perm != nullptr) *perm = std::move(vperm);
+  return out;
 }
 
 }  // namespace windplan::test

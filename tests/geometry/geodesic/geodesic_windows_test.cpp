@@ -8,7 +8,6 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
-#include <numeric>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -222,27 +221,6 @@ TEST(WindowSearch, FullFieldWithReusedWindowSlotsEqualsCgal) {
 // The landmark bound of an edge interval never exceeds the exact distance from the target to any
 // point of the interval (CGAL's, at sampled points), is at least the plain per-end bracket's
 // (d(L, a) +- s1, d(L, b) +- (length - s0)), and is far from zero for targets far from x.
-/// The soup with its vertices and faces numbered at random, each face's corners rotated;
-/// perm[v] is the new index of vertex v.
-TriangleSoup renumbered(const TriangleSoup& soup, unsigned seed, std::vector<int>* perm) {
-  std::mt19937 rng(seed);
-  std::vector<int> vperm(soup.points.size()), fperm(soup.triangles.size());
-  std::iota(vperm.begin(), vperm.end(), 0);
-  std::iota(fperm.begin(), fperm.end(), 0);
-  std::shuffle(vperm.begin(), vperm.end(), rng);
-  std::shuffle(fperm.begin(), fperm.end(), rng);
-  TriangleSoup out;
-  out.points.resize(soup.points.size());
-  for (std::size_t v = 0; v < vperm.size(); ++v) out.points[vperm[v]] = soup.points[v];
-  for (const int f : fperm) {
-    const Tri& t = soup.triangles[f];
-    const int r = f % 3;
-    out.triangles.push_back({vperm[t[r]], vperm[t[(r + 1) % 3]], vperm[t[(r + 2) % 3]]});
-  }
-  *perm = std::move(vperm);
-  return out;
-}
-
 // The search runs on a copy renumbered for locality (geometry/mesh/mesh_order.h) and answers in
 // the mesh's own numbering: on hills with a hole, beside a torus, with a vertex of no face, all
 // numbered at random, the fields equal those of the same surface numbered in order (through the
@@ -266,7 +244,7 @@ TEST(WindowSearch, ARandomlyNumberedMeshIsAnsweredInItsOwnNumbering) {
   for (const Vec3& p : ring.points) base.points.push_back(p + Vec3(12.0, 3.0, 0.0));
   base.points.push_back(Vec3(-3.0, 40.0, 7.0));  // no face
   std::vector<int> perm;
-  const Mesh ordered(base), mesh(renumbered(base, 5, &perm));
+  const Mesh ordered(base), mesh(test::renumbered_at_random(base, 5, &perm));
   const WindowMesh wm0 = prepare_window_mesh(ordered), wm = prepare_window_mesh(mesh);
   for (const int s0 : {0, 100, 200, hills_vertices + 10, hills_vertices + 100}) {
     const std::vector<double> f0 = geodesic_distances_by_windows(ordered, wm0, s0);

@@ -1,8 +1,6 @@
 #include "geometry/mesh/mesh_order.h"
 
 #include <algorithm>
-#include <numeric>
-#include <random>
 
 #include <gtest/gtest.h>
 
@@ -10,25 +8,6 @@
 
 namespace windplan {
 namespace {
-
-// The soup with its vertices and its faces numbered at random (each face keeps its corners'
-// cyclic order), as meshes written by remeshers often are.
-TriangleSoup shuffled(const TriangleSoup& soup, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::vector<int> vperm(soup.points.size()), fperm(soup.triangles.size());
-  std::iota(vperm.begin(), vperm.end(), 0);
-  std::iota(fperm.begin(), fperm.end(), 0);
-  std::shuffle(vperm.begin(), vperm.end(), rng);
-  std::shuffle(fperm.begin(), fperm.end(), rng);
-  TriangleSoup out;
-  out.points.resize(soup.points.size());
-  for (std::size_t v = 0; v < vperm.size(); ++v) out.points[vperm[v]] = soup.points[v];
-  for (const int f : fperm) {
-    const Tri& t = soup.triangles[f];
-    out.triangles.push_back({vperm[t[0]], vperm[t[1]], vperm[t[2]]});
-  }
-  return out;
-}
 
 // Median over the faces' corner pairs of the distance between their indices.
 double median_index_gap(const Mesh& m) {
@@ -77,7 +56,7 @@ TEST(MeshOrder, AShuffledGridWithAHoleIsTheSameSurfaceWithNeighboursNearInMemory
     const Vec3 c = (soup.points[t[0]] + soup.points[t[1]] + soup.points[t[2]]) / 3.0;
     if ((c - Vec3(15, 15, 0)).norm() > 5.0) holed.triangles.push_back(t);
   }
-  const Mesh original(shuffled(holed, 7));
+  const Mesh original(test::renumbered_at_random(holed, 7));
   const MeshOrder o = order_for_locality(original);
   expect_same_surface(original, o);
   // At random the corners of a face lie about a third of the mesh apart; in Morton order a
@@ -88,7 +67,7 @@ TEST(MeshOrder, AShuffledGridWithAHoleIsTheSameSurfaceWithNeighboursNearInMemory
 }
 
 TEST(MeshOrder, ClosedTorusAndPathsMapBack) {
-  const Mesh original(shuffled(test::torus(3.0, 1.0, 40, 20), 11));
+  const Mesh original(test::renumbered_at_random(test::torus(3.0, 1.0, 40, 20), 11));
   const MeshOrder o = order_for_locality(original);
   expect_same_surface(original, o);
   // A path on the copy (a straight walk of crossings around the local vertex 0's first face)
