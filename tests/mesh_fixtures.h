@@ -117,6 +117,17 @@ inline TriangleSoup open_cylinder(double r, double len, int n, int m) {
   return revolution([r](double) { return r; }, 0.0, len, n, m);
 }
 
+/// A torus with every vertex moved by up to `amplitude` (a fixed pseudo-random field): cone
+/// angles on both sides of 2 pi everywhere, so windows of equal pseudo-source distance meet on
+/// many edges.
+inline TriangleSoup rough_torus(double amplitude, unsigned seed) {
+  TriangleSoup s = torus(2.0, 0.7, 48, 20);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amplitude, amplitude);
+  for (Vec3& p : s.points) p += Vec3(u(rng), u(rng), u(rng));
+  return s;
+}
+
 /// The soup with its vertices and faces numbered at random and each face's corners rotated (the
 /// same surface, as meshes written by remeshers often are numbered); perm[v] (optional) receives
 /// the new index of vertex v.

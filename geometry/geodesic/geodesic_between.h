@@ -9,9 +9,9 @@
 #include "geometry/geodesic/edge_path.h"
 #include "geometry/geodesic/edge_path_steiner.h"
 #include "geometry/geodesic/geodesic_options.h"
-#include "geometry/geodesic/geodesic_windows.h"
 #include "geometry/geodesic/path_metric.h"
 #include "geometry/geodesic/refine_path.h"
+#include "geometry/geodesic/window_landmarks.h"
 #include "geometry/mesh/mesh.h"
 #include "geometry/mesh/surface_path.h"
 

@@ -12,10 +12,10 @@
 #include <functional>
 
 #include "geometry/base/errors.h"
-#include "geometry/base/parallel.h"
 #include "geometry/geodesic/edge_path.h"
 #include "geometry/geodesic/radix_queue.h"
 #include "geometry/geodesic/window_distance.h"
+#include "geometry/geodesic/window_landmarks.h"
 
 namespace windplan {
 
@@ -571,52 +571,9 @@ class Search {
           const EdgeDistance wd{w->sigma, w->source.x, w->source.y};
           const EdgeDistance od{o.sigma, same ? o.source.x : len - o.source.x, o.source.y};
           const double eps = 1e-12 * (w->sigma + len);
-          // Pieces of [lo, hi] split where w - o crosses +eps or -eps (the points where w
-          // shifted by -+eps equals o): on each, w - o stays above eps, below -eps, or
-          // between (a tie), whichever its midpoint shows.
-          double x[6];
-          int n = 0;
-          x[n++] = lo;
-          const EdgeDistance above{wd.sigma - eps, wd.sx, wd.sy},
-              below{wd.sigma + eps, wd.sx, wd.sy};
-          n += equal_distance_points(above, od, lo, hi, x + n);
-          n += equal_distance_points(below, od, lo, hi, x + n);
-          for (int i = 2; i < n; ++i)  // the (at most 4) candidates in order
-            for (int j = i; j > 1 && x[j] < x[j - 1]; --j) std::swap(x[j], x[j - 1]);
-          x[n] = hi;
-          // The same pseudo-source unfolded the same way (a window made twice): its rays are
-          // w's, so a tie is no reason to keep both.
-          const bool twin_rays = std::abs(wd.sigma - od.sigma) <= eps &&
-                                 std::abs(wd.sx - od.sx) <= tol && std::abs(wd.sy - od.sy) <= tol;
-          // Per piece: -1 w strictly shorter, +1 o strictly shorter, 0 a tie. Only a strictly
-          // shorter window cuts: two windows from different sources within round-off of each
-          // other over a band both keep it, for one of them may hold the ray to a vertex
-          // that the other's rays miss (found in review: a flat grid's vertex reached only
-          // along edges, 10 % long).
-          int sign[5];
-          for (int i = 0; i < n; ++i) {
-            const double m = 0.5 * (x[i] + x[i + 1]);
-            const double f = wd.at(m) - od.at(m);
-            sign[i] = f < -eps ? -1 : (f > eps || twin_rays ? 1 : 0);
-          }
-          // The window [b0, b1] loses the pieces at its ends that the overlap covers and where
-          // the other one is strictly shorter (sign `beaten`).
-          const auto cut = [&](double* b0, double* b1, int beaten) {
-            if (lo <= *b0 + tol) {
-              int i = 0;
-              while (i < n && sign[i] == beaten) ++i;
-              if (i > 0) *b0 = x[i];
-            }
-            if (hi >= *b1 - tol) {
-              int i = n;
-              while (i > 0 && sign[i - 1] == beaten) --i;
-              if (i < n) *b1 = x[i];
-            }
-          };
-          cut(&w->b0, &w->b1, 1);
-          if (!(w->b1 - w->b0 > tol)) return false;
           double c0 = ob0, c1 = ob1;  // o, in w's frame
-          cut(&c0, &c1, -1);
+          cut_overlap(wd, od, lo, hi, eps, tol, &w->b0, &w->b1, &c0, &c1);
+          if (!(w->b1 - w->b0 > tol)) return false;
           o_beaten = !(c1 - c0 > tol);
           if (o_beaten) {
             o.state = Window::kDead;
@@ -790,25 +747,6 @@ class Search {
 
 }  // namespace
 
-double landmark_edge_bound(const Landmarks& landmarks, const double* target_dist, int a, int b,
-                           double length, double s0, double s1) {
-  const int k = landmarks.count;
-  const double* la = landmarks.dist.data() + static_cast<std::size_t>(a) * k;
-  const double* lb = landmarks.dist.data() + static_cast<std::size_t>(b) * k;
-  double bound = 0.0;
-  for (int i = 0; i < k; ++i) {
-    // d(L, x(s)) <= min(d(L, a) + s, d(L, b) + length - s): concave in s, largest where the
-    // two lines cross (clamped to [s0, s1]); >= max(d(L, a) - s, d(L, b) - length + s): convex,
-    // smallest where those cross.
-    const double su = std::clamp(0.5 * (lb[i] + length - la[i]), s0, s1);
-    const double upper = std::min(la[i] + su, lb[i] + length - su);
-    const double sl = std::clamp(0.5 * (la[i] - lb[i] + length), s0, s1);
-    const double lower = std::max(la[i] - sl, lb[i] - length + sl);
-    bound = std::max({bound, target_dist[i] - upper, lower - target_dist[i]});
-  }
-  return std::isfinite(bound) ? bound : 0.0;
-}
-
 namespace {
 
 void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
@@ -850,46 +788,6 @@ std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const Window
   const int s = window_mesh.order.vertex_to_local[source];
   if (options.reuse_windows) return full_run(Search<true>(window_mesh, s, -1, options));
   return full_run(Search<false>(window_mesh, s, -1, options));
-}
-
-Landmarks compute_landmarks(const Mesh& mesh, const WindowMesh& window_mesh, int count) {
-  Landmarks l;
-  if (count <= 0 || mesh.num_vertices() == 0) return l;
-  // Farthest-point choice in space: the first is the vertex farthest along the bounding box
-  // diagonal, each next one the vertex farthest from those chosen. (Geodesically farthest
-  // points need each field before the next choice, one after another; these let the fields
-  // be computed in parallel, and bound as well: bench/README.md, session 6.)
-  const Vec3 diagonal = mesh.bounding_box().diagonal();
-  int next = -1;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    if (mesh.vertex_halfedge(v) < 0) continue;
-    if (next < 0 || mesh.position(v).dot(diagonal) > mesh.position(next).dot(diagonal)) next = v;
-  }
-  std::vector<double> nearest(mesh.num_vertices(), std::numeric_limits<double>::infinity());
-  while (next >= 0 && static_cast<int>(l.vertices.size()) < count) {
-    l.vertices.push_back(next);
-    const Vec3 p = mesh.position(next);
-    next = -1;
-    double far = 0.0;
-    for (int v = 0; v < mesh.num_vertices(); ++v) {
-      if (mesh.vertex_halfedge(v) < 0) continue;
-      nearest[v] = std::min(nearest[v], (mesh.position(v) - p).squaredNorm());
-      if (nearest[v] > far) {
-        far = nearest[v];
-        next = v;
-      }
-    }
-  }
-  l.count = static_cast<int>(l.vertices.size());
-  std::vector<std::vector<double>> fields(l.count);
-  parallel_for_index(l.count, [&](int k) {
-    fields[k] = geodesic_distances_by_windows(mesh, window_mesh, l.vertices[k]);
-  });
-  l.dist.resize(static_cast<std::size_t>(mesh.num_vertices()) * l.count);
-  for (int v = 0; v < mesh.num_vertices(); ++v)
-    for (int k = 0; k < l.count; ++k)
-      l.dist[static_cast<std::size_t>(v) * l.count + k] = fields[k][v];
-  return l;
 }
 
 WindowSearchResult shortest_path_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,

@@ -95,5 +95,67 @@ TEST(WindowDistance, TangencyAndEqualSigmaSurviveRoundOff) {
   }
 }
 
+// The cut of two windows over their overlap, against cases whose answer is known in closed
+// form: a window longer everywhere loses the overlap at its end; two windows whose distances
+// cross once keep their own sides of the crossing; a tie within eps keeps both unless the two
+// are one window made twice (then the new one, a, loses); an end the overlap does not reach is
+// never cut.
+TEST(CutOverlap, ClosedFormCases) {
+  const double eps = 1e-12, tol = 1e-12;
+  {
+    // b: the same pseudo-source 1 closer, so a is longer by 1 everywhere.
+    const EdgeDistance a{1.0, 3.0, -1.0}, b{0.0, 3.0, -1.0};
+    double a0 = 0.0, a1 = 4.0, b0 = 2.0, b1 = 6.0;
+    cut_overlap(a, b, 2.0, 4.0, eps, tol, &a0, &a1, &b0, &b1);
+    EXPECT_EQ(a0, 0.0);
+    EXPECT_EQ(a1, 2.0);  // its end in the overlap is gone
+    EXPECT_EQ(b0, 2.0);  // b keeps all of it
+    EXPECT_EQ(b1, 6.0);
+  }
+  {
+    // Sources at x = 1 and x = 5, the same sigma: equal at x = 3.
+    const EdgeDistance a{0.5, 1.0, -1.0}, b{0.5, 5.0, -1.0};
+    double a0 = 0.0, a1 = 6.0, b0 = 0.0, b1 = 6.0;
+    cut_overlap(a, b, 0.0, 6.0, eps, tol, &a0, &a1, &b0, &b1);
+    EXPECT_EQ(a0, 0.0);
+    EXPECT_NEAR(a1, 3.0, 1e-9);
+    EXPECT_NEAR(b0, 3.0, 1e-9);
+    EXPECT_EQ(b1, 6.0);
+  }
+  {
+    // Pseudo-sources 1e-11 apart (more than tol) and sigmas equal: within eps everywhere, a tie.
+    const EdgeDistance a{2.0, 3.0, -1.0}, b{2.0, 3.0 + 1e-11, -1.0};
+    double a0 = 0.0, a1 = 6.0, b0 = 1.0, b1 = 5.0;
+    cut_overlap(a, b, 1.0, 5.0, 1e-9, tol, &a0, &a1, &b0, &b1);
+    EXPECT_EQ(a0, 0.0);
+    EXPECT_EQ(a1, 6.0);
+    EXPECT_EQ(b0, 1.0);
+    EXPECT_EQ(b1, 5.0);
+    // The same window twice: a (the new one) loses the whole overlap it ends in.
+    double c0 = 2.0, c1 = 5.0, d0 = 1.0, d1 = 5.0;
+    cut_overlap(a, a, 2.0, 5.0, eps, tol, &c0, &c1, &d0, &d1);
+    EXPECT_LE(c1 - c0, tol);
+    EXPECT_EQ(d0, 1.0);
+    EXPECT_EQ(d1, 5.0);
+  }
+  {
+    // b inside a and longer: the overlap reaches both of b's ends and neither of a's.
+    const EdgeDistance a{0.0, 3.0, -1.0}, b{0.5, 3.0, -1.0};
+    double a0 = 0.0, a1 = 6.0, b0 = 2.0, b1 = 4.0;
+    cut_overlap(a, b, 2.0, 4.0, eps, tol, &a0, &a1, &b0, &b1);
+    EXPECT_EQ(a0, 0.0);
+    EXPECT_EQ(a1, 6.0);
+    EXPECT_LE(b1 - b0, tol);  // cut to nothing
+    // And shorter: b cuts nothing of a (a's ends lie outside the overlap), a nothing of b.
+    const EdgeDistance c{-0.5, 3.0, -1.0};
+    double e0 = 0.0, e1 = 6.0, f0 = 2.0, f1 = 4.0;
+    cut_overlap(a, c, 2.0, 4.0, eps, tol, &e0, &e1, &f0, &f1);
+    EXPECT_EQ(e0, 0.0);
+    EXPECT_EQ(e1, 6.0);
+    EXPECT_EQ(f0, 2.0);
+    EXPECT_EQ(f1, 4.0);
+  }
+}
+
 }  // namespace
 }  // namespace windplan
