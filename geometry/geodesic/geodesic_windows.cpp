@@ -71,17 +71,14 @@ double norm(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 // of one listed window after another, at random places in memory (8.4 windows per new window
 // at 100K faces, most not overlapping it: bench/README.md, sessions 9 and 12).
 struct alignas(64) Window {
-  int h;          // its edge's length is WindowMesh::frame[3 h] (Search::length)
-  int parent;     // window propagated into this one; < 0: lit by vertex -(parent + 1)
-  int next = -1;  // the next window on the same edge (Scratch::head), -1: last
-  char state = kQueued;
+  int h;            // its edge's length is WindowMesh::frame[3 h] (Search::length)
+  int parent;       // window propagated into this one; < 0: lit by vertex -(parent + 1)
+  int next = -1;    // the next window on the same edge (Scratch::head), -1: last
   char pinned = 0;  // a full run keeps its slot: it gave a saddle vertex its distance
   double b0, b1;
   Vec2 source;         // I in h's frame
   double sigma;        // distance of the pseudo-source from the source
   double bound = 0.0;  // lower bound of the paths to the target through the window (A* key)
-
-  static constexpr char kQueued = 0, kPropagated = 1, kDead = 2;
 };
 static_assert(sizeof(Window) == 64, "a window fills one cache line");
 
@@ -202,10 +199,10 @@ class Search {
     }
   }
 
-  // The distances of a full run (target < 0).
+  // The distances of a full run (target < 0), in the original numbering.
   std::vector<double> distances() const {
     std::vector<double> d(mesh_.num_vertices());
-    for (int v = 0; v < mesh_.num_vertices(); ++v) d[v] = dist(v);
+    for (int v = 0; v < mesh_.num_vertices(); ++v) d[original_[v]] = dist(v);
     return d;
   }
 
@@ -481,7 +478,6 @@ class Search {
       Window& o = windows_[i];
       unlink(&scratch_.halfedges[h].head, o);
       if (!(o.bound < best_)) {
-        o.state = Window::kDead;
         if constexpr (kReuse) free_.push_back(i);  // (a full run has no best length)
         continue;
       }
@@ -574,15 +570,10 @@ class Search {
           double c0 = ob0, c1 = ob1;  // o, in w's frame
           cut_overlap(wd, od, lo, hi, eps, tol, &w->b0, &w->b1, &c0, &c1);
           if (!(w->b1 - w->b0 > tol)) return false;
-          o_beaten = !(c1 - c0 > tol);
-          if (o_beaten) {
-            o.state = Window::kDead;
-          } else if (same) {
-            o.b0 = c0;
-            o.b1 = c1;
-          } else {
-            o.b0 = len - c1;
-            o.b1 = len - c0;
+          o_beaten = !(c1 - c0 > tol);  // (it leaves the list below)
+          if (!o_beaten) {
+            o.b0 = same ? c0 : len - c1;
+            o.b1 = same ? c1 : len - c0;
           }
         }
         if (o_beaten) {
@@ -597,9 +588,8 @@ class Search {
     return true;
   }
 
+  // (Called once per window: propagate_list has taken it out of its list.)
   void propagate(int index) {
-    if (windows_[index].state != Window::kQueued) return;
-    windows_[index].state = Window::kPropagated;
     Window w = windows_[index];
     const int h = w.h;
     const double len = length(w);
@@ -780,10 +770,7 @@ std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const Window
   const auto full_run = [&](auto&& search) {
     const WindowSearchResult r = search.run();
     if (stats != nullptr) *stats = r;
-    const std::vector<double> local = search.distances();
-    std::vector<double> d(local.size());
-    for (std::size_t v = 0; v < d.size(); ++v) d[v] = local[window_mesh.order.vertex_to_local[v]];
-    return d;
+    return search.distances();
   };
   const int s = window_mesh.order.vertex_to_local[source];
   if (options.reuse_windows) return full_run(Search<true>(window_mesh, s, -1, options));
