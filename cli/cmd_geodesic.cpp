@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -488,26 +489,71 @@ int run_geodesic_batch(const Args& args, Setup& s) {
     progress = std::make_unique<StageProgress>(std::cerr, tty, "windplan geodesic");
     progress->start("pairs");
   }
+  // The pairs from one vertex are answered together (geodesics_from: one exact window search
+  // resumed from target to target, bench/README.md, session 13); the groups run in parallel.
+  std::vector<std::vector<int>> groups;
+  std::map<int, std::size_t> group_of_vertex;
+  for (int i = 0; i < n; ++i) {
+    if (pairs[i].a.kind != SurfacePoint::Kind::Vertex) {
+      groups.push_back({i});
+      continue;
+    }
+    const auto [it, fresh] = group_of_vertex.emplace(pairs[i].a.element, groups.size());
+    if (fresh) groups.emplace_back();
+    groups[it->second].push_back(i);
+  }
+  const int num_groups = static_cast<int>(groups.size());
+  // A group's first pair (in the file's order) that has no path, and why.
+  std::vector<int> failed(num_groups, -1);
+  std::vector<std::string> failure(num_groups);
   std::atomic<int> done{0};
   std::mutex log;
-  parallel_for_index(n, [&](int i) {
-    const auto t = Clock::now();
+  parallel_for_index(num_groups, [&](int g) {
+    const std::vector<int>& group = groups[g];
+    std::vector<SurfacePoint> targets;
+    for (const int i : group) targets.push_back(pairs[i].b);
     try {
-      results[i] = geodesic_between(ctx, pairs[i].a, pairs[i].b, s.options);
-    } catch (const InputError& e) {
-      throw InputError(file.string() + ":" + std::to_string(pairs[i].line) + ": " + e.what());
+      std::vector<OpenGeodesicResult> r =
+          geodesics_from(ctx, pairs[group[0]].a, targets, s.options);
+      for (std::size_t k = 0; k < group.size(); ++k) {
+        times[group[k]] = r[k].init_ms + r[k].refine_ms;
+        results[group[k]] = std::move(r[k]);
+      }
+    } catch (const InputError&) {
+      // One pair at a time, to name the first that fails.
+      for (const int i : group) {
+        try {
+          results[i] = geodesic_between(ctx, pairs[i].a, pairs[i].b, s.options);
+        } catch (const InputError& e) {
+          failed[g] = i;
+          failure[g] = e.what();
+          return;
+        }
+      }
+      throw;
     }
-    times[i] = ms_since(t);
     if (!show) return;
-    const int d = ++done;
-    if (tty && (d % std::max(1, n / 1000) == 0 || d == n)) progress->count(d, n, "");
-    if (!tty && (d % std::max(1, n / 10) == 0) && d < n) {
+    const int before = done.fetch_add(static_cast<int>(group.size()));
+    const int d = before + static_cast<int>(group.size());
+    const int step = std::max(1, n / 1000), tenth = std::max(1, n / 10);
+    if (tty && (d / step != before / step || d == n)) progress->count(d, n, "");
+    if (!tty && d / tenth != before / tenth && d < n) {
       const std::lock_guard<std::mutex> lock(log);
       std::cerr << "windplan geodesic: " << d << " of " << n << " pairs ("
                 << static_cast<long long>(100.0 * d / n) << " %), " << ms_since(t2) / 1000.0
                 << " s\n";
     }
   });
+  int first = -1;
+  std::string why;
+  for (int g = 0; g < num_groups; ++g) {
+    if (failed[g] >= 0 && (first < 0 || failed[g] < first)) {
+      first = failed[g];
+      why = failure[g];
+    }
+  }
+  if (first >= 0)
+    throw InputError(file.string() + ":" + std::to_string(pairs[first].line) + ": " + why);
   const double solve_ms = ms_since(t2);
   if (progress) progress->finish("pairs", solve_ms / 1000.0, " (" + std::to_string(n) + " pairs)");
   std::vector<BatchRow> rows(n);

@@ -20,19 +20,10 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-// The exact window search (unbounded, searched as A*) and the refinement of the shortest
-// path's corridor it returns: the globally shortest geodesic. False, with *exact the
-// search's distance when it has one (else NaN), when the search stopped at
-// options.max_windows, could not build its corridor, or the corridor's refinement did not
-// converge (the result then holds that refinement, if any).
-// \throw InputError when the vertices lie on different components.
-bool exact_window_search(const GeodesicContext& context, int a, int b,
-                         const GeodesicOptions& options, OpenGeodesicResult* result,
-                         double* exact) {
-  WindowSearchOptions search;
-  search.max_windows = options.max_windows;
-  const WindowSearchResult w = shortest_path_by_windows(context.mesh(), context.window_mesh(), a, b,
-                                                        search, &context.landmarks());
+// The window search's result `w` for the vertices a -> b, refined (as exact_window_search).
+bool refine_window_result(const GeodesicContext& context, int a, int b, const WindowSearchResult& w,
+                          const GeodesicOptions& options, OpenGeodesicResult* result,
+                          double* exact) {
   result->exact_windows = w.windows;
   result->exact_ms = w.time_ms;
   result->init_ms = w.time_ms;
@@ -62,6 +53,47 @@ bool exact_window_search(const GeodesicContext& context, int a, int b,
   result->summary.time_ms += w.time_ms;
   result->constraint_variables = std::move(r.constraint_variables);
   return result->summary.converged();
+}
+
+// The exact window search (unbounded, searched as A*) and the refinement of the shortest
+// path's corridor it returns: the globally shortest geodesic. False, with *exact the
+// search's distance when it has one (else NaN), when the search stopped at
+// options.max_windows, could not build its corridor, or the corridor's refinement did not
+// converge (the result then holds that refinement, if any).
+// \throw InputError when the vertices lie on different components.
+bool exact_window_search(const GeodesicContext& context, int a, int b,
+                         const GeodesicOptions& options, OpenGeodesicResult* result,
+                         double* exact) {
+  WindowSearchOptions search;
+  search.max_windows = options.max_windows;
+  const WindowSearchResult w = shortest_path_by_windows(context.mesh(), context.window_mesh(), a, b,
+                                                        search, &context.landmarks());
+  return refine_window_result(context, a, b, w, options, result, exact);
+}
+
+// geodesic_between after the window search `search` (exact: its distance, or NaN) did not
+// give a converged result: the local starts, the shorter result kept.
+OpenGeodesicResult after_window_search(const GeodesicContext& context, const SurfacePoint& a,
+                                       const SurfacePoint& b, const GeodesicOptions& options,
+                                       const EdgePathOptions& edge_options,
+                                       OpenGeodesicResult search, double exact) {
+  OpenGeodesicResult result = best_of_starts(context, a, b, options, edge_options);
+  if (options.split_at_vertices && result.summary.converged())
+    split_at_passed_vertices(context, a, b, options, edge_options, &result);
+  // Neither converged: the shorter path.
+  if (!result.summary.converged() && search.summary.final_length > 0.0 &&
+      search.summary.final_length < result.summary.final_length) {
+    search.init_ms += result.init_ms;
+    search.refine_ms += result.refine_ms;
+    return search;
+  }
+  result.exact_windows = search.exact_windows;
+  result.exact_ms = search.exact_ms;
+  result.init_ms += search.exact_ms;
+  // Globally shortest when the complete search's distance confirms it.
+  result.exact_complete = result.summary.converged() && std::isfinite(exact) &&
+                          std::abs(result.summary.final_length - exact) <= 1e-12 * exact;
+  return result;
 }
 
 }  // namespace
@@ -103,23 +135,43 @@ OpenGeodesicResult geodesic_between(const GeodesicContext& context, const Surfac
     // Stopped by max_windows, or its corridor not refined: the local starts, as without
     // windows.
   }
-  OpenGeodesicResult result = best_of_starts(context, a, b, options, edge_options);
-  if (options.split_at_vertices && result.summary.converged())
-    split_at_passed_vertices(context, a, b, options, edge_options, &result);
-  // Neither converged: the shorter path.
-  if (!result.summary.converged() && search.summary.final_length > 0.0 &&
-      search.summary.final_length < result.summary.final_length) {
-    search.init_ms += result.init_ms;
-    search.refine_ms += result.refine_ms;
-    return search;
+  return after_window_search(context, a, b, options, edge_options, std::move(search), exact);
+}
+
+std::vector<OpenGeodesicResult> geodesics_from(const GeodesicContext& context,
+                                               const SurfacePoint& a,
+                                               const std::vector<SurfacePoint>& targets,
+                                               const GeodesicOptions& options,
+                                               const EdgePathOptions& edge_options) {
+  std::vector<OpenGeodesicResult> results(targets.size());
+  const bool windows = options.exact_windows && !context.window_mesh().pseudo_source.empty() &&
+                       a.kind == SurfacePoint::Kind::Vertex;
+  // The vertex targets other than a: one window search, resumed from target to target.
+  std::vector<int> at, vertices;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    if (windows && targets[i].kind == SurfacePoint::Kind::Vertex &&
+        targets[i].element != a.element) {
+      at.push_back(static_cast<int>(i));
+      vertices.push_back(targets[i].element);
+    } else {
+      results[i] = geodesic_between(context, a, targets[i], options, edge_options);
+    }
   }
-  result.exact_windows = search.exact_windows;
-  result.exact_ms = search.exact_ms;
-  result.init_ms += search.exact_ms;
-  // Globally shortest when the complete search's distance confirms it.
-  result.exact_complete = result.summary.converged() && std::isfinite(exact) &&
-                          std::abs(result.summary.final_length - exact) <= 1e-12 * exact;
-  return result;
+  if (vertices.empty()) return results;
+  WindowSearchOptions search;
+  search.max_windows = options.max_windows;
+  const std::vector<WindowSearchResult> found = shortest_paths_by_windows(
+      context.mesh(), context.window_mesh(), a.element, vertices, search, &context.landmarks());
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    OpenGeodesicResult r;
+    double exact = std::numeric_limits<double>::quiet_NaN();
+    const SurfacePoint& b = targets[at[k]];
+    results[at[k]] =
+        refine_window_result(context, a.element, b.element, found[k], options, &r, &exact)
+            ? std::move(r)
+            : after_window_search(context, a, b, options, edge_options, std::move(r), exact);
+  }
+  return results;
 }
 
 }  // namespace windplan

@@ -102,4 +102,15 @@ OpenGeodesicResult geodesic_between(const GeodesicContext& context, const Surfac
                                     const SurfacePoint& b, const GeodesicOptions& options = {},
                                     const EdgePathOptions& edge_options = {});
 
+/// Geodesics from `a` to each of `targets` (results[i] for targets[i]), as geodesic_between
+/// gives each, for less work when a is a vertex: the exact window search to the vertex targets
+/// is one search resumed from target to target (shortest_paths_by_windows in
+/// geometry/geodesic/geodesic_windows.h; bench/README.md, session 13).
+/// \throw InputError if a target lies on another component.
+std::vector<OpenGeodesicResult> geodesics_from(const GeodesicContext& context,
+                                               const SurfacePoint& a,
+                                               const std::vector<SurfacePoint>& targets,
+                                               const GeodesicOptions& options = {},
+                                               const EdgePathOptions& edge_options = {});
+
 }  // namespace windplan

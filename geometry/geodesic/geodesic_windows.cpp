@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <memory>
 
 #include "geometry/base/errors.h"
 #include "geometry/geodesic/edge_path.h"
@@ -26,6 +27,10 @@ bool WindowSearchOptions::is_valid(std::string* why) const {
   }
   if (max_windows < 0) {
     if (why) *why = "max_windows must be >= 0 (0: no limit)";
+    return false;
+  }
+  if (resume_limit < 0) {
+    if (why) *why = "resume_limit must be >= 0 (windows)";
     return false;
   }
   return true;
@@ -166,7 +171,10 @@ Scratch& thread_scratch() {
 // kReuse: a full run that gives the slots of windows propagated or dead to later ones (its own
 // instantiation, so that the searches to a target, which build their path back through their
 // windows, pay nothing for the bookkeeping: 4-8 % per path when it was a run-time flag).
-template <bool kReuse>
+// kResume: a search from one source to several targets, one after the other (run, then
+// run_to): it drops nothing for a target's bound, so that its state stays a valid start for
+// the next target (its own instantiation for the same reason).
+template <bool kReuse, bool kResume = false>
 class Search {
  public:
   // On the window mesh's renumbered copy: source and target are its vertices (target < 0:
@@ -220,10 +228,28 @@ class Search {
   }
 
   WindowSearchResult run() {
-    WindowSearchResult result;
     relax(source_, 0.0, -1, -1);
     scratch_.vertices[source_].pending = false;  // expanded here, not again by its event
     expand_vertex(source_, 0.0);
+    return run_leg();
+  }
+
+  // (kResume) The search resumed for another target: every window still listed and every
+  // vertex still to expand is keyed for it again, and the search goes on from where it
+  // stopped. Exact as a new search is: the windows and distances found so far are real rays
+  // and paths, and nothing was dropped for the earlier targets' bounds.
+  WindowSearchResult run_to(int target) {
+    static_assert(kResume, "a resumable search only");
+    retarget(target);
+    return run_leg();
+  }
+
+  // Windows held (the path's chains are built back through them).
+  std::size_t windows_held() const { return windows_.size(); }
+
+ private:
+  WindowSearchResult run_leg() {
+    WindowSearchResult result;
     while (!queue_.empty() && !aborted_) {
       const Event e = queue_.pop();
       // A halfedge's entry has a key at most every order key, hence every bound, of the
@@ -254,7 +280,41 @@ class Search {
     return result;
   }
 
- private:
+  void retarget(int target) {
+    target_ = target;
+    target_position_ = mesh_.position(target);
+    if (landmarks_ != nullptr) {
+      const int k = landmarks_->count;
+      const std::size_t t = original_[target];
+      target_landmark_.assign(landmarks_->dist.begin() + t * k,
+                              landmarks_->dist.begin() + (t + 1) * k);
+    }
+    best_ = dist(target);  // a path found already bounds the search
+    created_ = 0;
+    vertex_events_ = 0;
+    aborted_ = false;
+    queue_.clear();
+    for (const int h : touched_) {
+      HalfedgeRecord& r = scratch_.halfedges[h];
+      r.target_x = r.target_y = std::numeric_limits<double>::quiet_NaN();
+      r.queued_key = std::numeric_limits<double>::infinity();
+      ++r.tag;
+      for (int i = r.head; i >= 0; i = windows_[i].next) {
+        double order = 0.0;
+        keys(windows_[i], &order, &windows_[i].bound);
+        schedule(h, order);
+      }
+    }
+    std::size_t kept = 0;
+    for (const int v : pending_vertices_) {
+      const VertexRecord& r = scratch_.vertices[v];
+      if (!r.pending) continue;
+      pending_vertices_[kept++] = v;
+      push({order_key(v, r.dist), -(v + 1)});
+    }
+    pending_vertices_.resize(kept);
+  }
+
   double dist(int v) const {
     const VertexRecord& r = scratch_.vertices[v];
     return r.stamp == scratch_.stamp ? r.dist : std::numeric_limits<double>::infinity();
@@ -270,12 +330,14 @@ class Search {
     }
     if (v == target_) {
       best_ = std::min(best_, d);
-      return;
+      // (A resumable search expands a target that is a pseudo-source for the next targets.)
+      if constexpr (!kResume) return;
     }
     if (!pseudo_[v]) return;
-    if (vertex_key(v, d) < best_) {
+    if (kResume || vertex_key(v, d) < best_) {
       push({order_key(v, d), -(v + 1)});
       r.pending = true;
+      if constexpr (kResume) pending_vertices_.push_back(v);
     }
   }
 
@@ -382,14 +444,23 @@ class Search {
     if (!(w.b1 - w.b0 > 1e-12 * len)) return;
     if (!trim(&w)) return;
     if (!compete(&w)) return;
+    double order = 0.0, bound = 0.0;
+    keys(w, &order, &bound);
+    push_window(w, order, bound);
+  }
+
+  // The window's queue key (*order) and its lower bound of the paths to the target through it
+  // (*bound, the A* bound), both its distance from the source in a full run.
+  void keys(const Window& w, double* order, double* bound) {
     // min over x in [b0, b1] of |I - (x, 0)| + |(x, 0) - t|: the target at its distance r
     // from the edge's line, unfolded to the other side (T = (tx, r)); the sum is convex in x
     // with its minimum where I -> T crosses the line.
     const double nearest = w.sigma + norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0});
     if (target_ < 0) {
-      push_window(w, nearest, nearest);
+      *order = *bound = nearest;
       return;
     }
+    const double len = length(w);
     const Vec2 T = target_in_frame(w.h);
     const Vec2& I = w.source;
     const double cross_x = T.y - I.y > 0.0 ? I.x + (T.x - I.x) * (-I.y) / (T.y - I.y) : I.x;
@@ -401,7 +472,8 @@ class Search {
                                                         original_[mesh_.from(w.h)],
                                                         original_[mesh_.to(w.h)], len, w.b0, w.b1));
     }
-    push_window(w, distance_order_ ? nearest : key, key);
+    *order = distance_order_ ? nearest : key;
+    *bound = key;
   }
 
   // ALT lower bound on d(v, t): max over landmarks L of |d(L, t) - d(L, v)|.
@@ -418,8 +490,11 @@ class Search {
   void push(const Event& e) { queue_.push(e); }
 
   // `order`: the queue key; `bound`: the A* bound against the best length.
+  // (A resumable search keeps a window beyond the best length: it may serve a later target.)
   void push_window(const Window& w, double order, double bound) {
-    if (!(bound < best_)) return;
+    if constexpr (!kResume) {
+      if (!(bound < best_)) return;
+    }
     int index = static_cast<int>(windows_.size());
     bool reused = false;
     if constexpr (kReuse) reused = !free_.empty();  // only a full run frees slots
@@ -471,6 +546,23 @@ class Search {
       ++r.tag;
     }
     long n = 0;
+    if constexpr (kResume) {
+      // Windows at or beyond the best length stay listed for later targets (retarget keys
+      // them again).
+      for (int prev = -1;;) {
+        const int i = prev < 0 ? scratch_.halfedges[h].head : windows_[prev].next;
+        if (i < 0) break;
+        Window& o = windows_[i];
+        if (!(o.bound < best_)) {
+          prev = i;
+          continue;
+        }
+        unlink(prev < 0 ? &scratch_.halfedges[h].head : &windows_[prev].next, o);
+        propagate(i);
+        ++n;
+      }
+      return n;
+    }
     // Each window leaves the list before it is propagated (its children lie on the two other
     // edges of face(h), whose lists are the only ones their competition touches). The head is
     // re-read every time: propagating pushes windows and may move the buffer.
@@ -531,6 +623,7 @@ class Search {
       constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
       constexpr double kInf = std::numeric_limits<double>::infinity();
       r = HalfedgeRecord{scratch_.stamp, -1, kInf, 0.0, kNaN, kNaN, kInf, 0};
+      if constexpr (kResume) touched_.push_back(h);
     }
     return r;
   }
@@ -714,9 +807,10 @@ class Search {
   const int* original_;  // its vertex -> the original vertex
   const std::vector<char>& pseudo_;
   const double* frame_;
-  const int source_, target_;
+  const int source_;
+  int target_;  // (a resumable search's changes)
   const WindowSearchOptions options_;
-  const Vec3 target_position_;
+  Vec3 target_position_;
   const Landmarks* landmarks_;
   std::vector<double> target_landmark_;
   Scratch& scratch_;
@@ -733,6 +827,10 @@ class Search {
   long created_ = 0;
   long vertex_events_ = 0;
   bool aborted_ = false;
+  // (kResume) Halfedges with a record in this search, and vertices given an event (with
+  // repeats): what retarget keys again.
+  std::vector<int> touched_;
+  std::vector<int> pending_vertices_;
 };
 
 }  // namespace
@@ -801,6 +899,56 @@ WindowSearchResult shortest_path_by_windows(const Mesh& mesh, const WindowMesh& 
   }
   result.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   return result;
+}
+
+std::vector<WindowSearchResult> shortest_paths_by_windows(const Mesh& mesh,
+                                                          const WindowMesh& window_mesh, int source,
+                                                          const std::vector<int>& targets,
+                                                          const WindowSearchOptions& options,
+                                                          const Landmarks* landmarks) {
+  check_inputs(mesh, window_mesh, {source});
+  for (const int t : targets) check_inputs(mesh, window_mesh, {t});
+  std::string why;
+  if (!options.is_valid(&why)) throw ConfigError("window search: " + why);
+  if (landmarks != nullptr &&
+      landmarks->dist.size() != static_cast<std::size_t>(mesh.num_vertices()) * landmarks->count)
+    throw ConfigError("window search: landmark fields do not match the mesh");
+  const MeshOrder& order = window_mesh.order;
+  // Nearest first (in space): a near target's search is mostly on the way to the far ones.
+  std::vector<int> turn(targets.size());
+  for (std::size_t i = 0; i < turn.size(); ++i) turn[i] = static_cast<int>(i);
+  const Vec3& ps = mesh.position(source);
+  std::stable_sort(turn.begin(), turn.end(), [&](int i, int j) {
+    return (mesh.position(targets[i]) - ps).squaredNorm() <
+           (mesh.position(targets[j]) - ps).squaredNorm();
+  });
+  std::vector<WindowSearchResult> results(targets.size());
+  const int s = order.vertex_to_local[source];
+  std::unique_ptr<Search<false, true>> search;
+  for (const int i : turn) {
+    const auto t0 = Clock::now();
+    const int t = targets[i];
+    WindowSearchResult& result = results[i];
+    if (t != source) {
+      const int local = order.vertex_to_local[t];
+      // A search holding many windows starts afresh (memory: 64 bytes per window).
+      if (search != nullptr &&
+          search->windows_held() > static_cast<std::size_t>(options.resume_limit))
+        search.reset();
+      if (search == nullptr) {
+        search = std::make_unique<Search<false, true>>(window_mesh, s, local, options, landmarks);
+        result = search->run();
+      } else {
+        result = search->run_to(local);
+      }
+      if (result.found) {
+        result.path = order.path_from_local(mesh, result.path);
+        for (int& v : result.vertices_passed) v = order.vertex_from_local[v];
+      }
+    }
+    result.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  }
+  return results;
 }
 
 }  // namespace windplan

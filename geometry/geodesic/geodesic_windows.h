@@ -57,6 +57,10 @@ struct WindowSearchOptions {
   /// 106 MB against 1.17 GB, bench/README.md, session 11). No effect on a search to a target, whose
   /// path is built back through its windows.
   bool reuse_windows = true;
+  /// shortest_paths_by_windows: a search that holds more windows than this after a target
+  /// starts afresh for the next (64 bytes each: 4M is 256 MB per thread; 0: every target
+  /// afresh).
+  long resume_limit = 1L << 22;
 
   bool is_valid(std::string* why) const;
 };
@@ -115,5 +119,19 @@ WindowSearchResult shortest_path_by_windows(const Mesh& mesh, const WindowMesh& 
                                             int source, int target,
                                             const WindowSearchOptions& options = {},
                                             const Landmarks* landmarks = nullptr);
+
+/// The shortest paths from vertex `source` to each vertex of `targets` (results[i] for
+/// targets[i]; a target equal to the source gets found = false), by one search resumed from
+/// target to target, the nearest in space first: the windows and distances found for one
+/// target are the start of the next (up to options.resume_limit windows).
+/// Each result's windows, vertex_events and time are its own target's share. Exact as
+/// shortest_path_by_windows, for less work when the targets share a source
+/// (bench/README.md, session 13).
+/// \throw InputError when a vertex index is out of range.
+std::vector<WindowSearchResult> shortest_paths_by_windows(const Mesh& mesh,
+                                                          const WindowMesh& window_mesh, int source,
+                                                          const std::vector<int>& targets,
+                                                          const WindowSearchOptions& options = {},
+                                                          const Landmarks* landmarks = nullptr);
 
 }  // namespace windplan
