@@ -128,6 +128,21 @@ inline TriangleSoup rough_torus(double amplitude, unsigned seed) {
   return s;
 }
 
+/// A grid with three Gaussian hills and a pit: saddle vertices on their flanks and pairs of
+/// nearly equal geodesics on the two sides of each hill.
+inline TriangleSoup hills(int n, double size) {
+  TriangleSoup s = grid(n, n, size / n);
+  const double cx[] = {0.35, 0.62, 0.5, 0.3}, cy[] = {0.4, 0.6, 0.25, 0.75};
+  const double amp[] = {1.6, 1.2, 0.9, -0.8}, width[] = {0.12, 0.1, 0.08, 0.1};
+  for (Vec3& p : s.points) {
+    for (int k = 0; k < 4; ++k) {
+      const double dx = p.x() / size - cx[k], dy = p.y() / size - cy[k];
+      p.z() += amp[k] * std::exp(-(dx * dx + dy * dy) / (2.0 * width[k] * width[k]));
+    }
+  }
+  return s;
+}
+
 /// The soup with its vertices and faces numbered at random and each face's corners rotated (the
 /// same surface, as meshes written by remeshers often are numbered); perm[v] (optional) receives
 /// the new index of vertex v.

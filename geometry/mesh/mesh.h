@@ -89,10 +89,12 @@ class Mesh {
   int prev(int h) const {
     return is_boundary_halfedge(h) ? bprev_[h - 3 * num_faces()] : (h % 3 == 0 ? h + 2 : h - 1);
   }
-  int from(int h) const { return is_boundary_halfedge(h) ? to(twin_[h]) : tris_[h / 3][h % 3]; }
-  int to(int h) const {
-    return is_boundary_halfedge(h) ? from(twin_[h]) : tris_[h / 3][h % 3 == 2 ? 0 : h % 3 + 1];
+  // (Not through each other: a boundary halfedge's twin is interior. Mutual recursion kept the
+  // compiler from inlining them in the hot loops of the window search.)
+  int from(int h) const {
+    return is_boundary_halfedge(h) ? interior_to(twin_[h]) : interior_from(h);
   }
+  int to(int h) const { return is_boundary_halfedge(h) ? interior_from(twin_[h]) : interior_to(h); }
   int edge(int h) const { return edge_[h]; }
   int edge_halfedge(int e) const { return edge_halfedge_[e]; }
   int face_halfedge(int f) const { return 3 * f; }
@@ -157,6 +159,9 @@ class Mesh {
   std::vector<int> loop_vertices(const std::vector<int>& loop) const;
 
  private:
+  int interior_from(int h) const { return tris_[h / 3][h % 3]; }
+  int interior_to(int h) const { return tris_[h / 3][h % 3 == 2 ? 0 : h % 3 + 1]; }
+
   std::vector<Vec3> points_;
   std::vector<Tri> tris_;
   std::vector<int> twin_;             // per halfedge (interior, then boundary)

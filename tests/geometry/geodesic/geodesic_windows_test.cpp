@@ -24,21 +24,6 @@
 namespace windplan {
 namespace {
 
-/// A grid with three Gaussian hills and a pit: saddle vertices on their flanks and pairs of
-/// nearly equal geodesics on the two sides of each hill.
-TriangleSoup hills(int n, double size) {
-  TriangleSoup s = test::grid(n, n, size / n);
-  const double cx[] = {0.35, 0.62, 0.5, 0.3}, cy[] = {0.4, 0.6, 0.25, 0.75};
-  const double amp[] = {1.6, 1.2, 0.9, -0.8}, width[] = {0.12, 0.1, 0.08, 0.1};
-  for (Vec3& p : s.points) {
-    for (int k = 0; k < 4; ++k) {
-      const double dx = p.x() / size - cx[k], dy = p.y() / size - cy[k];
-      p.z() += amp[k] * std::exp(-(dx * dx + dy * dy) / (2.0 * width[k] * width[k]));
-    }
-  }
-  return s;
-}
-
 std::vector<std::pair<int, int>> random_pairs(const Mesh& mesh, int count, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
@@ -75,13 +60,13 @@ void expect_equal_to_cgal(const Mesh& mesh, int count, unsigned seed, const std:
 }
 
 TEST(WindowSearch, EqualsCgalOnHills) {
-  expect_equal_to_cgal(Mesh(hills(30, 6.0)), 25, 3, "hills");
+  expect_equal_to_cgal(Mesh(test::hills(30, 6.0)), 25, 3, "hills");
 }
 
 TEST(WindowSearch, EqualsCgalOnARoughTorus) {
   expect_equal_to_cgal(Mesh(test::rough_torus(0.03, 11)), 60, 12, "rough torus");
   expect_equal_to_cgal(Mesh(test::rough_torus(0.03, 11)), 60, 13, "rough torus, landmarks", 4);
-  expect_equal_to_cgal(Mesh(hills(30, 6.0)), 40, 14, "hills, landmarks", 4);
+  expect_equal_to_cgal(Mesh(test::hills(30, 6.0)), 40, 14, "hills, landmarks", 4);
 }
 
 /// A flat n x n grid whose interior vertices are, with probability `share`, moved to about
@@ -171,7 +156,7 @@ TEST(WindowSearch, FullFieldAndLandmarksEqualCgal) {
 // the same field, and holds far fewer windows at once.
 TEST(WindowSearch, FullFieldWithReusedWindowSlotsEqualsCgal) {
   for (const bool torus : {false, true}) {
-    const Mesh mesh = torus ? Mesh(test::rough_torus(0.03, 11)) : Mesh(hills(24, 10.0));
+    const Mesh mesh = torus ? Mesh(test::rough_torus(0.03, 11)) : Mesh(test::hills(24, 10.0));
     const WindowMesh wm = prepare_window_mesh(mesh);
     std::vector<SurfacePoint> all;
     for (int v = 0; v < mesh.num_vertices(); ++v) all.push_back(SurfacePoint::at_vertex(v));
@@ -199,7 +184,7 @@ TEST(WindowSearch, FullFieldWithReusedWindowSlotsEqualsCgal) {
     }
   }
   // A full run with a bound or a cap would leave distances too long or missing: refused.
-  const Mesh small(hills(8, 10.0));
+  const Mesh small(test::hills(8, 10.0));
   const WindowMesh wm = prepare_window_mesh(small);
   WindowSearchOptions capped, bounded;
   capped.max_windows = 100;
@@ -218,7 +203,7 @@ TEST(WindowSearch, FullFieldWithReusedWindowSlotsEqualsCgal) {
 // ends at its vertices and is a valid path of the renumbered mesh, and every vertex it is said
 // to pass lies on a shortest path (d(a, v) + d(v, b) = d(a, b)); no path joins the two parts.
 TEST(WindowSearch, ARandomlyNumberedMeshIsAnsweredInItsOwnNumbering) {
-  TriangleSoup base = hills(16, 6.0);
+  TriangleSoup base = test::hills(16, 6.0);
   {
     std::vector<Tri> kept;
     for (const Tri& t : base.triangles) {
@@ -275,7 +260,7 @@ TEST(WindowSearch, ARandomlyNumberedMeshIsAnsweredInItsOwnNumbering) {
 }
 
 TEST(WindowSearch, UpperBoundAndWindowLimit) {
-  const Mesh mesh(hills(20, 6.0));
+  const Mesh mesh(test::hills(20, 6.0));
   const WindowMesh wm = prepare_window_mesh(mesh);
   const int a = 3, b = mesh.num_vertices() - 5;
   const double exact =
@@ -296,126 +281,16 @@ TEST(WindowSearch, UpperBoundAndWindowLimit) {
   EXPECT_FALSE(r.found);
 }
 
-/// shortest_paths_by_windows from each of `sources` to `count` random targets (with a repeat,
-/// the source itself and the other sources among them) against CGAL's tree from the source:
-/// every distance, corridor and count. Returns the windows made, summed over the sources.
-long expect_resumed_equal_to_cgal(const Mesh& mesh, const std::vector<int>& sources, int count,
-                                  unsigned seed, const std::string& what,
-                                  const WindowSearchOptions& options = {},
-                                  const Landmarks* marks = nullptr) {
-  const WindowMesh wm = prepare_window_mesh(mesh);
-  ExactGeodesic cgal(mesh);
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
-  long windows = 0;
-  for (const int a : sources) {
-    std::vector<int> targets;
-    for (int k = 0; k < count; ++k) targets.push_back(pick(rng));
-    targets.push_back(targets.front());
-    targets.push_back(a);
-    for (const int b : sources) targets.push_back(b);
-    std::vector<SurfacePoint> points;
-    for (const int b : targets) points.push_back(SurfacePoint::at_vertex(b));
-    const std::vector<double> exact = cgal.distances(SurfacePoint::at_vertex(a), points);
-    const std::vector<WindowSearchResult> r =
-        shortest_paths_by_windows(mesh, wm, a, targets, options, marks);
-    EXPECT_EQ(r.size(), targets.size());
-    for (std::size_t i = 0; i < targets.size(); ++i) {
-      const int b = targets[i];
-      if (b == a) {
-        EXPECT_FALSE(r[i].found);
-        continue;
-      }
-      if (!r[i].found) {
-        ADD_FAILURE() << what << " " << a << " -> " << b << ": not found";
-        continue;
-      }
-      EXPECT_TRUE(r[i].complete);
-      EXPECT_NEAR(r[i].distance, exact[i], 1e-12 * exact[i]) << what << " " << a << " -> " << b;
-      std::string why;
-      if (!is_valid_path(mesh, r[i].path, &why)) {
-        ADD_FAILURE() << what << " " << a << " -> " << b << ": " << why;
-        continue;
-      }
-      EXPECT_EQ(r[i].path.start.element, a);
-      EXPECT_EQ(r[i].path.end.element, b);
-      const GeodesicResult refined = refine_path(mesh, r[i].path);
-      EXPECT_NEAR(refined.summary.final_length, exact[i], 1e-9 * exact[i])
-          << what << " " << a << " -> " << b << ": " << refined.summary.brief_report();
-      windows += r[i].windows;
-    }
-  }
-  return windows;
-}
-
-// One search resumed from target to target gives each target's exact distance and corridor,
-// also through vertices an earlier target's search stopped at (a target that is a saddle is
-// expanded for the later ones), with landmarks, and when every target starts afresh; and it
-// makes fewer windows than a search per target.
-TEST(WindowSearch, ResumedSearchEqualsCgalTargetAfterTarget) {
-  const Mesh hill(hills(30, 6.0));
-  const Mesh torus(test::rough_torus(0.03, 11));
-  const long resumed = expect_resumed_equal_to_cgal(hill, {5, 400, 811}, 12, 21, "hills");
-  expect_resumed_equal_to_cgal(torus, {0, 77, 300}, 12, 22, "rough torus");
-  WindowSearchOptions fresh;
-  fresh.resume_limit = 0;
-  const long separate =
-      expect_resumed_equal_to_cgal(hill, {5, 400, 811}, 12, 21, "hills, afresh", fresh);
-  EXPECT_LT(resumed, separate);
-  const WindowMesh wm = prepare_window_mesh(torus);
-  const Landmarks marks = compute_landmarks(torus, wm, 4);
-  expect_resumed_equal_to_cgal(torus, {3, 500}, 12, 23, "rough torus, landmarks", {}, &marks);
-}
-
-// A target's search stopped by max_windows leaves a state the next target's search goes on
-// from: every search that completes is exact.
-TEST(WindowSearch, ResumedSearchAfterAWindowLimit) {
-  const Mesh mesh(hills(30, 6.0));
-  const WindowMesh wm = prepare_window_mesh(mesh);
-  ExactGeodesic cgal(mesh);
-  const int a = 400;
-  std::vector<int> targets;
-  std::vector<SurfacePoint> points;
-  for (int b = 7; b < mesh.num_vertices(); b += 53) {
-    targets.push_back(b);
-    points.push_back(SurfacePoint::at_vertex(b));
-  }
-  const std::vector<double> exact = cgal.distances(SurfacePoint::at_vertex(a), points);
-  WindowSearchOptions options;
-  options.max_windows = 400;
-  const std::vector<WindowSearchResult> r =
-      shortest_paths_by_windows(mesh, wm, a, targets, options);
-  int stopped = 0, complete = 0;
-  for (std::size_t i = 0; i < targets.size(); ++i) {
-    if (!r[i].complete) {
-      ++stopped;
-      EXPECT_FALSE(r[i].found);
-      continue;
-    }
-    ++complete;
-    ASSERT_TRUE(r[i].found) << a << " -> " << targets[i];
-    EXPECT_NEAR(r[i].distance, exact[i], 1e-12 * exact[i]) << a << " -> " << targets[i];
-  }
-  EXPECT_GT(stopped, 0);
-  EXPECT_GT(complete, 0);
-}
-
 TEST(WindowSearch, BadInputIsNamed) {
   const Mesh mesh(test::octahedron());
   const WindowMesh wm = prepare_window_mesh(mesh);
   EXPECT_THROW(shortest_path_by_windows(mesh, wm, 0, 6), InputError);
   EXPECT_THROW(shortest_path_by_windows(mesh, wm, -1, 2), InputError);
-  EXPECT_THROW(shortest_paths_by_windows(mesh, wm, 0, {2, 6}), InputError);
-  EXPECT_THROW(shortest_paths_by_windows(mesh, wm, 7, {2}), InputError);
   WindowSearchOptions options;
   options.upper_bound = 0.0;
   EXPECT_THROW(shortest_path_by_windows(mesh, wm, 0, 2, options), ConfigError);
   const Mesh other(test::grid(2, 2));
   EXPECT_THROW(shortest_path_by_windows(other, wm, 0, 2), ConfigError);
-  EXPECT_THROW(shortest_paths_by_windows(other, wm, 0, {2}), ConfigError);
-  options = {};
-  options.resume_limit = -1;
-  EXPECT_THROW(shortest_paths_by_windows(mesh, wm, 0, {2}, options), ConfigError);
 }
 
 /// geodesic_between with and without its window search against CGAL on the given pairs;
@@ -465,7 +340,7 @@ int expect_global(const Mesh& mesh, const std::vector<std::pair<int, int>>& pair
 }
 
 TEST(GeodesicBetween, WindowLimitFallsBackToTheLocalStarts) {
-  const Mesh mesh(hills(20, 6.0));
+  const Mesh mesh(test::hills(20, 6.0));
   const GeodesicContext ctx(mesh);
   const SurfacePoint a = SurfacePoint::at_vertex(0), b = SurfacePoint::at_vertex(440);
   const OpenGeodesicResult exact = geodesic_between(ctx, a, b);
@@ -523,7 +398,7 @@ TEST(GeodesicBetween, UnconvergedCorridorFallsBackToTheLocalStarts) {
 }
 
 TEST(GeodesicBetween, WrongCorridorIsCorrectedOnHills) {
-  const Mesh mesh(hills(30, 6.0));
+  const Mesh mesh(test::hills(30, 6.0));
   const int misses = expect_global(mesh, random_pairs(mesh, 40, 8), "hills");
   // The pairs exercise the correction: some local results lie in another corridor.
   EXPECT_GE(misses, 1);
@@ -537,45 +412,6 @@ TEST(GeodesicBetween, WrongCorridorIsCorrectedOnBunny20k) {
   const int misses =
       expect_global(mesh, {{2488, 1007}, {5695, 264}, {5695, 8436}, {4430, 113}}, "bunny-20k");
   EXPECT_GE(misses, 1);
-}
-
-/// geodesics_from `a` to `targets` against geodesic_between pair by pair: the same lengths
-/// (to round-off of the refined corridors) and the same exactness.
-void expect_from_equals_between(const Mesh& mesh, int a, const std::vector<SurfacePoint>& targets,
-                                const std::string& what) {
-  const GeodesicContext ctx(mesh);
-  const SurfacePoint pa = SurfacePoint::at_vertex(a);
-  const std::vector<OpenGeodesicResult> all = geodesics_from(ctx, pa, targets);
-  ASSERT_EQ(all.size(), targets.size());
-  for (std::size_t i = 0; i < targets.size(); ++i) {
-    const OpenGeodesicResult one = geodesic_between(ctx, pa, targets[i]);
-    EXPECT_TRUE(all[i].summary.converged()) << what << " target " << i;
-    EXPECT_NEAR(all[i].summary.final_length, one.summary.final_length,
-                1e-12 * (1.0 + one.summary.final_length))
-        << what << " target " << i;
-    EXPECT_EQ(all[i].exact_complete, one.exact_complete) << what << " target " << i;
-    EXPECT_EQ(all[i].start, one.start) << what << " target " << i;
-  }
-}
-
-// Vertex targets share one resumed window search; a face point and the source itself are
-// answered as geodesic_between answers them.
-TEST(GeodesicBetween, FromOneSourceEqualsOnePairAtATime) {
-  const Mesh mesh(hills(30, 6.0));
-  std::vector<SurfacePoint> targets;
-  for (const int b : {900, 17, 511, 950, 17, 263}) targets.push_back(SurfacePoint::at_vertex(b));
-  targets.push_back(SurfacePoint::in_face(700, Vec3(0.2, 0.3, 0.5)));
-  targets.push_back(SurfacePoint::at_vertex(400));
-  expect_from_equals_between(mesh, 400, targets, "hills");
-}
-
-TEST(GeodesicBetween, FromOneSourceOnBunny20k) {
-  WINDPLAN_REQUIRE_SHARED_MESH(file, "derived/bunny-remesh-20k.obj");
-  const Mesh mesh = build_mesh(read_mesh(file), false);
-  // bench_geodesic's first sources and targets (seed 20240611).
-  std::vector<SurfacePoint> targets;
-  for (const int b : {7891, 2099, 8780, 7392, 2097}) targets.push_back(SurfacePoint::at_vertex(b));
-  expect_from_equals_between(mesh, 5172, targets, "bunny-20k");
 }
 
 TEST(WindowSearch, LandmarksOnBunny20k) {
