@@ -489,18 +489,26 @@ int run_geodesic_batch(const Args& args, Setup& s) {
     progress = std::make_unique<StageProgress>(std::cerr, tty, "windplan geodesic");
     progress->start("pairs");
   }
-  // The pairs from one vertex are answered together (geodesics_from: one exact window search
-  // resumed from target to target, bench/README.md, session 13); the groups run in parallel.
+  // The pairs from one vertex are answered together, up to kPairsPerGroup of them in the
+  // file's order (geodesics_from: one exact window search resumed from target to target,
+  // bench/README.md, session 13); the groups run in parallel. (A fixed group size: the rows
+  // do not depend on the thread count, and a file of pairs from one vertex still runs on every
+  // thread and shows its progress.)
+  constexpr std::size_t kPairsPerGroup = 16;
   std::vector<std::vector<int>> groups;
-  std::map<int, std::size_t> group_of_vertex;
+  std::map<int, std::size_t> open_group;  // vertex -> its group still filling
   for (int i = 0; i < n; ++i) {
     if (pairs[i].a.kind != SurfacePoint::Kind::Vertex) {
       groups.push_back({i});
       continue;
     }
-    const auto [it, fresh] = group_of_vertex.emplace(pairs[i].a.element, groups.size());
-    if (fresh) groups.emplace_back();
-    groups[it->second].push_back(i);
+    const auto it = open_group.find(pairs[i].a.element);
+    if (it == open_group.end() || groups[it->second].size() >= kPairsPerGroup) {
+      open_group[pairs[i].a.element] = groups.size();
+      groups.push_back({i});
+    } else {
+      groups[it->second].push_back(i);
+    }
   }
   const int num_groups = static_cast<int>(groups.size());
   // A group's first pair (in the file's order) that has no path, and why.
@@ -519,18 +527,21 @@ int run_geodesic_batch(const Args& args, Setup& s) {
         times[group[k]] = r[k].init_ms + r[k].refine_ms;
         results[group[k]] = std::move(r[k]);
       }
-    } catch (const InputError&) {
-      // One pair at a time, to name the first that fails.
+    } catch (const InputError& e) {
+      // One pair at a time, to name the first that fails (the group's first line when none
+      // fails alone).
+      failed[g] = group[0];
+      failure[g] = e.what();
       for (const int i : group) {
         try {
           results[i] = geodesic_between(ctx, pairs[i].a, pairs[i].b, s.options);
-        } catch (const InputError& e) {
+        } catch (const InputError& alone) {
           failed[g] = i;
-          failure[g] = e.what();
+          failure[g] = alone.what();
           return;
         }
       }
-      throw;
+      return;
     }
     if (!show) return;
     const int before = done.fetch_add(static_cast<int>(group.size()));

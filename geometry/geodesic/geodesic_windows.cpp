@@ -75,10 +75,29 @@ void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
   }
 }
 
+void check_query(const Mesh& mesh, const WindowMesh& window_mesh,
+                 std::initializer_list<int> vertices, const WindowSearchOptions& options,
+                 const Landmarks* landmarks) {
+  check_inputs(mesh, window_mesh, vertices);
+  std::string why;
+  if (!options.is_valid(&why)) throw ConfigError("window search: " + why);
+  if (landmarks != nullptr &&
+      landmarks->dist.size() != static_cast<std::size_t>(mesh.num_vertices()) * landmarks->count)
+    throw ConfigError("window search: landmark fields do not match the mesh");
+}
+
+void path_in_original(const Mesh& mesh, const MeshOrder& order, WindowSearchResult* result) {
+  if (!result->found) return;
+  result->path = order.path_from_local(mesh, result->path);
+  for (int& v : result->vertices_passed) v = order.vertex_from_local[v];
+}
+
 }  // namespace window_search
 
 using window_search::check_inputs;
+using window_search::check_query;
 using window_search::Clock;
+using window_search::path_in_original;
 using window_search::Search;
 
 std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
@@ -105,22 +124,14 @@ WindowSearchResult shortest_path_by_windows(const Mesh& mesh, const WindowMesh& 
                                             const WindowSearchOptions& options,
                                             const Landmarks* landmarks) {
   const auto t0 = Clock::now();
-  check_inputs(mesh, window_mesh, {source, target});
-  std::string why;
-  if (!options.is_valid(&why)) throw ConfigError("window search: " + why);
-  if (landmarks != nullptr &&
-      landmarks->dist.size() != static_cast<std::size_t>(mesh.num_vertices()) * landmarks->count)
-    throw ConfigError("window search: landmark fields do not match the mesh");
+  check_query(mesh, window_mesh, {source, target}, options, landmarks);
   WindowSearchResult result;
   if (source != target) {
     const MeshOrder& order = window_mesh.order;
     result = Search<false>(window_mesh, order.vertex_to_local[source],
                            order.vertex_to_local[target], options, landmarks)
                  .run();
-    if (result.found) {
-      result.path = order.path_from_local(mesh, result.path);
-      for (int& v : result.vertices_passed) v = order.vertex_from_local[v];
-    }
+    path_in_original(mesh, order, &result);
   }
   result.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   return result;

@@ -58,8 +58,9 @@ struct WindowSearchOptions {
   /// path is built back through its windows.
   bool reuse_windows = true;
   /// shortest_paths_by_windows: a search that holds more windows than this after a target
-  /// starts afresh for the next (64 bytes each: 4M is 256 MB per thread; 0: every target
-  /// afresh).
+  /// starts afresh for the next (0: every target afresh). About 100 bytes each with their
+  /// queue entries and records: 4M is about 400 MB per thread. Checked between targets, so a
+  /// far target's search may go past it.
   long resume_limit = 1L << 22;
 
   bool is_valid(std::string* why) const;

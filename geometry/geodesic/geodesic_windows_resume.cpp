@@ -8,7 +8,9 @@
 namespace windplan {
 
 using window_search::check_inputs;
+using window_search::check_query;
 using window_search::Clock;
+using window_search::path_in_original;
 using window_search::Search;
 
 std::vector<WindowSearchResult> shortest_paths_by_windows(const Mesh& mesh,
@@ -16,13 +18,8 @@ std::vector<WindowSearchResult> shortest_paths_by_windows(const Mesh& mesh,
                                                           const std::vector<int>& targets,
                                                           const WindowSearchOptions& options,
                                                           const Landmarks* landmarks) {
-  check_inputs(mesh, window_mesh, {source});
+  check_query(mesh, window_mesh, {source}, options, landmarks);
   for (const int t : targets) check_inputs(mesh, window_mesh, {t});
-  std::string why;
-  if (!options.is_valid(&why)) throw ConfigError("window search: " + why);
-  if (landmarks != nullptr &&
-      landmarks->dist.size() != static_cast<std::size_t>(mesh.num_vertices()) * landmarks->count)
-    throw ConfigError("window search: landmark fields do not match the mesh");
   const MeshOrder& order = window_mesh.order;
   // Nearest first (in space): a near target's search is mostly on the way to the far ones.
   std::vector<int> turn(targets.size());
@@ -41,7 +38,7 @@ std::vector<WindowSearchResult> shortest_paths_by_windows(const Mesh& mesh,
     WindowSearchResult& result = results[i];
     if (t != source) {
       const int local = order.vertex_to_local[t];
-      // A search holding many windows starts afresh (memory: 64 bytes per window).
+      // A search holding many windows starts afresh (WindowSearchOptions::resume_limit).
       if (search != nullptr &&
           search->windows_held() > static_cast<std::size_t>(options.resume_limit))
         search.reset();
@@ -51,10 +48,7 @@ std::vector<WindowSearchResult> shortest_paths_by_windows(const Mesh& mesh,
       } else {
         result = search->run_to(local);
       }
-      if (result.found) {
-        result.path = order.path_from_local(mesh, result.path);
-        for (int& v : result.vertices_passed) v = order.vertex_from_local[v];
-      }
+      path_in_original(mesh, order, &result);
     }
     result.time_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   }

@@ -5,7 +5,7 @@
 //
 // Monotone: a key pushed below the last key popped is taken as that key. It serves searches
 // whose keys never fall below the one being expanded except by round-off (Dijkstra's order,
-// or A* with a consistent bound: geometry/geodesic/geodesic_windows.cpp), where keys order the work
+// or A* with a consistent bound: geometry/geodesic/window_search.h), where keys order the work
 // and never decide it.
 #include <algorithm>
 #include <cstdint>

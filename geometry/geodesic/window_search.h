@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <vector>
@@ -134,6 +135,14 @@ Scratch& thread_scratch();
 void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
                   std::initializer_list<int> vertices);
 
+/// check_inputs, and ConfigError for invalid options or landmark fields of another mesh.
+void check_query(const Mesh& mesh, const WindowMesh& window_mesh,
+                 std::initializer_list<int> vertices, const WindowSearchOptions& options,
+                 const Landmarks* landmarks);
+
+/// A search's path and passed vertices, found on the renumbered copy, in the mesh's numbering.
+void path_in_original(const Mesh& mesh, const MeshOrder& order, WindowSearchResult* result);
+
 // kReuse: a full run that gives the slots of windows propagated or dead to later ones (its own
 // instantiation, so that the searches to a target, which build their path back through their
 // windows, pay nothing for the bookkeeping: 4-8 % per path when it was a run-time flag).
@@ -165,12 +174,7 @@ class Search {
         best_(options.upper_bound),
         distance_order_(target < 0 || std::isfinite(options.upper_bound)) {
     scratch_.begin(mesh_);
-    if (landmarks_ != nullptr) {
-      const int k = landmarks_->count;
-      const std::size_t t = original_[target];
-      target_landmark_.assign(landmarks_->dist.begin() + t * k,
-                              landmarks_->dist.begin() + (t + 1) * k);
-    }
+    if (target >= 0) copy_target_landmarks();
   }
 
   // The distances of a full run (target < 0), in the original numbering.
@@ -246,16 +250,21 @@ class Search {
     return result;
   }
 
+  // The target's row of the landmark fields (ALT bounds need d(L, t) for every landmark L).
+  void copy_target_landmarks() {
+    if (landmarks_ == nullptr) return;
+    const int k = landmarks_->count;
+    const std::size_t t = original_[target_];
+    target_landmark_.assign(landmarks_->dist.begin() + t * k,
+                            landmarks_->dist.begin() + (t + 1) * k);
+  }
+
   void retarget(int target) {
     target_ = target;
     target_position_ = mesh_.position(target);
-    if (landmarks_ != nullptr) {
-      const int k = landmarks_->count;
-      const std::size_t t = original_[target];
-      target_landmark_.assign(landmarks_->dist.begin() + t * k,
-                              landmarks_->dist.begin() + (t + 1) * k);
-    }
-    best_ = dist(target);  // a path found already bounds the search
+    copy_target_landmarks();
+    // The caller's bound, or a path found already.
+    best_ = std::min(options_.upper_bound, dist(target));
     created_ = 0;
     vertex_events_ = 0;
     aborted_ = false;
@@ -271,6 +280,10 @@ class Search {
         schedule(h, order);
       }
     }
+    // (A vertex expanded and then reached again is listed twice.)
+    std::sort(pending_vertices_.begin(), pending_vertices_.end());
+    pending_vertices_.erase(std::unique(pending_vertices_.begin(), pending_vertices_.end()),
+                            pending_vertices_.end());
     std::size_t kept = 0;
     for (const int v : pending_vertices_) {
       const VertexRecord& r = scratch_.vertices[v];
@@ -289,6 +302,8 @@ class Search {
   void relax(int v, double d, int window, int from_vertex) {
     if (!(d < dist(v))) return;
     VertexRecord& r = scratch_.vertices[v];
+    // (A resumable search lists a vertex once while it waits for its expansion.)
+    const bool listed = kResume && r.stamp == scratch_.stamp && r.pending;
     r = VertexRecord{scratch_.stamp, window, from_vertex, d, false};
     // Its expansion reads the providing window (continuation_range): that slot is kept.
     if constexpr (kReuse) {
@@ -303,7 +318,7 @@ class Search {
     if (kResume || vertex_key(v, d) < best_) {
       push({order_key(v, d), -(v + 1)});
       r.pending = true;
-      if constexpr (kResume) pending_vertices_.push_back(v);
+      if (kResume && !listed) pending_vertices_.push_back(v);
     }
   }
 
@@ -332,7 +347,7 @@ class Search {
   }
 
   // Lights the edges opposite to v in its faces with v as the pseudo-source.
-  // (d is v's current distance: the pending flag in run() keeps stale events out.)
+  // (d is v's current distance: the pending flag in run_leg() keeps stale events out.)
   void expand_vertex(int v, double d) {
     ++vertex_events_;
     const Vec3& pv = mesh_.position(v);

@@ -1,6 +1,7 @@
 // One exact window search resumed from target to target (geometry/geodesic/
 // geodesic_windows_resume.cpp) against CGAL's exact tree from the source, against a search per
 // target, and through geodesics_from against geodesic_between pair by pair.
+#include <algorithm>
 #include <random>
 #include <string>
 #include <vector>
@@ -122,6 +123,76 @@ TEST(WindowSearch, ResumedSearchAfterAWindowLimit) {
   }
   EXPECT_GT(stopped, 0);
   EXPECT_GT(complete, 0);
+  // In the order of the search (nearest in space first), a target completes after one that
+  // stopped: a stopped search leaves a state the next one goes on from.
+  std::vector<int> turn(targets.size());
+  for (std::size_t i = 0; i < turn.size(); ++i) turn[i] = static_cast<int>(i);
+  const Vec3& pa = mesh.position(a);
+  std::stable_sort(turn.begin(), turn.end(), [&](int i, int j) {
+    return (mesh.position(targets[i]) - pa).squaredNorm() <
+           (mesh.position(targets[j]) - pa).squaredNorm();
+  });
+  bool stopped_before = false, completed_after = false;
+  for (const int i : turn) {
+    if (!r[i].complete) stopped_before = true;
+    if (stopped_before && r[i].complete) completed_after = true;
+  }
+  EXPECT_TRUE(completed_after);
+}
+
+// Every target keyed afresh: on a flat grid (where the Euclidean bound is the distance) with
+// landmark bounds and searches started afresh after a few thousand windows, and under an upper
+// bound, which a resumed search keeps for every target (a target beyond it in space costs no
+// propagation; found in review: retarget had dropped the bound).
+TEST(WindowSearch, ResumedSearchOnAFlatGridWithLandmarks) {
+  const Mesh grid(test::grid(20, 20));
+  const WindowMesh wm = prepare_window_mesh(grid);
+  const Landmarks marks = compute_landmarks(grid, wm, 4);
+  WindowSearchOptions options;
+  options.resume_limit = 3000;
+  expect_resumed_equal_to_cgal(grid, {17, 212, 398}, 30, 31, "grid, landmarks", options, &marks);
+  expect_resumed_equal_to_cgal(grid, {0, 220}, 30, 32, "grid", options);
+}
+
+TEST(WindowSearch, ResumedSearchUnderAnUpperBound) {
+  const Mesh mesh(test::hills(30, 6.0));
+  const WindowMesh wm = prepare_window_mesh(mesh);
+  ExactGeodesic cgal(mesh);
+  std::mt19937 rng(71);
+  std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
+  int found = 0, beyond = 0;
+  for (const double bound : {0.8, 1.5, 3.0}) {
+    WindowSearchOptions options;
+    options.upper_bound = bound;
+    for (const int a : {5, 400, 811}) {
+      std::vector<int> targets;
+      std::vector<SurfacePoint> points;
+      for (int k = 0; k < 20; ++k) {
+        targets.push_back(pick(rng));
+        points.push_back(SurfacePoint::at_vertex(targets.back()));
+      }
+      const std::vector<double> exact = cgal.distances(SurfacePoint::at_vertex(a), points);
+      const std::vector<WindowSearchResult> r =
+          shortest_paths_by_windows(mesh, wm, a, targets, options);
+      for (std::size_t i = 0; i < targets.size(); ++i) {
+        if (targets[i] == a) continue;
+        EXPECT_TRUE(r[i].complete);
+        EXPECT_EQ(r[i].found, exact[i] < bound) << a << " -> " << targets[i];
+        if (r[i].found) {
+          ++found;
+          EXPECT_NEAR(r[i].distance, exact[i], 1e-12 * exact[i]) << a << " -> " << targets[i];
+        }
+        if ((mesh.position(targets[i]) - mesh.position(a)).norm() >= bound) {
+          ++beyond;
+          // (The search's first target lights the edges around the source.)
+          EXPECT_LE(r[i].windows, mesh.valence(a))
+              << a << " -> " << targets[i] << " beyond " << bound;
+        }
+      }
+    }
+  }
+  EXPECT_GT(found, 10);
+  EXPECT_GT(beyond, 10);
 }
 
 TEST(WindowSearch, ResumedSearchBadInputIsNamed) {
