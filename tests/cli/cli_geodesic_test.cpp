@@ -245,6 +245,17 @@ TEST_F(CliGeodesic, MetricMustBePositiveDefinite) {
   EXPECT_EQ(has(r.err, "three values"), "");
 }
 
+/// Two n x n unit grids side by side, `gap` apart: a mesh of two components.
+TriangleSoup two_grids(int n, double gap) {
+  TriangleSoup two = test::grid(n, n);
+  const TriangleSoup other = test::grid(n, n);
+  const int shift = static_cast<int>(other.points.size());
+  for (const Vec3& p : other.points) two.points.push_back(p + Vec3(n + gap, 0, 0));
+  for (const Tri& t : other.triangles)
+    two.triangles.push_back({t[0] + shift, t[1] + shift, t[2] + shift});
+  return two;
+}
+
 TEST_F(CliGeodesic, BadEndpoints) {
   RunResult r = run({"geodesic", plane_, "--from", "0", "--to", "121"});
   EXPECT_EQ(r.code, 1);
@@ -257,12 +268,8 @@ TEST_F(CliGeodesic, BadEndpoints) {
   EXPECT_EQ(r.code, 1);
   EXPECT_EQ(has(r.err, "from the mesh"), "");
   // Two components: a second grid beside the first.
-  TriangleSoup two = test::grid(2, 2);
-  const TriangleSoup other = test::grid(2, 2);
-  for (const Vec3& p : other.points) two.points.push_back(p + Vec3(5, 0, 0));
-  for (const Tri& t : other.triangles) two.triangles.push_back({t[0] + 9, t[1] + 9, t[2] + 9});
   const std::string file = (dir_ / "two.obj").string();
-  write_mesh(file, two);
+  write_mesh(file, two_grids(2, 3.0));
   r = run({"geodesic", file, "--from", "0", "--to", "12"});
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
@@ -276,12 +283,8 @@ TEST_F(CliGeodesic, BadEndpoints) {
 // A pair without a path among pairs from the same vertex (answered together): the error names
 // its line, the first such line of the file (here in the second group), and nothing is written.
 TEST_F(CliGeodesic, PairsFromOneVertexNameTheFirstPairWithoutAPath) {
-  TriangleSoup two = test::grid(4, 4);
-  const TriangleSoup other = test::grid(4, 4);
-  for (const Vec3& p : other.points) two.points.push_back(p + Vec3(9, 0, 0));
-  for (const Tri& t : other.triangles) two.triangles.push_back({t[0] + 25, t[1] + 25, t[2] + 25});
   const std::string mesh = (dir_ / "two.obj").string();
-  write_mesh(mesh, two);
+  write_mesh(mesh, two_grids(4, 5.0));
   const fs::path out = dir_ / "batch.csv";
   const RunResult r = run({"geodesic", mesh, "--pairs",
                            write("p.txt", "0 24\n3 7\n3 30\n0 40\n0 12\n"), "-o", out.string()});
