@@ -1,18 +1,11 @@
 #pragma once
 // The exact window search's engine, internal to geometry/geodesic: the Search template behind
 // geodesic_windows.cpp (full runs, one target) and geodesic_windows_resume.cpp (one target after
-// another). Each instantiation lives in its own source, so that the compiler inlines the hot
-// loops of each as if it were alone (the third instantiation in one source had cost the
-// others 3-4 % more instructions: bench/README.md, session 13).
-//
-// Window frame: a window lives on halfedge h and propagates into face(h). In h's frame from(h)
-// is the origin, to(h) is (L, 0), the third corner of face(h) has y > 0 and the unfolded
-// pseudo-source I = (sx, sy) has sy <= 0 (it lies on the side of face(twin(h))). A point (x, 0)
-// of the window's interval [b0, b1] is at distance sigma + |I - (x, 0)| from the source.
+// another), on the data of window_records.h. Each instantiation lives in its own source, so
+// that the compiler inlines the hot loops of each as if it were alone (the third instantiation
+// in one source had cost the others 3-4 % more instructions: bench/README.md, session 13).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <initializer_list>
 #include <limits>
 #include <string>
 #include <vector>
@@ -20,128 +13,12 @@
 #include "geometry/base/errors.h"
 #include "geometry/geodesic/edge_path.h"
 #include "geometry/geodesic/geodesic_windows.h"
-#include "geometry/geodesic/radix_queue.h"
 #include "geometry/geodesic/window_distance.h"
 #include "geometry/geodesic/window_landmarks.h"
+#include "geometry/geodesic/window_records.h"
 
 namespace windplan {
 namespace window_search {
-
-using Clock = std::chrono::steady_clock;
-
-struct Vec2 {
-  double x, y;
-};
-inline Vec2 operator-(const Vec2& a, const Vec2& b) { return {a.x - b.x, a.y - b.y}; }
-inline double cross(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
-inline double dot(const Vec2& a, const Vec2& b) { return a.x * b.x + a.y * b.y; }
-inline double norm(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
-
-// One cache line: the walk along an edge's windows (Search::compete) reads the b0, b1 and next
-// of one listed window after another, at random places in memory (8.4 windows per new window
-// at 100K faces, most not overlapping it: bench/README.md, sessions 9 and 12).
-struct alignas(64) Window {
-  int h;            // its edge's length is WindowMesh::frame[3 h] (Search::length)
-  int parent;       // window propagated into this one; < 0: lit by vertex -(parent + 1)
-  int next = -1;    // the next window on the same edge (Scratch::head), -1: last
-  char pinned = 0;  // a full run keeps its slot: it gave a saddle vertex its distance
-  double b0, b1;
-  Vec2 source;         // I in h's frame
-  double sigma;        // distance of the pseudo-source from the source
-  double bound = 0.0;  // lower bound of the paths to the target through the window (A* key)
-};
-static_assert(sizeof(Window) == 64, "a window fills one cache line");
-
-// A window lit by `parent` (>= 0), or by vertex -(parent + 1) directly.
-inline Window make_window(int h, double b0, double b1, Vec2 source, double sigma, int parent) {
-  Window w;
-  w.h = h;
-  w.parent = parent;
-  w.b0 = b0;
-  w.b1 = b1;
-  w.source = source;
-  w.sigma = sigma;
-  return w;
-}
-
-struct Event {
-  double key;
-  int index;         // >= 0: halfedge (its list of queued windows); < 0: vertex -(index + 1)
-  unsigned tag = 0;  // a halfedge's: current while equal to its record's tag
-};
-
-// Where the ray from I through X meets the line P + s (Q - P): s (NaN when parallel).
-inline double ray_hit(const Vec2& I, const Vec2& X, const Vec2& P, const Vec2& Q) {
-  const Vec2 d = X - I;
-  const double den = cross(Q - P, d);
-  if (den == 0.0) return std::numeric_limits<double>::quiet_NaN();
-  return cross(I - P, d) / den;
-}
-
-// A query's record of a vertex: its distance and what gave it.
-struct VertexRecord {
-  unsigned stamp;
-  int provider_window;  // the window whose ray reached it (-1: an edge from provider_vertex)
-  int provider_vertex;
-  double dist;
-  // An event in the queue will expand it at this distance. (Its key cannot tell: the queue
-  // may raise a key, geometry/geodesic/radix_queue.h.)
-  bool pending;
-};
-
-// A query's record of a halfedge (one cache line's worth, read together).
-struct HalfedgeRecord {
-  unsigned stamp;
-  int head;  // the first of its windows (linked through Window::next), -1: none
-  // One angle, one split (Xin and Wang): the shortest distance to the corner opposite h that
-  // a window on h gave (+infinity: none yet), and where that ray crossed h.
-  double split_dist, split_x;
-  double target_x, target_y;  // the target in h's frame (target_in_frame); NaN: not yet
-  // The key of the halfedge's current queue entry (+infinity: none) and that entry's tag
-  // (entries with an older tag are stale).
-  double queued_key;
-  unsigned tag;
-};
-
-// Per-thread buffers reused across queries (32 bytes per vertex, 56 per halfedge, plus 64 per
-// window and 16 per queue entry of the largest search so far): the records are valid when their
-// stamp is the query's (no O(V) clearing per query).
-struct Scratch {
-  unsigned stamp = 0;
-  std::vector<VertexRecord> vertices;
-  std::vector<HalfedgeRecord> halfedges;
-  std::vector<Window> windows;
-  RadixQueue<Event> queue;
-  std::vector<int> outgoing;
-
-  void begin(const Mesh& mesh) {
-    const std::size_t nv = mesh.num_vertices(), nh = mesh.num_halfedges();
-    if (vertices.size() != nv || halfedges.size() != nh || ++stamp == 0) {
-      stamp = 1;
-      vertices.assign(nv, VertexRecord{0, -1, -1, 0.0, false});
-      halfedges.assign(nh, HalfedgeRecord{0, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0});
-    }
-    windows.clear();
-    queue.clear();
-  }
-};
-
-/// One set of buffers per thread, shared by every kind of search (a thread that builds
-/// landmark fields and then searches paths keeps one, not two). Defined in geodesic_windows.cpp.
-Scratch& thread_scratch();
-
-/// \throw InputError when a vertex is out of range, ConfigError when window_mesh is not
-/// prepare_window_mesh(mesh)'s.
-void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
-                  std::initializer_list<int> vertices);
-
-/// check_inputs, and ConfigError for invalid options or landmark fields of another mesh.
-void check_query(const Mesh& mesh, const WindowMesh& window_mesh,
-                 std::initializer_list<int> vertices, const WindowSearchOptions& options,
-                 const Landmarks* landmarks);
-
-/// A search's path and passed vertices, found on the renumbered copy, in the mesh's numbering.
-void path_in_original(const Mesh& mesh, const MeshOrder& order, WindowSearchResult* result);
 
 // kReuse: a full run that gives the slots of windows propagated or dead to later ones (its own
 // instantiation, so that the searches to a target, which build their path back through their
