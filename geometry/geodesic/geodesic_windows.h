@@ -47,7 +47,8 @@ struct WindowSearchOptions {
   /// Only paths strictly shorter than this are looked for (mesh units; +infinity: any).
   double upper_bound = std::numeric_limits<double>::infinity();
   /// Give up (complete = false) after this many windows were created (0: no limit; searches to
-  /// a target only; checked after each halfedge's list, so a search may end a list past it).
+  /// a target only, counted per target by shortest_paths_by_windows, whose next target goes on
+  /// from there; checked after each halfedge's list, so a search may end a list past it).
   /// A search to a target holds every window it makes, about 100 bytes each
   /// with its queue entry (bench/README.md, session 6: median 10K windows at 20K faces, 274K and
   /// a p90 of 1.35M at 300K faces).
