@@ -395,7 +395,11 @@ class Search {
   // path at the median, 16-25 % at the mean.) A cap on the windows (max_windows) is checked
   // between lists, so a search may end a list past it.
   // Windows whose bound reached the best length die here. Returns the number propagated.
-  long propagate_list(const Event& e) {
+  // Flattened: everything it calls (propagate, add_window, trim, compete and the window
+  // intersection of window_distance.h) is inlined into this one loop; GCC's own choice had
+  // left the intersection and, depending on the rest of the source, trim and Mesh::to out of
+  // line (bench/README.md, session 13: 2.5 % fewer instructions, 10-14 % less time per path).
+  [[gnu::flatten]] long propagate_list(const Event& e) {
     const int h = e.index;
     {
       HalfedgeRecord& r = scratch_.halfedges[h];
