@@ -320,8 +320,8 @@ int main(int argc, char** argv) {
       std::vector<double> group_cpu;
       std::size_t group_start = 0;
       for (std::size_t i = 0; i < pairs.size(); ++i) {
-        if (by_source && (group.empty() || pairs[i].source != pairs[group_start].source ||
-                          i - group_start >= group.size())) {
+        // (Pairs come in runs of one source: a run ends where the last group's results do.)
+        if (by_source && i == group_start + group.size()) {
           group_start = i;
           std::size_t end = i;
           while (end < pairs.size() && pairs[end].source == pairs[i].source) ++end;

@@ -20,6 +20,13 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
+// The window search's options from the geodesic's.
+WindowSearchOptions window_search_options(const GeodesicOptions& options) {
+  WindowSearchOptions search;
+  search.max_windows = options.max_windows;
+  return search;
+}
+
 // The window search's result `w` for the vertices a -> b, refined (as exact_window_search).
 bool refine_window_result(const GeodesicContext& context, int a, int b, const WindowSearchResult& w,
                           const GeodesicOptions& options, OpenGeodesicResult* result,
@@ -64,10 +71,9 @@ bool refine_window_result(const GeodesicContext& context, int a, int b, const Wi
 bool exact_window_search(const GeodesicContext& context, int a, int b,
                          const GeodesicOptions& options, OpenGeodesicResult* result,
                          double* exact) {
-  WindowSearchOptions search;
-  search.max_windows = options.max_windows;
-  const WindowSearchResult w = shortest_path_by_windows(context.mesh(), context.window_mesh(), a, b,
-                                                        search, &context.landmarks());
+  const WindowSearchResult w =
+      shortest_path_by_windows(context.mesh(), context.window_mesh(), a, b,
+                               window_search_options(options), &context.landmarks());
   return refine_window_result(context, a, b, w, options, result, exact);
 }
 
@@ -158,10 +164,9 @@ std::vector<OpenGeodesicResult> geodesics_from(const GeodesicContext& context,
     }
   }
   if (vertices.empty()) return results;
-  WindowSearchOptions search;
-  search.max_windows = options.max_windows;
-  const std::vector<WindowSearchResult> found = shortest_paths_by_windows(
-      context.mesh(), context.window_mesh(), a.element, vertices, search, &context.landmarks());
+  const std::vector<WindowSearchResult> found =
+      shortest_paths_by_windows(context.mesh(), context.window_mesh(), a.element, vertices,
+                                window_search_options(options), &context.landmarks());
   for (std::size_t k = 0; k < at.size(); ++k) {
     OpenGeodesicResult r;
     double exact = std::numeric_limits<double>::quiet_NaN();

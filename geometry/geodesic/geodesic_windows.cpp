@@ -94,7 +94,6 @@ void path_in_original(const Mesh& mesh, const MeshOrder& order, WindowSearchResu
 
 }  // namespace window_search
 
-using window_search::check_inputs;
 using window_search::check_query;
 using window_search::Clock;
 using window_search::path_in_original;
@@ -103,9 +102,7 @@ using window_search::Search;
 std::vector<double> geodesic_distances_by_windows(const Mesh& mesh, const WindowMesh& window_mesh,
                                                   int source, const WindowSearchOptions& options,
                                                   WindowSearchResult* stats) {
-  check_inputs(mesh, window_mesh, {source});
-  std::string why;
-  if (!options.is_valid(&why)) throw ConfigError("window search: " + why);
+  check_query(mesh, window_mesh, {source}, options, nullptr);
   // A bound or a cap would leave some distances too long or missing without a word.
   if (options.max_windows != 0 || std::isfinite(options.upper_bound))
     throw ConfigError("window search: a full run takes neither max_windows nor upper_bound");

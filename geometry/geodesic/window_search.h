@@ -51,7 +51,7 @@ class Search {
         best_(options.upper_bound),
         distance_order_(target < 0 || std::isfinite(options.upper_bound)) {
     scratch_.begin(mesh_);
-    if (target >= 0) copy_target_landmarks();
+    copy_target_landmarks();
   }
 
   // The distances of a full run (target < 0), in the original numbering.
@@ -127,7 +127,8 @@ class Search {
     return result;
   }
 
-  // The target's row of the landmark fields (ALT bounds need d(L, t) for every landmark L).
+  // The target's row of the landmark fields (ALT bounds need d(L, t) for every landmark L; a
+  // full run has none).
   void copy_target_landmarks() {
     if (landmarks_ == nullptr) return;
     const int k = landmarks_->count;
@@ -157,7 +158,7 @@ class Search {
         schedule(h, order);
       }
     }
-    // (A vertex expanded and then reached again is listed twice.)
+    // (A vertex reached again is listed again.)
     std::sort(pending_vertices_.begin(), pending_vertices_.end());
     pending_vertices_.erase(std::unique(pending_vertices_.begin(), pending_vertices_.end()),
                             pending_vertices_.end());
@@ -179,8 +180,6 @@ class Search {
   void relax(int v, double d, int window, int from_vertex) {
     if (!(d < dist(v))) return;
     VertexRecord& r = scratch_.vertices[v];
-    // (A resumable search lists a vertex once while it waits for its expansion.)
-    const bool listed = kResume && r.stamp == scratch_.stamp && r.pending;
     r = VertexRecord{scratch_.stamp, window, from_vertex, d, false};
     // Its expansion reads the providing window (continuation_range): that slot is kept.
     if constexpr (kReuse) {
@@ -195,7 +194,7 @@ class Search {
     if (kResume || vertex_key(v, d) < best_) {
       push({order_key(v, d), -(v + 1)});
       r.pending = true;
-      if (kResume && !listed) pending_vertices_.push_back(v);
+      if constexpr (kResume) pending_vertices_.push_back(v);
     }
   }
 
