@@ -49,19 +49,21 @@ struct WindowSearchOptions {
   /// Give up (complete = false) after this many windows were created (0: no limit; searches to
   /// a target only, counted per target by shortest_paths_by_windows, whose next target goes on
   /// from there; checked after each halfedge's list, so a search may end a list past it).
-  /// A search to a target holds every window it makes, about 100 bytes each
-  /// with its queue entry (bench/README.md, session 6: median 10K windows at 20K faces, 274K and
-  /// a p90 of 1.35M at 300K faces).
+  /// A search to a target holds a 16-byte record of every window it propagates (its path is
+  /// built back through them) and 64 bytes per window of its wavefront (bench/README.md,
+  /// session 14: median 10K windows at 20K faces, 283K and a mean of 1.37M at 300K faces; the
+  /// wavefront 1-3 % of them).
   long max_windows = 0;
   /// A full run (geodesic_distances_by_windows) gives the slot of a window it has propagated
   /// (or that died) to a later one, so that only the wavefront stays in memory (at 300K faces
-  /// 106 MB against 1.17 GB, bench/README.md, session 11). No effect on a search to a target, whose
-  /// path is built back through its windows.
+  /// 106 MB against 1.17 GB, bench/README.md, session 11). No effect on a search to a target,
+  /// which always does (keeping a 16-byte record of each window propagated for its path).
   bool reuse_windows = true;
   /// shortest_paths_by_windows: a search that holds more windows than this after a target
-  /// starts afresh for the next (0: every target afresh). About 100 bytes each with their
-  /// queue entries and records: 4M is about 400 MB per thread. Checked between targets, so a
-  /// far target's search may go past it.
+  /// starts afresh for the next (0: every target afresh). Counted as the window slots held (64
+  /// bytes each, about 100 with their queue entries) and a quarter of the records of the
+  /// windows propagated (16 bytes each): 4M is about 400 MB per thread. Checked between
+  /// targets, so a far target's search may go past it.
   long resume_limit = 1L << 22;
 
   bool is_valid(std::string* why) const;

@@ -25,6 +25,7 @@ class RadixQueue {
     for (auto& b : buckets_) b.clear();
     size_ = 0;
     last_ = 0;
+    occupied_ = 0;
   }
 
   /// Adds `item`; its key is raised to the last key popped when it is below.
@@ -34,20 +35,21 @@ class RadixQueue {
       k = last_;
       item.key = value(k);
     }
-    buckets_[bucket(k)].push_back(item);
+    put(k, item);
     ++size_;
   }
 
   /// Removes and returns an item with the smallest key (the queue must not be empty).
   Item pop() {
     if (buckets_[0].empty()) {
-      int i = 1;
-      while (buckets_[i].empty()) ++i;
+      // The first non-empty bucket: its items all go to lower buckets around its least key.
+      const int i = __builtin_ctzll(occupied_) + 1;
+      occupied_ &= occupied_ - 1;
       std::vector<Item>& from = buckets_[i];
       std::uint64_t least = bits(from[0].key);
       for (const Item& e : from) least = std::min(least, bits(e.key));
       last_ = least;
-      for (const Item& e : from) buckets_[bucket(bits(e.key))].push_back(e);
+      for (const Item& e : from) put(bits(e.key), e);
       from.clear();
     }
     const Item item = buckets_[0].back();
@@ -77,7 +79,15 @@ class RadixQueue {
   // last_ is bit i - 1 (all of them larger than last_, smaller than those of bucket i + 1).
   int bucket(std::uint64_t k) const { return k == last_ ? 0 : 64 - __builtin_clzll(k ^ last_); }
 
+  void put(std::uint64_t k, const Item& item) {
+    const int b = bucket(k);
+    buckets_[b].push_back(item);
+    if (b > 0) occupied_ |= std::uint64_t{1} << (b - 1);
+  }
+
   std::vector<Item> buckets_[65];
+  // Bit i - 1 set: bucket i (1..64) holds items.
+  std::uint64_t occupied_ = 0;
   std::size_t size_ = 0;
   std::uint64_t last_ = 0;
 };

@@ -32,16 +32,35 @@ inline double norm(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 // of one listed window after another, at random places in memory (8.4 windows per new window
 // at 100K faces, most not overlapping it: bench/README.md, sessions 9 and 12).
 struct alignas(64) Window {
-  int h;            // its edge's length is WindowMesh::frame[3 h] (Search::length)
-  int parent;       // window propagated into this one; < 0: lit by vertex -(parent + 1)
-  int next = -1;    // the next window on the same edge (Scratch::head), -1: last
-  char pinned = 0;  // a full run keeps its slot: it gave a saddle vertex its distance
+  int h;          // its edge's length is WindowMesh::frame[3 h] (Search::length)
+  int parent;     // the record of the window propagated into this one (PathRecord; a full run
+                  // with reused slots: its slot, never read); < 0: lit by vertex -(parent + 1)
+  int next = -1;  // the next window on the same edge (Scratch::head), -1: last
   double b0, b1;
   Vec2 source;         // I in h's frame
   double sigma;        // distance of the pseudo-source from the source
   double bound = 0.0;  // lower bound of the paths to the target through the window (A* key)
 };
 static_assert(sizeof(Window) == 64, "a window fills one cache line");
+
+// What a search to a target keeps of a window it propagated, once its slot has gone to a later
+// window: the path is built back through these. Written in order, a quarter of a window's
+// bytes and never read while searching, so that the windows alive (the wavefront, 1-2 % of
+// those made) stay few and in cache.
+struct PathRecord {
+  int h;       // the window's halfedge
+  int parent;  // the record of the window propagated into it; < 0: lit by vertex -(parent + 1)
+  double mid;  // the middle of its interval on h, as it was queued (the path crosses h there)
+};
+static_assert(sizeof(PathRecord) == 16, "a quarter of a window");
+
+// The ray that gave a saddle vertex its distance, for that vertex's expansion (which lights
+// only the faces a shortest path can continue into): the window's halfedge and pseudo-source
+// in its frame. Valid for a vertex whose VertexRecord names a provider window.
+struct Arrival {
+  int h;
+  Vec2 source;
+};
 
 // A window lit by `parent` (>= 0), or by vertex -(parent + 1) directly.
 inline Window make_window(int h, double b0, double b1, Vec2 source, double sigma, int parent) {
@@ -72,7 +91,8 @@ inline double ray_hit(const Vec2& I, const Vec2& X, const Vec2& P, const Vec2& Q
 // A query's record of a vertex: its distance and what gave it.
 struct VertexRecord {
   unsigned stamp;
-  int provider_window;  // the window whose ray reached it (-1: an edge from provider_vertex)
+  int provider_window;  // the window whose ray reached it (its PathRecord; a full run with reused
+                        // slots: its slot); -1: an edge from provider_vertex
   int provider_vertex;
   double dist;
   // An event in the queue will expand it at this distance. (Its key cannot tell: the queue
@@ -94,14 +114,17 @@ struct HalfedgeRecord {
   unsigned tag;
 };
 
-// Per-thread buffers reused across queries (32 bytes per vertex, 56 per halfedge, plus 64 per
-// window and 16 per queue entry of the largest search so far): the records are valid when their
-// stamp is the query's (no O(V) clearing per query).
+// Per-thread buffers reused across queries (56 bytes per vertex with its arrival, 56 per
+// halfedge, plus 64 per window slot, 16 per path record and 16 per queue entry of the largest
+// search so far): the records are valid when their stamp is the query's (no O(V) clearing per
+// query), an arrival when its vertex's record is and names a provider window.
 struct Scratch {
   unsigned stamp = 0;
   std::vector<VertexRecord> vertices;
   std::vector<HalfedgeRecord> halfedges;
   std::vector<Window> windows;
+  std::vector<PathRecord> records;
+  std::vector<Arrival> arrivals;  // per vertex
   RadixQueue<Event> queue;
   std::vector<int> outgoing;
 
@@ -110,9 +133,11 @@ struct Scratch {
     if (vertices.size() != nv || halfedges.size() != nh || ++stamp == 0) {
       stamp = 1;
       vertices.assign(nv, VertexRecord{0, -1, -1, 0.0, false});
+      arrivals.assign(nv, Arrival{-1, {0.0, 0.0}});
       halfedges.assign(nh, HalfedgeRecord{0, -1, 0.0, 0.0, 0.0, 0.0, 0.0, 0});
     }
     windows.clear();
+    records.clear();
     queue.clear();
   }
 };

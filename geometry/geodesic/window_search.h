@@ -20,9 +20,9 @@
 namespace windplan {
 namespace window_search {
 
-// kReuse: a full run that gives the slots of windows propagated or dead to later ones (its own
-// instantiation, so that the searches to a target, which build their path back through their
-// windows, pay nothing for the bookkeeping: 4-8 % per path when it was a run-time flag).
+// kReuse: a full run with reused slots, which keeps no PathRecords (it builds no path); its own
+// instantiation, so that neither kind of search pays for the other's bookkeeping (4-8 % per
+// path when reuse was a run-time flag, bench/README.md, session 11).
 // kResume: a search from one source to several targets, one after the other (run, then
 // run_to): it drops nothing for a target's bound, so that its state stays a valid start for
 // the next target (its own instantiation for the same reason).
@@ -46,10 +46,12 @@ class Search {
                                                                                : nullptr),
         scratch_(thread_scratch()),
         windows_(scratch_.windows),
+        records_(scratch_.records),
         queue_(scratch_.queue),
         outgoing_(scratch_.outgoing),
         best_(options.upper_bound),
-        distance_order_(target < 0 || std::isfinite(options.upper_bound)) {
+        distance_order_(target < 0 || std::isfinite(options.upper_bound)),
+        recycle_(kReuse || target >= 0) {
     scratch_.begin(mesh_);
     copy_target_landmarks();
   }
@@ -68,8 +70,10 @@ class Search {
   static constexpr std::size_t kKeptWindows = std::size_t{1} << 20;
 
   ~Search() {
-    if (windows_.capacity() > kKeptWindows) {
+    // (Records are a quarter of a window's bytes.)
+    if (windows_.capacity() > kKeptWindows || records_.capacity() > 4 * kKeptWindows) {
       std::vector<Window>().swap(windows_);
+      std::vector<PathRecord>().swap(records_);
       queue_.release();
     }
   }
@@ -91,8 +95,8 @@ class Search {
     return run_leg();
   }
 
-  // Windows held (the path's chains are built back through them).
-  std::size_t windows_held() const { return windows_.size(); }
+  // Windows held: the slots, and the records of those propagated (a quarter of a slot each).
+  std::size_t windows_held() const { return windows_.size() + records_.size() / 4; }
 
  private:
   WindowSearchResult run_leg() {
@@ -177,14 +181,15 @@ class Search {
     return r.stamp == scratch_.stamp ? r.dist : std::numeric_limits<double>::infinity();
   }
 
-  void relax(int v, double d, int window, int from_vertex) {
+  // `window`: the providing window's record (its slot in a full run with reused slots), whose
+  // halfedge is ray_h and pseudo-source ray_source; < 0: an edge from from_vertex.
+  void relax(int v, double d, int window, int from_vertex, int ray_h = -1,
+             Vec2 ray_source = {0.0, 0.0}) {
     if (!(d < dist(v))) return;
     VertexRecord& r = scratch_.vertices[v];
     r = VertexRecord{scratch_.stamp, window, from_vertex, d, false};
-    // Its expansion reads the providing window (continuation_range): that slot is kept.
-    if constexpr (kReuse) {
-      if (window >= 0 && pseudo_[v]) windows_[window].pinned = 1;
-    }
+    // Its expansion reads the ray's direction (continuation_range).
+    if (window >= 0 && pseudo_[v]) scratch_.arrivals[v] = Arrival{ray_h, ray_source};
     if (v == target_) {
       best_ = std::min(best_, d);
       // (A resumable search expands a target that is a pseudo-source for the next targets.)
@@ -268,10 +273,11 @@ class Search {
     double back = -1.0;
     const int pw = scratch_.vertices[v].provider_window;
     if (pw >= 0) {
-      const Window& w = windows_[pw];
-      const int o = mesh_.prev(w.h);  // v -> from(w.h) in face(w.h)
-      const double cx = frame_[3 * w.h + 1], cy = frame_[3 * w.h + 2];
-      const Vec2 ca{-cx, -cy}, ci{w.source.x - cx, w.source.y - cy};
+      const int h = scratch_.arrivals[v].h;
+      const Vec2 source = scratch_.arrivals[v].source;
+      const int o = mesh_.prev(h);  // v -> from(h) in face(h)
+      const double cx = frame_[3 * h + 1], cy = frame_[3 * h + 2];
+      const Vec2 ca{-cx, -cy}, ci{source.x - cx, source.y - cy};
       const double beta = std::atan2(std::abs(cross(ca, ci)), dot(ca, ci));
       for (std::size_t i = 0; i < n; ++i)
         if (outgoing_[i] == o) back = corner_[i] + beta;
@@ -353,9 +359,7 @@ class Search {
       if (!(bound < best_)) return;
     }
     int index = static_cast<int>(windows_.size());
-    bool reused = false;
-    if constexpr (kReuse) reused = !free_.empty();  // only a full run frees slots
-    if (reused) {
+    if (!free_.empty()) {
       index = free_.back();
       free_.pop_back();
       windows_[index] = w;
@@ -421,6 +425,7 @@ class Search {
         unlink(prev < 0 ? &scratch_.halfedges[h].head : &windows_[prev].next, o);
         propagate(i);
         ++n;
+        free_.push_back(i);
       }
       return n;
     }
@@ -431,21 +436,14 @@ class Search {
       Window& o = windows_[i];
       unlink(&scratch_.halfedges[h].head, o);
       if (!(o.bound < best_)) {
-        if constexpr (kReuse) free_.push_back(i);  // (a full run has no best length)
+        if (recycle_) free_.push_back(i);
         continue;
       }
       propagate(i);
       ++n;
-      if constexpr (kReuse) release(i);
+      if (recycle_) free_.push_back(i);
     }
     return n;
-  }
-
-  // A full run's window, propagated, gives its slot to a later one (unless a saddle's
-  // expansion will read it): only the wavefront stays in memory (bench/README.md, session 11:
-  // 13.6M windows made at 300K faces, a few 10K alive at a time).
-  void release(int index) {
-    if (!windows_[index].pinned) free_.push_back(index);
   }
 
   // Takes o, which *link names (the next of the window before it, or its halfedge's head), out
@@ -531,7 +529,7 @@ class Search {
           }
         }
         if (o_beaten) {
-          if constexpr (kReuse) free_.push_back(*link);  // (never pinned: not propagated)
+          if (recycle_) free_.push_back(*link);
           unlink(link, o);
         } else {
           if (side == 0 && o.b0 <= w->b0) insert_after_ = *link;
@@ -551,6 +549,15 @@ class Search {
     const int c = mesh_.opposite_vertex(h);
     const double cx = frame_[3 * h + 1], cy = frame_[3 * h + 2];
     if (!(cy > 0.0)) return;  // degenerate face
+    // What its children and the vertex it reaches name as their parent: its record (the middle
+    // of its interval as it was queued, before the trim), or, in a full run with reused slots,
+    // its slot.
+    int me = index;
+    if constexpr (!kReuse) {
+      const Window& q = windows_[index];
+      me = static_cast<int>(records_.size());
+      records_.push_back({h, q.parent, 0.5 * (q.b0 + q.b1)});
+    }
     const Vec2 A{0.0, 0.0}, B{len, 0.0}, C{cx, cy}, I = w.source;
     // The ray from I through C meets the edge at xc.
     const double xc = I.x + (cx - I.x) * (-I.y) / (cy - I.y);
@@ -570,7 +577,7 @@ class Search {
     if (xc >= w.b0 - tol && xc <= w.b1 + tol) {
       // This window's ray reaches C: a real path (dc of a window whose cone misses C is no
       // path, but it still bounds that window's distances on the segment x* -> C above).
-      relax(c, dc, index, -1);
+      relax(c, dc, me, -1, h, I);
       if (dc < r.split_dist) {
         r.split_dist = dc;
         r.split_x = xc;
@@ -591,7 +598,7 @@ class Search {
         const Vec2 p0{s0 * cx, s0 * cy};
         const bool beaten = dist(mesh_.to(h)) + norm(p0 - B) < w.sigma + norm(p0 - I);
         if (s1 > s0 && !beaten)
-          add_window(make_window(g, s0 * lac, s1 * lac, {dot(I, e), cross(e, I)}, w.sigma, index));
+          add_window(make_window(g, s0 * lac, s1 * lac, {dot(I, e), cross(e, I)}, w.sigma, me));
       }
     }
     // Rays through [max(b0, xc), b1] leave through C -> B: the child on twin(next(h)), frame C.
@@ -607,7 +614,7 @@ class Search {
         const Vec2 p1{cx + s1 * (len - cx), cy - s1 * cy};
         const bool beaten = dist(mesh_.from(h)) + norm(p1 - A) < w.sigma + norm(p1 - I);
         if (s1 > s0 && !beaten)
-          add_window(make_window(g, s0 * lcb, s1 * lcb, {dot(r, e), cross(e, r)}, w.sigma, index));
+          add_window(make_window(g, s0 * lcb, s1 * lcb, {dot(r, e), cross(e, r)}, w.sigma, me));
       }
     }
   }
@@ -625,14 +632,14 @@ class Search {
       int v = -1;
       if (scratch_.vertices[u].provider_window >= 0) {
         std::vector<int> chain;
-        for (int w = scratch_.vertices[u].provider_window; w >= 0; w = windows_[w].parent)
+        for (int w = scratch_.vertices[u].provider_window; w >= 0; w = records_[w].parent)
           chain.push_back(w);
         std::reverse(chain.begin(), chain.end());
-        v = -(windows_[chain.front()].parent + 1);
+        v = -(records_[chain.front()].parent + 1);
         for (const int w : chain) {
-          const Window& x = windows_[w];
-          leg.halfedges.push_back(mesh_.twin(x.h));
-          leg.lambdas.push_back(std::clamp(1.0 - 0.5 * (x.b0 + x.b1) / length(x), 0.0, 1.0));
+          leg.halfedges.push_back(mesh_.twin(records_[w].h));
+          leg.lambdas.push_back(
+              std::clamp(1.0 - records_[w].mid / frame_[3 * records_[w].h], 0.0, 1.0));
         }
         leg.start_face = mesh_.face(leg.halfedges.front());
       } else {
@@ -676,6 +683,7 @@ class Search {
   std::vector<double> target_landmark_;
   Scratch& scratch_;
   std::vector<Window>& windows_;
+  std::vector<PathRecord>& records_;  // (not in a full run with reused slots)
   RadixQueue<Event>& queue_;
   std::vector<int>& outgoing_;
   std::vector<double> corner_;
@@ -683,7 +691,12 @@ class Search {
   double best_;
   int insert_after_ = -1;  // compete's place for w in its halfedge's list (-1: the head)
   const bool distance_order_;
-  // A full run (no target, no path to build) reuses the slots of windows propagated or dead.
+  // Windows propagated or dead give their slots to later ones (free_), so that only the
+  // wavefront stays in memory (bench/README.md, session 11: 13.6M windows made by a full run at
+  // 300K faces, a few 10K alive at a time; session 14: 1-3 % of a search to a target's): a full
+  // run with reused slots and every search to a target, whose path is built back through
+  // PathRecords (a full run without reuse keeps every slot).
+  const bool recycle_;
   std::vector<int> free_;
   long created_ = 0;
   long vertex_events_ = 0;
