@@ -37,16 +37,28 @@ WindowMesh prepare_window_mesh(const Mesh& original) {
     if (mesh.vertex_halfedge(v) < 0) continue;
     w.pseudo_source[v] = mesh.is_boundary_vertex(v) || mesh.cone_angle(v) >= kTwoPi - 1e-9;
   }
-  w.frame.resize(3 * static_cast<std::size_t>(mesh.num_interior_halfedges()));
-  for (int h = 0; h < mesh.num_interior_halfedges(); ++h) {
-    const Vec3& a = mesh.position(mesh.from(h));
-    const Vec3& b = mesh.position(mesh.to(h));
-    const Vec3& c = mesh.position(mesh.opposite_vertex(h));
-    const double len = (b - a).norm();
-    const double cx = len > 0.0 ? (c - a).dot(b - a) / len : 0.0;
-    w.frame[3 * h] = len;
-    w.frame[3 * h + 1] = cx;
-    w.frame[3 * h + 2] = std::sqrt(std::max(0.0, (c - a).squaredNorm() - cx * cx));
+  const int nh = mesh.num_interior_halfedges();
+  w.frame.resize(nh);
+  const auto length = [&](int h) {
+    return (mesh.position(mesh.to(h)) - mesh.position(mesh.from(h))).norm();
+  };
+  const auto inside = [&](int h) { return mesh.is_boundary_halfedge(h) ? -1 : h; };
+  for (int h = 0; h < nh; ++h) {
+    HalfedgeFrame& f = w.frame[h];
+    f.from = mesh.from(h);
+    f.to = mesh.to(h);
+    f.opposite = mesh.opposite_vertex(h);
+    const Vec3& a = mesh.position(f.from);
+    const Vec3& b = mesh.position(f.to);
+    const Vec3& c = mesh.position(f.opposite);
+    f.len = length(h);
+    f.cx = f.len > 0.0 ? (c - a).dot(b - a) / f.len : 0.0;
+    f.cy = std::sqrt(std::max(0.0, (c - a).squaredNorm() - f.cx * f.cx));
+    f.len_prev = length(mesh.prev(h));
+    f.len_next = length(mesh.next(h));
+    f.twin = mesh.twin(h);
+    f.out_prev = inside(mesh.twin(mesh.prev(h)));
+    f.out_next = inside(mesh.twin(mesh.next(h)));
   }
   return w;
 }
@@ -70,7 +82,7 @@ void check_inputs(const Mesh& mesh, const WindowMesh& window_mesh,
   if (local.num_vertices() != mesh.num_vertices() || local.num_faces() != mesh.num_faces() ||
       local.num_halfedges() != mesh.num_halfedges() ||
       static_cast<int>(window_mesh.pseudo_source.size()) != mesh.num_vertices() ||
-      window_mesh.frame.size() != 3 * static_cast<std::size_t>(mesh.num_interior_halfedges())) {
+      window_mesh.frame.size() != static_cast<std::size_t>(mesh.num_interior_halfedges())) {
     throw ConfigError("window search: the window mesh (prepare_window_mesh) is not this mesh's");
   }
 }

@@ -87,6 +87,19 @@ struct WindowSearchResult {
   double time_ms = 0.0;
 };
 
+/// What the window search reads of an interior halfedge h of the renumbered copy when it
+/// propagates a window across face(h), in one cache line (the mesh's own arrays would take a
+/// line each): h's frame (from(h) at the origin, to(h) on the positive x axis, the corner of
+/// face(h) opposite h at (cx, cy), cy >= 0), the lengths of the face's other two edges, and the
+/// vertices and halfedges around.
+struct alignas(64) HalfedgeFrame {
+  double len, cx, cy;
+  double len_prev, len_next;  // the lengths of prev(h) (corner -> from(h)) and next(h)
+  int from, to, opposite;     // from(h), to(h), the corner
+  int twin;                   // twin(h)
+  int out_prev, out_next;     // twin(prev(h)), twin(next(h)); -1: a boundary edge
+};
+
 /// Per-mesh data of the window search, built once per mesh (O(V log V + F log F)). The search
 /// runs on a copy of the mesh renumbered for memory locality (geometry/mesh/mesh_order.h) and
 /// answers in the mesh's own numbering; the arrays below are in the copy's. (The copy costs
@@ -96,9 +109,8 @@ struct WindowMesh {
   /// Per vertex: 1 for the vertices geodesics may pass through (saddle: cone angle >=
   /// 2 pi - 1e-9, flat and boundary vertices), 0 for the others.
   std::vector<char> pseudo_source;
-  /// Per interior halfedge h, 3 values: the length of h and the corner of face(h) opposite h
-  /// in h's frame (from(h) at the origin, to(h) on the positive x axis, the corner at y >= 0).
-  std::vector<double> frame;
+  /// Per interior halfedge.
+  std::vector<HalfedgeFrame> frame;
 };
 WindowMesh prepare_window_mesh(const Mesh& mesh);
 

@@ -32,7 +32,7 @@ inline double norm(const Vec2& a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 // of one listed window after another, at random places in memory (8.4 windows per new window
 // at 100K faces, most not overlapping it: bench/README.md, sessions 9 and 12).
 struct alignas(64) Window {
-  int h;          // its edge's length is WindowMesh::frame[3 h] (Search::length)
+  int h;          // its edge's length is WindowMesh::frame[h].len (Search::length)
   int parent;     // the record of the window propagated into this one (PathRecord; a full run
                   // with reused slots: its slot, never read); < 0: lit by vertex -(parent + 1)
   int next = -1;  // the next window on the same edge (Scratch::head), -1: last

@@ -208,9 +208,10 @@ class Search {
   Vec2 target_in_frame(int h) {
     HalfedgeRecord& r = record(h);
     if (std::isnan(r.target_x)) {
-      const Vec3& a = mesh_.position(mesh_.from(h));
+      const HalfedgeFrame& f = frame_[h];
+      const Vec3& a = mesh_.position(f.from);
       const Vec3 at = target_position_ - a;
-      r.target_x = at.dot(mesh_.position(mesh_.to(h)) - a) / frame_[3 * h];
+      r.target_x = at.dot(mesh_.position(f.to) - a) / f.len;
       r.target_y = std::sqrt(std::max(0.0, at.squaredNorm() - r.target_x * r.target_x));
     }
     return {r.target_x, r.target_y};
@@ -250,7 +251,7 @@ class Search {
       if (mesh_.is_boundary_halfedge(h)) continue;
       const Vec3& a = mesh_.position(mesh_.from(h));
       const Vec3& b = mesh_.position(mesh_.to(h));
-      const double len = frame_[3 * h];
+      const double len = frame_[h].len;
       if (!(len > 0.0)) continue;
       const double x = (pv - a).dot(b - a) / len;
       const double y = -std::sqrt(std::max(0.0, (pv - a).squaredNorm() - x * x));
@@ -276,7 +277,7 @@ class Search {
       const int h = scratch_.arrivals[v].h;
       const Vec2 source = scratch_.arrivals[v].source;
       const int o = mesh_.prev(h);  // v -> from(h) in face(h)
-      const double cx = frame_[3 * h + 1], cy = frame_[3 * h + 2];
+      const double cx = frame_[h].cx, cy = frame_[h].cy;
       const Vec2 ca{-cx, -cy}, ci{source.x - cx, source.y - cy};
       const double beta = std::atan2(std::abs(cross(ca, ci)), dot(ca, ci));
       for (std::size_t i = 0; i < n; ++i)
@@ -331,9 +332,10 @@ class Search {
     const Vec2 X{x, 0.0};
     double key = w.sigma + norm(X - I) + norm(T - X);
     if (landmarks_ != nullptr) {
-      key = std::max(key, nearest + landmark_edge_bound(*landmarks_, target_landmark_.data(),
-                                                        original_[mesh_.from(w.h)],
-                                                        original_[mesh_.to(w.h)], len, w.b0, w.b1));
+      key =
+          std::max(key, nearest + landmark_edge_bound(*landmarks_, target_landmark_.data(),
+                                                      original_[frame_[w.h].from],
+                                                      original_[frame_[w.h].to], len, w.b0, w.b1));
     }
     *order = distance_order_ ? nearest : key;
     *bound = key;
@@ -457,14 +459,14 @@ class Search {
   bool trim(Window* w) const {
     const double len = length(*w), tol = 1e-12 * len;
     const Vec2 I = w->source;
-    const double da = dist(mesh_.from(w->h));
+    const double da = dist(frame_[w->h].from);
     if (da + w->b1 < w->sigma + norm(I - Vec2{w->b1, 0.0})) return false;
     if (da + w->b0 < w->sigma + norm(I - Vec2{w->b0, 0.0})) {
       // d(A) + x = sigma + |I x|, i.e. 2 x (k + sx) = sx^2 + sy^2 - k^2 with k = d(A) - sigma.
       const double k = da - w->sigma, den = 2.0 * (k + I.x);
       if (den > 0.0) w->b0 = std::max(w->b0, (I.x * I.x + I.y * I.y - k * k) / den - tol);
     }
-    const double db = dist(mesh_.to(w->h));
+    const double db = dist(frame_[w->h].to);
     if (db + (len - w->b0) < w->sigma + norm(I - Vec2{w->b0, 0.0})) return false;
     if (db + (len - w->b1) < w->sigma + norm(I - Vec2{w->b1, 0.0})) {
       const double k = db - w->sigma, sx = len - I.x, den = 2.0 * (k + sx);
@@ -473,7 +475,7 @@ class Search {
     return w->b1 - w->b0 > tol;
   }
 
-  double length(const Window& w) const { return frame_[3 * w.h]; }
+  double length(const Window& w) const { return frame_[w.h].len; }
 
   // h's record, initialised on its first use in the query.
   HalfedgeRecord& record(int h) {
@@ -497,7 +499,7 @@ class Search {
   // beats them; a window left empty is dead. False when w is.
   bool compete(Window* w) {
     const double len = length(*w), tol = 1e-12 * len;
-    const int sides[2] = {w->h, mesh_.twin(w->h)};
+    const int sides[2] = {w->h, frame_[w->h].twin};
     insert_after_ = -1;
     for (int side = 0; side < 2; ++side) {
       HalfedgeRecord& r = scratch_.halfedges[sides[side]];
@@ -546,8 +548,9 @@ class Search {
     const int h = w.h;
     const double len = length(w);
     if (!trim(&w)) return;
-    const int c = mesh_.opposite_vertex(h);
-    const double cx = frame_[3 * h + 1], cy = frame_[3 * h + 2];
+    const HalfedgeFrame& f = frame_[h];
+    const int c = f.opposite;
+    const double cx = f.cx, cy = f.cy;
     if (!(cy > 0.0)) return;  // degenerate face
     // What its children and the vertex it reaches name as their parent: its record (the middle
     // of its interval as it was queued, before the trim), or, in a full run with reused slots,
@@ -583,12 +586,11 @@ class Search {
         r.split_x = xc;
       }
     }
-    const int hp = mesh_.prev(h), hn = mesh_.next(h);
-    const double lac = frame_[3 * hp], lcb = frame_[3 * hn];
+    const double lac = f.len_prev, lcb = f.len_next;
     // Rays through [b0, min(b1, xc)] leave through A -> C: the child on twin(prev(h)), frame A.
     if (w.b0 < std::min(xc, keep_left)) {
-      const int g = mesh_.twin(hp);
-      if (!mesh_.is_boundary_halfedge(g)) {
+      const int g = f.out_prev;
+      if (g >= 0) {
         const double hi = std::min({w.b1, xc, keep_left});
         const double s0 = std::clamp(ray_hit(I, {w.b0, 0.0}, A, C), 0.0, 1.0);
         const double s1 = hi >= xc ? 1.0 : std::clamp(ray_hit(I, {hi, 0.0}, A, C), 0.0, 1.0);
@@ -596,15 +598,15 @@ class Search {
         // ICH's third check: B beats the child at its end nearest A, hence everywhere on it
         // (moving towards C, the ray from I turns towards A -> C no less than the line from B).
         const Vec2 p0{s0 * cx, s0 * cy};
-        const bool beaten = dist(mesh_.to(h)) + norm(p0 - B) < w.sigma + norm(p0 - I);
+        const bool beaten = dist(f.to) + norm(p0 - B) < w.sigma + norm(p0 - I);
         if (s1 > s0 && !beaten)
           add_window(make_window(g, s0 * lac, s1 * lac, {dot(I, e), cross(e, I)}, w.sigma, me));
       }
     }
     // Rays through [max(b0, xc), b1] leave through C -> B: the child on twin(next(h)), frame C.
     if (w.b1 > std::max(xc, keep_right)) {
-      const int g = mesh_.twin(hn);
-      if (!mesh_.is_boundary_halfedge(g)) {
+      const int g = f.out_next;
+      if (g >= 0) {
         const double lo = std::max({w.b0, xc, keep_right});
         const double s0 = lo <= xc ? 0.0 : std::clamp(ray_hit(I, {lo, 0.0}, C, B), 0.0, 1.0);
         const double s1 = std::clamp(ray_hit(I, {w.b1, 0.0}, C, B), 0.0, 1.0);
@@ -612,7 +614,7 @@ class Search {
         const Vec2 r = I - C;
         // The same with A at the child's end nearest B.
         const Vec2 p1{cx + s1 * (len - cx), cy - s1 * cy};
-        const bool beaten = dist(mesh_.from(h)) + norm(p1 - A) < w.sigma + norm(p1 - I);
+        const bool beaten = dist(f.from) + norm(p1 - A) < w.sigma + norm(p1 - I);
         if (s1 > s0 && !beaten)
           add_window(make_window(g, s0 * lcb, s1 * lcb, {dot(r, e), cross(e, r)}, w.sigma, me));
       }
@@ -639,7 +641,7 @@ class Search {
         for (const int w : chain) {
           leg.halfedges.push_back(mesh_.twin(records_[w].h));
           leg.lambdas.push_back(
-              std::clamp(1.0 - records_[w].mid / frame_[3 * records_[w].h], 0.0, 1.0));
+              std::clamp(1.0 - records_[w].mid / frame_[records_[w].h].len, 0.0, 1.0));
         }
         leg.start_face = mesh_.face(leg.halfedges.front());
       } else {
@@ -674,7 +676,7 @@ class Search {
   const Mesh& mesh_;     // the renumbered copy
   const int* original_;  // its vertex -> the original vertex
   const std::vector<char>& pseudo_;
-  const double* frame_;
+  const HalfedgeFrame* frame_;
   const int source_;
   int target_;  // (a resumable search's changes)
   const WindowSearchOptions options_;

@@ -68,6 +68,42 @@ void expect_equal_to_cgal(const Mesh& mesh, int count, unsigned seed, const std:
   EXPECT_LT(slots * 3, most) << what << ": " << slots << " slots for " << most << " windows";
 }
 
+// The per-halfedge frames the search reads instead of the mesh (one cache line each) agree with
+// the renumbered copy's navigation and geometry: on hills (a boundary) and a rough torus, every
+// interior halfedge's vertices, twin, outgoing neighbours (-1 across the boundary), edge lengths
+// and the opposite corner's place in its frame.
+TEST(WindowSearch, HalfedgeFramesAgreeWithTheMesh) {
+  for (const bool torus : {false, true}) {
+    const WindowMesh wm =
+        prepare_window_mesh(torus ? Mesh(test::rough_torus(0.03, 5)) : Mesh(test::hills(12, 4.0)));
+    const Mesh& m = wm.order.mesh;
+    ASSERT_EQ(static_cast<int>(wm.frame.size()), m.num_interior_halfedges());
+    int boundary = 0;
+    for (int h = 0; h < m.num_interior_halfedges(); ++h) {
+      const HalfedgeFrame& f = wm.frame[h];
+      const Vec3 a = m.position(m.from(h)), b = m.position(m.to(h));
+      const Vec3 c = m.position(m.opposite_vertex(h));
+      ASSERT_EQ(f.from, m.from(h));
+      ASSERT_EQ(f.to, m.to(h));
+      ASSERT_EQ(f.opposite, m.opposite_vertex(h));
+      ASSERT_EQ(f.twin, m.twin(h));
+      for (const auto& [out, edge] : {std::pair{f.out_prev, m.prev(h)}, {f.out_next, m.next(h)}}) {
+        const int t = m.twin(edge);
+        ASSERT_EQ(out, m.is_boundary_halfedge(t) ? -1 : t);
+        boundary += out < 0;
+      }
+      EXPECT_NEAR(f.len, (b - a).norm(), 1e-14);
+      EXPECT_NEAR(f.len_prev, (a - c).norm(), 1e-14);
+      EXPECT_NEAR(f.len_next, (c - b).norm(), 1e-14);
+      // The corner at (cx, cy), cy >= 0: its distances to from(h) and to(h).
+      EXPECT_GE(f.cy, 0.0);
+      EXPECT_NEAR(std::hypot(f.cx, f.cy), (c - a).norm(), 1e-12);
+      EXPECT_NEAR(std::hypot(f.cx - f.len, f.cy), (c - b).norm(), 1e-12);
+    }
+    EXPECT_EQ(boundary > 0, !torus);
+  }
+}
+
 TEST(WindowSearch, EqualsCgalOnHills) {
   expect_equal_to_cgal(Mesh(test::hills(30, 6.0)), 25, 3, "hills");
 }
