@@ -499,45 +499,46 @@ class Search {
   // beats them; a window left empty is dead. False when w is.
   bool compete(Window* w) {
     const double len = length(*w), tol = 1e-12 * len;
-    const int sides[2] = {w->h, frame_[w->h].twin};
     insert_after_ = -1;
-    for (int side = 0; side < 2; ++side) {
-      HalfedgeRecord& r = scratch_.halfedges[sides[side]];
-      if (r.stamp != scratch_.stamp) continue;
-      int* link = &r.head;
-      while (*link >= 0) {
-        // (A list holds queued windows only: a window leaves it when it is propagated or dies.)
-        Window& o = windows_[*link];
-        // A halfedge's list is kept in the order of b0 (new windows are inserted there; a cut
-        // may move a b0 up and leave the order a little off, which only costs a cut missed):
-        // past w's end nothing overlaps it.
-        if (side == 0 ? o.b0 >= w->b1 : o.b0 >= len - w->b0) break;
-        // o in w's frame.
-        const bool same = side == 0;
-        const double ob0 = same ? o.b0 : len - o.b1, ob1 = same ? o.b1 : len - o.b0;
-        const double lo = std::max(w->b0, ob0), hi = std::min(w->b1, ob1);
-        bool o_beaten = false;
-        if (hi - lo > tol) {
-          const EdgeDistance wd{w->sigma, w->source.x, w->source.y};
-          const EdgeDistance od{o.sigma, same ? o.source.x : len - o.source.x, o.source.y};
-          const double eps = 1e-12 * (w->sigma + len);
-          double c0 = ob0, c1 = ob1;  // o, in w's frame
-          cut_overlap(wd, od, lo, hi, eps, tol, &w->b0, &w->b1, &c0, &c1);
-          if (!(w->b1 - w->b0 > tol)) return false;
-          o_beaten = !(c1 - c0 > tol);  // (it leaves the list below)
-          if (!o_beaten) {
-            o.b0 = same ? c0 : len - c1;
-            o.b1 = same ? c1 : len - c0;
-          }
-        }
-        if (o_beaten) {
+    return compete_side<true>(w, w->h, len, tol) &&
+           compete_side<false>(w, frame_[w->h].twin, len, tol);
+  }
+
+  // compete against the windows listed on h: w's own halfedge (kSame), then its twin (its
+  // windows are lit from the other side, their intervals mirrored in w's frame). One loop per
+  // side: the walk along a list is the search's most frequent step.
+  template <bool kSame>
+  bool compete_side(Window* w, int h, double len, double tol) {
+    HalfedgeRecord& r = scratch_.halfedges[h];
+    if (r.stamp != scratch_.stamp) return true;
+    int* link = &r.head;
+    while (*link >= 0) {
+      // (A list holds queued windows only: a window leaves it when it is propagated or dies.)
+      Window& o = windows_[*link];
+      // A halfedge's list is kept in the order of b0 (new windows are inserted there; a cut
+      // may move a b0 up and leave the order a little off, which only costs a cut missed):
+      // past w's end nothing overlaps it.
+      if (kSame ? o.b0 >= w->b1 : o.b0 >= len - w->b0) break;
+      // o in w's frame.
+      const double ob0 = kSame ? o.b0 : len - o.b1, ob1 = kSame ? o.b1 : len - o.b0;
+      const double lo = std::max(w->b0, ob0), hi = std::min(w->b1, ob1);
+      if (hi - lo > tol) {
+        const EdgeDistance wd{w->sigma, w->source.x, w->source.y};
+        const EdgeDistance od{o.sigma, kSame ? o.source.x : len - o.source.x, o.source.y};
+        const double eps = 1e-12 * (w->sigma + len);
+        double c0 = ob0, c1 = ob1;  // o, in w's frame
+        cut_overlap(wd, od, lo, hi, eps, tol, &w->b0, &w->b1, &c0, &c1);
+        if (!(w->b1 - w->b0 > tol)) return false;
+        if (!(c1 - c0 > tol)) {  // o is beaten: it leaves the list
           if (recycle_) free_.push_back(*link);
           unlink(link, o);
-        } else {
-          if (side == 0 && o.b0 <= w->b0) insert_after_ = *link;
-          link = &o.next;
+          continue;
         }
+        o.b0 = kSame ? c0 : len - c1;
+        o.b1 = kSame ? c1 : len - c0;
       }
+      if (kSame && o.b0 <= w->b0) insert_after_ = *link;
+      link = &o.next;
     }
     return true;
   }
