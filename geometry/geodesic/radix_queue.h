@@ -58,9 +58,12 @@ class RadixQueue {
     return item;
   }
 
-  /// Gives the buckets' memory back.
+  /// Empties the queue and gives the buckets' memory back.
   void release() {
     for (auto& b : buckets_) std::vector<Item>().swap(b);
+    size_ = 0;
+    last_ = 0;
+    occupied_ = 0;
   }
 
  private:

@@ -63,5 +63,29 @@ TEST(RadixQueue, KeysBelowTheLastPoppedAreRaisedToIt) {
   EXPECT_EQ(q.pop().index, 3);
 }
 
+// Cleared or released with items in several buckets (bits of the occupied ones set), the
+// queue starts again empty: the next items come out in order, none of the old ones.
+TEST(RadixQueue, ClearAndReleaseStartAgainEmpty) {
+  for (const bool release : {false, true}) {
+    RadixQueue<Item> q;
+    for (int i = 0; i < 20; ++i) q.push({1.0 + i * 7.5, i});
+    EXPECT_EQ(q.pop().index, 0);  // spreads the rest over lower buckets
+    if (release) {
+      q.release();
+    } else {
+      q.clear();
+    }
+    EXPECT_TRUE(q.empty());
+    q.push({0.5, 100});
+    q.push({300.0, 102});
+    q.push({40.0, 101});
+    for (const int expected : {100, 101, 102}) {
+      ASSERT_FALSE(q.empty());
+      EXPECT_EQ(q.pop().index, expected) << (release ? "released" : "cleared");
+    }
+    EXPECT_TRUE(q.empty());
+  }
+}
+
 }  // namespace
 }  // namespace windplan
