@@ -59,11 +59,13 @@ struct WindowSearchOptions {
   /// 106 MB against 1.17 GB, bench/README.md, session 11). No effect on a search to a target,
   /// which always does (keeping a 16-byte record of each window propagated for its path).
   bool reuse_windows = true;
-  /// shortest_paths_by_windows: a search that holds more windows than this after a target
-  /// starts afresh for the next (0: every target afresh). Counted as the window slots held (64
-  /// bytes each, about 100 with their queue entries) and a quarter of the records of the
-  /// windows propagated (16 bytes each): 4M is about 400 MB per thread. Checked between
-  /// targets, so a far target's search may go past it.
+  /// shortest_paths_by_windows: a search that holds more than this many windows' worth of memory
+  /// after a target starts afresh for the next (0: every target afresh). Counted as the window
+  /// slots held (64 bytes each) and a quarter of the path records of the windows propagated (16
+  /// bytes each): 4M is 256 MB per thread, plus the queue. (Since session 14, when a search
+  /// began to recycle its slots, a search restarts after about four times as many windows
+  /// propagated as before: bench/README.md.) Checked between targets, so a far target's search
+  /// may go past it.
   long resume_limit = 1L << 22;
 
   bool is_valid(std::string* why) const;

@@ -45,7 +45,7 @@ static_assert(sizeof(Window) == 64, "a window fills one cache line");
 
 // What a search to a target keeps of a window it propagated, once its slot has gone to a later
 // window: the path is built back through these. Written in order, a quarter of a window's
-// bytes and never read while searching, so that the windows alive (the wavefront, 1-2 % of
+// bytes and never read while searching, so that the windows alive (the wavefront, 1-3 % of
 // those made) stay few and in cache.
 struct PathRecord {
   int h;       // the window's halfedge

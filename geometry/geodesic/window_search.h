@@ -686,7 +686,9 @@ class Search {
   std::vector<double> target_landmark_;
   Scratch& scratch_;
   std::vector<Window>& windows_;
-  std::vector<PathRecord>& records_;  // (not in a full run with reused slots)
+  // (Written by every search but a full run with reused slots; a full run without reuse writes
+  // them unread.)
+  std::vector<PathRecord>& records_;
   RadixQueue<Event>& queue_;
   std::vector<int>& outgoing_;
   std::vector<double> corner_;

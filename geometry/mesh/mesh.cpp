@@ -39,6 +39,9 @@ Mesh::Mesh(TriangleSoup soup) : points_(std::move(soup.points)), tris_(std::move
     }
   }
 
+  corners_.resize(nh);
+  for (int h = 0; h < nh; ++h) corners_[h] = tris_[h / 3][h % 3];
+
   // Outgoing interior halfedges per vertex in CSR form (counting sort by from-vertex). Twins are
   // then found by scanning the short outgoing list of the head vertex: O(sum of degree^2), which
   // is linear for bounded degree and needs no hashing.

@@ -159,16 +159,15 @@ class Mesh {
   std::vector<int> loop_vertices(const std::vector<int>& loop) const;
 
  private:
-  // The faces' corners in one run: interior halfedge h starts at corner h (face h / 3, corner
-  // h % 3). One load, where tris_[h / 3][h % 3] costs a division's multiply and shifts (the
-  // window search's hot loop calls these about ten times per window).
-  static_assert(sizeof(Tri) == 3 * sizeof(int), "faces' corners packed");
-  const int* corners() const { return reinterpret_cast<const int*>(tris_.data()); }
-  int interior_from(int h) const { return corners()[h]; }
-  int interior_to(int h) const { return corners()[h % 3 == 2 ? h - 2 : h + 1]; }
+  int interior_from(int h) const { return corners_[h]; }
+  int interior_to(int h) const { return corners_[h % 3 == 2 ? h - 2 : h + 1]; }
 
   std::vector<Vec3> points_;
   std::vector<Tri> tris_;
+  // The faces' corners in one run, from(h) per interior halfedge h (tris_[h / 3][h % 3]): one
+  // load where the division by 3 costs a multiply and shifts (about 1 % of the exact geodesic
+  // search's instructions, bench/README.md, session 14).
+  std::vector<int> corners_;
   std::vector<int> twin_;             // per halfedge (interior, then boundary)
   std::vector<int> edge_;             // per halfedge
   std::vector<int> edge_halfedge_;    // per edge

@@ -141,7 +141,9 @@ TEST(WindowSearch, ResumedSearchAfterAWindowLimit) {
 }
 
 // Every target keyed afresh: on a flat grid (where the Euclidean bound is the distance) with
-// landmark bounds and searches started afresh after a few thousand windows, and under an upper
+// landmark bounds and searches started afresh once they hold `resume_limit` windows' worth of
+// memory (slots and a quarter of the path records; a limit the grid's searches pass, so that
+// they restart: more windows than one search resumed throughout), and under an upper
 // bound, which a resumed search keeps for every target (a target beyond it in space costs no
 // propagation; found in review: retarget had dropped the bound).
 TEST(WindowSearch, ResumedSearchOnAFlatGridWithLandmarks) {
@@ -149,8 +151,12 @@ TEST(WindowSearch, ResumedSearchOnAFlatGridWithLandmarks) {
   const WindowMesh wm = prepare_window_mesh(grid);
   const Landmarks marks = compute_landmarks(grid, wm, 4);
   WindowSearchOptions options;
-  options.resume_limit = 3000;
-  expect_resumed_equal_to_cgal(grid, {17, 212, 398}, 30, 31, "grid, landmarks", options, &marks);
+  options.resume_limit = 120;
+  const long restarted = expect_resumed_equal_to_cgal(grid, {17, 212, 398}, 30, 31,
+                                                      "grid, landmarks", options, &marks);
+  const long resumed =
+      expect_resumed_equal_to_cgal(grid, {17, 212, 398}, 30, 31, "grid, landmarks", {}, &marks);
+  EXPECT_GT(restarted, resumed);
   expect_resumed_equal_to_cgal(grid, {0, 220}, 30, 32, "grid", options);
 }
 
