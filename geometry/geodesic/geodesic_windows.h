@@ -51,7 +51,7 @@ struct WindowSearchOptions {
   /// from there; checked after each halfedge's list, so a search may end a list past it).
   /// A search to a target holds a 16-byte record of every window it propagates (its path is
   /// built back through them) and 64 bytes per window of its wavefront (bench/README.md,
-  /// session 14: median 10K windows at 20K faces, 283K and a mean of 1.37M at 300K faces; the
+  /// session 14: median 10K windows at 20K faces, 283K and a p90 of 1.37M at 300K faces; the
   /// wavefront 1-3 % of them).
   long max_windows = 0;
   /// A full run (geodesic_distances_by_windows) gives the slot of a window it has propagated
