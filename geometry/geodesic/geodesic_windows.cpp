@@ -39,9 +39,6 @@ WindowMesh prepare_window_mesh(const Mesh& original) {
   }
   const int nh = mesh.num_interior_halfedges();
   w.frame.resize(nh);
-  const auto length = [&](int h) {
-    return (mesh.position(mesh.to(h)) - mesh.position(mesh.from(h))).norm();
-  };
   const auto inside = [&](int h) { return mesh.is_boundary_halfedge(h) ? -1 : h; };
   for (int h = 0; h < nh; ++h) {
     HalfedgeFrame& f = w.frame[h];
@@ -51,11 +48,11 @@ WindowMesh prepare_window_mesh(const Mesh& original) {
     const Vec3& a = mesh.position(f.from);
     const Vec3& b = mesh.position(f.to);
     const Vec3& c = mesh.position(f.opposite);
-    f.len = length(h);
+    f.len = mesh.halfedge_length(h);
     f.cx = f.len > 0.0 ? (c - a).dot(b - a) / f.len : 0.0;
     f.cy = std::sqrt(std::max(0.0, (c - a).squaredNorm() - f.cx * f.cx));
-    f.len_prev = length(mesh.prev(h));
-    f.len_next = length(mesh.next(h));
+    f.len_prev = mesh.halfedge_length(mesh.prev(h));
+    f.len_next = mesh.halfedge_length(mesh.next(h));
     f.twin = mesh.twin(h);
     f.out_prev = inside(mesh.twin(mesh.prev(h)));
     f.out_next = inside(mesh.twin(mesh.next(h)));

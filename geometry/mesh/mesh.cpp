@@ -52,18 +52,18 @@ Mesh::Mesh(TriangleSoup soup) : points_(std::move(soup.points)), tris_(std::move
   std::vector<int> out(nh);
   {
     std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int h = 0; h < nh; ++h) out[fill[tris_[h / 3][h % 3]]++] = h;
+    for (int h = 0; h < nh; ++h) out[fill[interior_from(h)]++] = h;
   }
 
   twin_.assign(nh, -1);
   for (int h = 0; h < nh; ++h) {
     if (twin_[h] >= 0) continue;
-    const int a = tris_[h / 3][h % 3];
-    const int b = tris_[h / 3][h % 3 == 2 ? 0 : h % 3 + 1];
+    const int a = interior_from(h);
+    const int b = interior_to(h);
     int match = -1;
     for (int i = start[b]; i < start[b + 1]; ++i) {
       const int g = out[i];
-      const int gb = tris_[g / 3][g % 3 == 2 ? 0 : g % 3 + 1];
+      const int gb = interior_to(g);
       if (gb != a) continue;
       if (match >= 0) {
         throw TopologyError("edge (" + std::to_string(a) + ", " + std::to_string(b) +
@@ -77,7 +77,7 @@ Mesh::Mesh(TriangleSoup soup) : points_(std::move(soup.points)), tris_(std::move
     for (int i = start[a]; i < start[a + 1]; ++i) {
       const int g = out[i];
       if (g == h) continue;
-      const int gb = tris_[g / 3][g % 3 == 2 ? 0 : g % 3 + 1];
+      const int gb = interior_to(g);
       if (gb == b) {
         throw TopologyError("directed edge (" + std::to_string(a) + " -> " + std::to_string(b) +
                             ") appears in triangles " + std::to_string(h / 3) + " and " +
@@ -102,7 +102,7 @@ Mesh::Mesh(TriangleSoup soup) : points_(std::move(soup.points)), tris_(std::move
     const int b = static_cast<int>(twin_.size());
     twin_.push_back(h);
     twin_[h] = b;
-    const int tail = tris_[h / 3][h % 3 == 2 ? 0 : h % 3 + 1];  // boundary runs to(h) -> from(h)
+    const int tail = interior_to(h);  // boundary runs to(h) -> from(h)
     if (boundary_out[tail] >= 0) {
       throw TopologyError("vertex " + std::to_string(tail) +
                           " is non-manifold (two boundary fans meet there)");
