@@ -3,6 +3,7 @@
 // geometry/geodesic/window_search.h.
 #include "geometry/geodesic/geodesic_windows.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -24,7 +25,7 @@ bool WindowSearchOptions::is_valid(std::string* why) const {
     if (why) *why = "resume_limit must be >= 0 (windows)";
     return false;
   }
-  return true;
+  return target_bound.is_valid(why);
 }
 
 WindowMesh prepare_window_mesh(const Mesh& original) {
@@ -56,7 +57,21 @@ WindowMesh prepare_window_mesh(const Mesh& original) {
     f.twin = mesh.twin(h);
     f.out_prev = inside(mesh.twin(mesh.prev(h)));
     f.out_next = inside(mesh.twin(mesh.next(h)));
+    w.max_edge = std::max(w.max_edge, f.len);
   }
+  w.ring_start.assign(mesh.num_vertices() + 1, 0);
+  w.ring.reserve(nh);
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    w.ring_start[v] = static_cast<int>(w.ring.size());
+    const int first = mesh.vertex_halfedge(v);
+    for (int o = first; o >= 0;) {
+      const HalfedgeFrame& f = w.frame[o];
+      w.ring.push_back({f.to, f.opposite, f.len, f.len_prev, f.cx, f.cy});
+      o = mesh.ccw_rotate(o);
+      if (o == first) break;
+    }
+  }
+  w.ring_start[mesh.num_vertices()] = static_cast<int>(w.ring.size());
   return w;
 }
 

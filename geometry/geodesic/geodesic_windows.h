@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/geodesic/target_bound.h"
 #include "geometry/mesh/mesh.h"
 #include "geometry/mesh/mesh_order.h"
 #include "geometry/mesh/surface_path.h"
@@ -67,6 +68,11 @@ struct WindowSearchOptions {
   /// propagated as before: bench/README.md.) Checked between targets, so a far target's search
   /// may go past it.
   long resume_limit = 1L << 22;
+  /// A search to one target (shortest_path_by_windows) keys its windows with the lower bound of
+  /// geometry/geodesic/target_bound.h as well as the straight distance, when the pair bends
+  /// (target_bound.min_detour). Only the work changes: every distance stays exact.
+  bool use_target_bound = true;
+  TargetBoundOptions target_bound;
 
   bool is_valid(std::string* why) const;
 };
@@ -102,6 +108,15 @@ struct alignas(64) HalfedgeFrame {
   int out_prev, out_next;     // twin(prev(h)), twin(next(h)); -1: a boundary edge
 };
 
+/// A face seen from one of its corners v: the other corners (next, then the one after), the
+/// lengths of v -> next and v -> after, and the face's frame (v at the origin, next at
+/// (len, 0), after at (cx, cy), cy >= 0).
+struct RingCorner {
+  int next, after;
+  double len, len_after;
+  double cx, cy;
+};
+
 /// Per-mesh data of the window search, built once per mesh (O(V log V + F log F)). The search
 /// runs on a copy of the mesh renumbered for memory locality (geometry/mesh/mesh_order.h) and
 /// answers in the mesh's own numbering; the arrays below are in the copy's. (The copy costs
@@ -113,6 +128,13 @@ struct WindowMesh {
   std::vector<char> pseudo_source;
   /// Per interior halfedge.
   std::vector<HalfedgeFrame> frame;
+  /// The faces around each vertex v, as seen from v: ring[ring_start[v] .. ring_start[v + 1]),
+  /// in ccw_rotate order (geometry/geodesic/target_bound.h reads a vertex's faces in one
+  /// sweep instead of a chain of dependent loads; 40 bytes per corner).
+  std::vector<int> ring_start;
+  std::vector<RingCorner> ring;
+  /// The longest edge (mesh units; geometry/geodesic/target_bound.h).
+  double max_edge = 0.0;
 };
 WindowMesh prepare_window_mesh(const Mesh& mesh);
 

@@ -127,6 +127,7 @@ struct Scratch {
   std::vector<Arrival> arrivals;  // per vertex
   RadixQueue<Event> queue;
   std::vector<int> outgoing;
+  TargetBound target_bound;  // a search to one target's (geometry/geodesic/target_bound.h)
 
   void begin(const Mesh& mesh) {
     const std::size_t nv = mesh.num_vertices(), nh = mesh.num_halfedges();

@@ -54,6 +54,13 @@ class Search {
         recycle_(kReuse || target >= 0) {
     scratch_.begin(mesh_);
     copy_target_landmarks();
+    if constexpr (!kResume) {
+      if (target >= 0 && options.use_target_bound) {
+        build_target_bound(window_mesh, source, target, options.upper_bound, options.target_bound,
+                           &scratch_.target_bound);
+        if (scratch_.target_bound.active) bound_ = &scratch_.target_bound;
+      }
+    }
   }
 
   // The distances of a full run (target < 0), in the original numbering.
@@ -225,7 +232,8 @@ class Search {
 
   double vertex_key(int v, double d) const {
     if (target_ < 0) return d;
-    return d + std::max((mesh_.position(v) - target_position_).norm(), landmark_bound(v));
+    const double h = std::max((mesh_.position(v) - target_position_).norm(), landmark_bound(v));
+    return d + (bound_ != nullptr ? std::max(h, bound_->at(v)) : h);
   }
 
   // Lights the edges opposite to v in its faces with v as the pseudo-source.
@@ -331,6 +339,7 @@ class Search {
     const double x = std::clamp(cross_x, w.b0, w.b1);
     const Vec2 X{x, 0.0};
     double key = w.sigma + norm(X - I) + norm(T - X);
+    if (bound_ != nullptr) key = std::max(key, target_bound_key(w, len));
     if (landmarks_ != nullptr) {
       key =
           std::max(key, nearest + landmark_edge_bound(*landmarks_, target_landmark_.data(),
@@ -339,6 +348,25 @@ class Search {
     }
     *order = distance_order_ ? nearest : key;
     *bound = key;
+  }
+
+  // min over x in [b0, b1] of sigma + |I x| + h(x), h the target bound, linear along the edge
+  // (h(A) + s x): the sum is convex in x, its derivative (x - Ix) / |I x| + s vanishes at
+  // x = Ix - s |Iy| / sqrt(1 - s^2) when |s| < 1 (otherwise the sum is monotone). -infinity
+  // where h is not defined at both ends.
+  double target_bound_key(const Window& w, double len) const {
+    const HalfedgeFrame& f = frame_[w.h];
+    const double ha = bound_->at(f.from), hb = bound_->at(f.to);
+    if (!(ha > -std::numeric_limits<double>::infinity() &&
+          hb > -std::numeric_limits<double>::infinity()))
+      return -std::numeric_limits<double>::infinity();
+    const Vec2& I = w.source;
+    const double s = (hb - ha) / len;
+    const double x = s >= 1.0    ? w.b0
+                     : s <= -1.0 ? w.b1
+                                 : std::clamp(I.x - s * std::abs(I.y) / std::sqrt(1.0 - s * s),
+                                              w.b0, w.b1);
+    return w.sigma + norm(Vec2{x, 0.0} - I) + ha + s * x;
   }
 
   // ALT lower bound on d(v, t): max over landmarks L of |d(L, t) - d(L, v)|.
@@ -684,6 +712,7 @@ class Search {
   Vec3 target_position_;
   const Landmarks* landmarks_;
   std::vector<double> target_landmark_;
+  const TargetBound* bound_ = nullptr;  // the target bound, when built and active
   Scratch& scratch_;
   std::vector<Window>& windows_;
   // (Written by every search but a full run with reused slots; a full run without reuse writes

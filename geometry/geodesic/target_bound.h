@@ -1,0 +1,109 @@
+#pragma once
+// A lower bound of the distance to a target for the exact window search's A* keys
+// (geometry/geodesic/window_search.h), much tighter than the straight distance where the
+// geodesic bends round the surface.
+//
+// The straight distance |x t| bounds a path from x to t from below, but poorly where the surface
+// bulges between them: a pair whose geodesic is 1.57x its straight distance makes the A* search
+// explore most of a 100K-face bunny (bench/README.md, session 14). This bound is built per query:
+//   1. U: an edge path from the target to the source (A* on the vertex graph), or the caller's
+//      upper bound if smaller: U >= D, the distance sought. Every point y of a shortest path
+//      then has |y s| + |y t| <= D <= U: the path lies in the ellipsoid with foci s and t.
+//   2. psi: fast marching from the target (plane-wave updates, Kimmel and Sethian 1998) over the
+//      vertices near that ellipsoid: an approximate distance, no bound by itself.
+//   3. What makes it a bound: psi is linear on each face, with slope g_f there. Along a shortest
+//      path from x to t, which crosses each face at most once in a segment of length l_f, psi
+//      changes by at most min(g_f l_f, spread_f) per face (spread_f: psi's range over the
+//      face's corners), so psi(x) - psi(t) <= L d(x, t) + E for any L >= 1, with
+//      E = sum over the faces met by the ellipsoid with g_f > L of spread_f (1 - L / g_f).
+//      (In a face: if g_f l_f <= spread_f, g_f l_f - L l_f = (g_f - L) l_f <= (g_f - L)
+//      spread_f / g_f; otherwise spread_f - L l_f < spread_f - L spread_f / g_f.)
+//   Hence h(x) = (psi(x) - psi(t) - E) / L <= d(x, t) at every point of the shortest path, and
+//   it is 1-Lipschitz along it; L is chosen among a few values to make h(s) largest. Fast
+//   marching's slopes are 1 on most faces and up to ~1.2 on a few (where fronts meet), so L is
+//   1.03-1.05 and h about 0.93-0.95 of the distance, against ~0.64 for the straight distance
+//   on such a pair.
+// The window search keys a window with max(straight bound, this bound), exact as before: the
+// bound holds on the shortest path, which is all the A* stop needs (a window off it keyed too
+// high is dropped, and no shortest path passes through it). h is not 1-Lipschitz where a
+// face's slope exceeds L, so a child's key may fall below its parent's; the radix queue then
+// raises it to the key last popped, which for the windows of the shortest path is at most D
+// (by induction from the source: each is pushed while its parent, keyed <= D, is propagated),
+// so they all come out before the search stops.
+// tests/geometry/geodesic/target_bound_test.cpp checks h <= d(v, t) against CGAL at every
+// vertex the proof covers, on meshes where fast marching's slopes exceed 1.
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "geometry/geodesic/radix_queue.h"
+
+namespace windplan {
+
+struct WindowMesh;  // geometry/geodesic/geodesic_windows.h
+
+struct TargetBoundOptions {
+  /// Built only when U (an edge path's length) is at least this many times the straight distance
+  /// |s t| (dimensionless): below, the straight distance is already within this factor of the
+  /// geodesic's and the field would cost more than it saves (bench/README.md, session 15).
+  double min_detour = 1.15;
+
+  bool is_valid(std::string* why) const;
+};
+
+/// The bound of one query, in the numbering of the window mesh's renumbered copy. Reused from
+/// query to query (its arrays keep their size; a stamp marks what belongs to the current one).
+struct TargetBound {
+  bool active = false;  ///< false: no bound (straight distance only)
+  double upper = std::numeric_limits<double>::infinity();  ///< U (mesh units)
+  double slope = 1.0;   ///< L (dimensionless, >= 1)
+  double excess = 0.0;  ///< E (mesh units)
+  long vertices = 0;    ///< vertices given a value by the fast marching
+  long faces = 0;       ///< faces whose slopes entered L and E
+
+  /// The lower bound at vertex v (mesh units; -infinity: none, e.g. v far from the ellipsoid).
+  /// Linear along every edge between its ends' values.
+  double at(int v) const {
+    const State& s = state_[v];
+    return active && s.mark == stamp_ && s.accepted ? s.value
+                                                    : -std::numeric_limits<double>::infinity();
+  }
+
+ private:
+  friend void build_target_bound(const WindowMesh&, int, int, double, const TargetBoundOptions&,
+                                 TargetBound*);
+  struct Item {
+    double key;
+    int v;
+  };
+  // Per vertex, in one line with its neighbours' (the passes read them together).
+  struct State {
+    unsigned mark;  // == stamp_: the fields below are this query's
+    char accepted;  // given its final value by pass 2
+    char closed;    // settled by pass 1
+    double value;   // pass 2's psi, then h
+    double graph;   // pass 1's edge-path length from the target
+    double foci;    // |v s| + |v t|; < 0: not yet
+  };
+  // A face whose slope exceeds the least limit tried: its corners, slope, spread, longest edge.
+  struct Steep {
+    int a, b, c;
+    double slope, spread, longest;
+  };
+  unsigned stamp_ = 0;
+  std::vector<State> state_;
+  std::vector<Steep> steep_;
+  std::vector<int> order_;  // vertices accepted by pass 2
+  RadixQueue<Item> queue_;
+};
+
+/// Builds `bound` for a search from `source` to `target`, vertices of window_mesh's renumbered
+/// copy (window_mesh.order.mesh). `upper_bound`: a length the search needs to look below
+/// (+infinity: none). Leaves bound->active false when the pair is nearly straight
+/// (options.min_detour), the source is unreachable, or source == target.
+/// Cost: an A* over the vertex graph and a fast marching over the vertices near the
+/// ellipsoid, O(n log n) in them.
+void build_target_bound(const WindowMesh& window_mesh, int source, int target, double upper_bound,
+                        const TargetBoundOptions& options, TargetBound* bound);
+
+}  // namespace windplan

@@ -1,0 +1,170 @@
+// The A* lower bound of geometry/geodesic/target_bound.h against CGAL's exact distances (an
+// independent implementation): below the distance to the target at every vertex a shortest
+// path may pass, much tighter than the straight distance where the geodesic bends, and the
+// window search's distances unchanged by it.
+#include "geometry/geodesic/target_bound.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "geometry/base/errors.h"
+#include "geometry/geodesic/exact_geodesic.h"
+#include "geometry/geodesic/geodesic_windows.h"
+#include "tests/mesh_fixtures.h"
+
+namespace windplan {
+namespace {
+
+std::vector<double> exact_field(ExactGeodesic& cgal, const Mesh& mesh, int source) {
+  std::vector<SurfacePoint> all;
+  for (int v = 0; v < mesh.num_vertices(); ++v) all.push_back(SurfacePoint::at_vertex(v));
+  return cgal.distances(SurfacePoint::at_vertex(source), all);
+}
+
+struct Checked {
+  int pairs = 0;     // pairs whose bound was built
+  int vertices = 0;  // vertices on or near a shortest path checked
+  double least_gain = 1e300;  // least h(s) / |s t| over the pairs with a bound
+  double least_share = 1e300;  // least h(s) / D
+};
+
+// For `count` random pairs of `mesh`: the bound at every vertex v with d(s, v) + d(v, t) <= U
+// (exactly, by CGAL) is at most d(v, t). (It holds on the shortest paths from s to t; and every
+// point y of a shortest path from such a v to t has |y s| + |y t| <= d(s, v) + d(v, t) <= U, so
+// the path crosses only faces whose slopes entered the bound: the same proof.)
+Checked check_bound(const Mesh& mesh, int count, unsigned seed, double min_detour) {
+  const WindowMesh wm = prepare_window_mesh(mesh);
+  ExactGeodesic cgal(mesh);
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
+  TargetBoundOptions options;
+  options.min_detour = min_detour;
+  TargetBound bound;
+  Checked c;
+  for (int i = 0; i < count; ++i) {
+    const int s = pick(rng), t = pick(rng);
+    if (s == t) continue;
+    const std::vector<int>& local = wm.order.vertex_to_local;
+    build_target_bound(wm, local[s], local[t], std::numeric_limits<double>::infinity(), options,
+                       &bound);
+    if (!bound.active) continue;
+    ++c.pairs;
+    const std::vector<double> from_s = exact_field(cgal, mesh, s), from_t = exact_field(cgal, mesh, t);
+    const double D = from_s[t];
+    EXPECT_GE(bound.upper, D * (1.0 - 1e-12)) << s << " -> " << t;
+    EXPECT_GE(bound.slope, 1.0);
+    EXPECT_GE(bound.excess, 0.0);
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      if (!(from_s[v] + from_t[v] <= bound.upper)) continue;
+      ++c.vertices;
+      const double h = bound.at(local[v]);
+      EXPECT_LE(h, from_t[v] * (1.0 + 1e-12) + 1e-12)
+          << s << " -> " << t << ": vertex " << v << " on a shortest path";
+    }
+    const double hs = bound.at(local[s]);
+    c.least_gain = std::min(c.least_gain, hs / (mesh.position(s) - mesh.position(t)).norm());
+    c.least_share = std::min(c.least_share, hs / D);
+  }
+  return c;
+}
+
+TEST(TargetBound, BelowTheDistanceOnShortestPathsOfHills) {
+  const Checked c = check_bound(Mesh(test::hills(40, 6.0)), 30, 5, 1.0);
+  EXPECT_GE(c.pairs, 20);
+  EXPECT_GT(c.vertices, 500);
+  // Fast marching on a fine mesh: the bound is most of the distance.
+  EXPECT_GT(c.least_share, 0.7);
+}
+
+TEST(TargetBound, BelowTheDistanceOnShortestPathsOfARoughTorus) {
+  const Checked c = check_bound(Mesh(test::rough_torus(0.03, 11)), 30, 6, 1.0);
+  EXPECT_GE(c.pairs, 20);
+  EXPECT_GT(c.vertices, 500);
+  EXPECT_GT(c.least_share, 0.7);
+}
+
+// Half a turn round the torus' hole the geodesic (6.90 by CGAL) bends far from the straight
+// line (5.40): the bound beats the straight distance by a wide margin there (the reason it
+// exists), even on this coarse mesh of long thin triangles (its slopes are the steepest of
+// these tests: L 1.1, E 0.21).
+TEST(TargetBound, FarTighterThanTheStraightDistanceRoundATorus) {
+  const Mesh mesh(test::torus(2.0, 0.7, 96, 40));
+  const WindowMesh wm = prepare_window_mesh(mesh);
+  ExactGeodesic cgal(mesh);
+  // Vertices 0 and 48: the outer equator's (radius 2.7) opposite points.
+  const int s = 0, t = 48;
+  ASSERT_NEAR(mesh.position(t).norm(), 2.7, 1e-9);
+  TargetBound bound;
+  build_target_bound(wm, wm.order.vertex_to_local[s], wm.order.vertex_to_local[t],
+                     std::numeric_limits<double>::infinity(), {}, &bound);
+  ASSERT_TRUE(bound.active);
+  const double D = exact_field(cgal, mesh, s)[t];
+  const double chord = (mesh.position(s) - mesh.position(t)).norm();
+  const double hs = bound.at(wm.order.vertex_to_local[s]);
+  EXPECT_LE(hs, D);
+  EXPECT_GE(bound.upper, D);
+  EXPECT_GT(hs, 0.85 * D) << "slope " << bound.slope << ", excess " << bound.excess;
+  EXPECT_GT(hs, 1.1 * chord);
+}
+
+// Along a grid line the edge path is the straight line: no bound is built (the straight
+// distance is already exact), and none between a vertex and itself.
+TEST(TargetBound, NoneForStraightPairs) {
+  const Mesh mesh(test::grid(20, 20, 1.0));
+  const WindowMesh wm = prepare_window_mesh(mesh);
+  TargetBound bound;
+  const std::vector<int>& local = wm.order.vertex_to_local;
+  build_target_bound(wm, local[0], local[20], std::numeric_limits<double>::infinity(), {},
+                     &bound);
+  EXPECT_FALSE(bound.active);
+  EXPECT_NEAR(bound.upper, 20.0, 1e-12);
+  EXPECT_EQ(bound.at(local[0]), -std::numeric_limits<double>::infinity());
+  build_target_bound(wm, local[5], local[5], std::numeric_limits<double>::infinity(), {}, &bound);
+  EXPECT_FALSE(bound.active);
+}
+
+TEST(TargetBound, OptionsAreChecked) {
+  TargetBoundOptions o;
+  std::string why;
+  EXPECT_TRUE(o.is_valid(&why));
+  o.min_detour = 0.9;
+  EXPECT_FALSE(o.is_valid(&why));
+  EXPECT_NE(why.find("min_detour"), std::string::npos);
+  const Mesh mesh(test::grid(4, 4, 1.0));
+  const WindowMesh wm = prepare_window_mesh(mesh);
+  WindowSearchOptions w;
+  w.target_bound.min_detour = std::nan("");
+  EXPECT_THROW(shortest_path_by_windows(mesh, wm, 0, 24, w), ConfigError);
+}
+
+// The bound changes the work, never the answer: the same distances with and without it, and
+// fewer windows where pairs bend.
+TEST(TargetBound, TheSearchFindsTheSameDistancesWithFewerWindows) {
+  for (const auto& [mesh, what] :
+       {std::pair<Mesh, const char*>{Mesh(test::rough_torus(0.03, 11)), "rough torus"},
+        std::pair<Mesh, const char*>{Mesh(test::hills(40, 6.0)), "hills"}}) {
+    const WindowMesh wm = prepare_window_mesh(mesh);
+    std::mt19937 rng(17);
+    std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
+    WindowSearchOptions without;
+    without.use_target_bound = false;
+    long with_windows = 0, without_windows = 0;
+    for (int i = 0; i < 40; ++i) {
+      const int a = pick(rng), b = pick(rng);
+      if (a == b) continue;
+      const WindowSearchResult r1 = shortest_path_by_windows(mesh, wm, a, b);
+      const WindowSearchResult r0 = shortest_path_by_windows(mesh, wm, a, b, without);
+      ASSERT_TRUE(r1.found && r0.found) << what;
+      EXPECT_NEAR(r1.distance, r0.distance, 1e-12 * r0.distance) << what << " " << a << " -> " << b;
+      with_windows += r1.windows;
+      without_windows += r0.windows;
+    }
+    EXPECT_LT(with_windows, without_windows) << what;
+  }
+}
+
+}  // namespace
+}  // namespace windplan
