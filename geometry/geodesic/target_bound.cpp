@@ -54,12 +54,13 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   b->upper = upper_bound;
   b->slope = 1.0;
   b->excess = 0.0;
+  b->radius = 0.0;
   b->vertices = 0;
   b->faces = 0;
   if (source == target) return;
   using State = TargetBound::State;
   if (static_cast<int>(b->state_.size()) != nv) {
-    b->state_.assign(nv, State{0u, 0, 0, kInf, kInf, -1.0});
+    b->state_.assign(nv, State{0u, 0, 0, kInf, kInf, -1.0, 0.0});
     b->stamp_ = 0;
   }
   if (++b->stamp_ == 0) {
@@ -70,7 +71,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   State* state = b->state_.data();
   const auto touch = [&](int v) -> State& {
     State& s = state[v];
-    if (s.mark != stamp) s = State{stamp, 0, 0, kInf, kInf, -1.0};
+    if (s.mark != stamp) s = State{stamp, 0, 0, kInf, kInf, -1.0, 0.0};
     return s;
   };
   const int* ring_start = wm.ring_start.data();
@@ -121,7 +122,8 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   const auto foci = [&](State& s, int w) {
     if (s.foci < 0.0) {
       const Vec3& p = mesh.position(w);
-      s.foci = (p - ps).norm() + (p - pt).norm();
+      s.to_target = (p - pt).norm();
+      s.foci = (p - ps).norm() + s.to_target;
     }
     return s.foci;
   };
@@ -130,6 +132,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   order.clear();
   state[target].value = 0.0;
   state[target].foci = chord;
+  state[target].to_target = 0.0;
   queue.push({0.0, target});
   while (!queue.empty()) {
     const TargetBound::Item e = queue.pop();
@@ -172,15 +175,28 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   // the target's through edges of faces that meet the ellipsoid, or through the vertices it
   // passes). A corner not reached lies on a part of the surface that no such edge joins to
   // the target's: the face is not a shortest path's. Each face is taken at its least corner.
+  //
+  // The steepest faces lie round the target (a cone's apex, which no linear piece follows), so
+  // the path's last stretch, inside {psi <= r}, is left out: from x with psi(x) > r, the
+  // shortest path first reaches psi = r at a point y of a face that the level set crosses,
+  // so d(y, t) >= |y t| >= rho(r), the least distance from t to those level-set segments;
+  // before y it crosses only faces with a corner above r. Hence
+  //   psi(x) <= r + L (d(x, t) - rho(r)) + E(r),   E(r): the excess of those faces,
+  //   h(x) = (psi(x) - r - E(r)) / L + rho(r) <= d(x, t),
+  // at every vertex with psi > r (and so along the edges between them). r = 0 is the bound
+  // without it (rho(0) = 0).
   constexpr int kLimits = 7;
   constexpr double kLimit[kLimits] = {1.01, 1.02, 1.03, 1.05, 1.1, 1.2, 1.4};
+  constexpr int kRadii = 6;
+  const double us = state[source].value;
+  const double radius[kRadii] = {0.0, 0.01 * us, 0.02 * us, 0.04 * us, 0.08 * us, 0.16 * us};
+  double rho[kRadii] = {0.0, kInf, kInf, kInf, kInf, kInf};
+  double steepest[kRadii] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
   auto& steep = b->steep_;
   steep.clear();
-  double steepest = 1.0;
   long faces = 0;
   for (const int v : order) {
-    const double ua = state[v].value;
-    const double fa = state[v].foci;
+    const State& sa = state[v];
     for (int i = ring_start[v]; i < ring_start[v + 1]; ++i) {
       const RingCorner& c = ring[i];
       if (c.next < v || c.after < v) continue;
@@ -189,69 +205,90 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       if (!(sb.mark == stamp && sb.accepted && sc.mark == stamp && sc.accepted)) continue;
       const double len_bc = std::sqrt((c.len - c.cx) * (c.len - c.cx) + c.cy * c.cy);
       const double longest = std::max({c.len, c.len_after, len_bc});
-      if (std::min({fa, sb.foci, sc.foci}) - 2.0 * longest > U) continue;
+      if (std::min({sa.foci, sb.foci, sc.foci}) - 2.0 * longest > U) continue;
       ++faces;
-      const double ub = sb.value, uc = sc.value;
+      const double u[3] = {sa.value, sb.value, sc.value};
+      const int id[3] = {v, c.next, c.after};
+      const double top = std::max({u[0], u[1], u[2]}), low = std::min({u[0], u[1], u[2]});
+      for (int k = 1; k < kRadii; ++k) {
+        const double r = radius[k];
+        if (!(low <= r && r <= top)) continue;
+        // The level set psi = r in this face: the points where it crosses the edges.
+        Vec3 p[3];
+        int n = 0;
+        for (int e = 0; e < 3 && n < 3; ++e) {
+          const int a = e, z = (e + 1) % 3;
+          if ((u[a] - r) * (u[z] - r) > 0.0) continue;
+          const double w = u[a] == u[z] ? 0.0 : (r - u[a]) / (u[z] - u[a]);
+          p[n++] = mesh.position(id[a]) + w * (mesh.position(id[z]) - mesh.position(id[a]));
+        }
+        double dist = kInf;
+        if (n >= 2 && !(low == top)) {
+          // |t - segment p0 p1| (a level set crossing a corner gives that corner twice).
+          const Vec3 d = p[1] - p[0];
+          const double dd = d.squaredNorm();
+          const double q = dd > 0.0 ? std::clamp((pt - p[0]).dot(d) / dd, 0.0, 1.0) : 0.0;
+          dist = (p[0] + q * d - pt).norm();
+          if (n == 3) dist = std::min(dist, (p[2] - pt).norm());
+        } else {
+          // (A face level at r: the least corner distance less the longest edge.)
+          dist = std::min({sa.to_target, sb.to_target, sc.to_target}) - longest;
+        }
+        rho[k] = std::min(rho[k], dist);
+      }
       double slope = kInf;
       if (c.cy > 0.0 && c.len > 0.0) {
-        const double gx = (ub - ua) / c.len, gy = ((uc - ua) - gx * c.cx) / c.cy;
+        const double gx = (u[1] - u[0]) / c.len, gy = ((u[2] - u[0]) - gx * c.cx) / c.cy;
         slope = std::sqrt(gx * gx + gy * gy);
       }
-      steepest = std::max(steepest, slope);
-      if (!(slope <= kLimit[0])) {
-        const double spread = std::max({ua, ub, uc}) - std::min({ua, ub, uc});
-        steep.push_back({v, c.next, c.after, slope, spread, longest});
+      for (int k = 0; k < kRadii; ++k) {
+        if (top > radius[k]) steepest[k] = std::max(steepest[k], slope);
       }
+      if (!(slope <= kLimit[0])) steep.push_back({slope, top - low, top});
     }
   }
   b->faces = faces;
-  const double us = state[source].value;
-  // The (L, E) that makes the source's bound largest, E summed over the steep faces that
-  // `counts`.
-  const auto choose = [&](auto&& counts, double* L, double* E) {
+  // The (r, L) that makes the source's bound largest, with its rho and E.
+  double best = -kInf, R = 0.0, L = 1.0, E = 0.0, rho_r = 0.0;
+  for (int k = 0; k < kRadii; ++k) {
+    if (!(radius[k] < us) || !std::isfinite(rho[k])) continue;
     double excess[kLimits] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     for (const TargetBound::Steep& f : steep) {
-      if (!counts(f)) continue;
-      for (int k = 0; k < kLimits; ++k) {
-        if (f.slope > kLimit[k])
-          excess[k] += std::isfinite(f.slope) ? f.spread * (1.0 - kLimit[k] / f.slope) : f.spread;
+      if (!(f.top > radius[k])) continue;
+      for (int l = 0; l < kLimits; ++l) {
+        if (f.slope > kLimit[l])
+          excess[l] += std::isfinite(f.slope) ? f.spread * (1.0 - kLimit[l] / f.slope) : f.spread;
       }
     }
-    *L = steepest;
-    *E = 0.0;
-    for (int k = 0; k < kLimits; ++k) {
-      if (!(kLimit[k] < steepest)) break;
-      if ((us - excess[k]) / kLimit[k] > (us - *E) / *L) {
-        *L = kLimit[k];
-        *E = excess[k];
+    const auto consider = [&](double limit, double e) {
+      if (!std::isfinite(limit)) return;
+      // Margins for round-off (1e-9 relative: far below what moves a window, far above the
+      // slopes' own error).
+      limit *= 1.0 + 1e-9;
+      e = e * (1.0 + 1e-9) + 1e-12 * us;
+      const double rh = std::max(0.0, rho[k] * (1.0 - 1e-12));
+      const double at_source = (us - radius[k] - e) / limit + rh;
+      if (at_source > best) {
+        best = at_source;
+        R = radius[k];
+        L = limit;
+        E = e;
+        rho_r = rh;
       }
+    };
+    consider(steepest[k], 0.0);
+    for (int l = 0; l < kLimits; ++l) {
+      if (kLimit[l] < steepest[k]) consider(kLimit[l], excess[l]);
     }
-    // Margins for round-off (1e-9 relative: far below what moves a window, far above the
-    // slopes' own error).
-    *L *= 1.0 + 1e-9;
-    *E = *E * (1.0 + 1e-9) + 1e-12 * us;
-  };
-  double L = 1.0, E = 0.0;
-  choose([](const TargetBound::Steep&) { return true; }, &L, &E);
-  if (!std::isfinite(L) || !((us - E) / L > 0.0)) return;
-  // 4. Once more over a thinner region: h0 = (psi - E) / L bounds d(y, t) on a shortest path,
-  // so its points have |y s| + h0(y) <= D <= U. On a face, |y s| is 1-Lipschitz and h0
-  // (slope / L)-Lipschitz: a face whose corners all have |v s| + h0(v) > U + (1 + slope / L)
-  // (its longest edge) holds no such point, and its excess does not count.
-  const auto h0_plus_s = [&](int v) {
-    return (mesh.position(v) - ps).norm() + (state[v].value - E) / L;
-  };
-  const double L0 = L;
-  choose(
-      [&](const TargetBound::Steep& f) {
-        const double least = std::min({h0_plus_s(f.a), h0_plus_s(f.b), h0_plus_s(f.c)});
-        return !(least - (1.0 + f.slope / L0) * f.longest > U);
-      },
-      &L, &E);
-  if (!std::isfinite(L) || !((us - E) / L > 0.0)) return;
-  for (const int v : order) state[v].value = (state[v].value - E) / L;
+  }
+  if (!(best > 0.0)) return;
+  for (const int v : order) {
+    State& sv = state[v];
+    sv.value = (R == 0.0 || sv.value > R) ? (sv.value - R - E) / L + rho_r : -kInf;
+  }
   b->slope = L;
   b->excess = E;
+  b->radius = R;
   b->active = true;
 }
 

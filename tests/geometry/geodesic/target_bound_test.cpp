@@ -29,6 +29,7 @@ struct Checked {
   int vertices = 0;  // vertices on or near a shortest path checked
   double least_gain = 1e300;  // least h(s) / |s t| over the pairs with a bound
   double least_share = 1e300;  // least h(s) / D
+  int with_radius = 0;         // pairs whose bound leaves out {psi <= r}, r > 0
 };
 
 // For `count` random pairs of `mesh`: the bound at every vertex v with d(s, v) + d(v, t) <= U
@@ -52,6 +53,7 @@ Checked check_bound(const Mesh& mesh, int count, unsigned seed, double min_detou
                        &bound);
     if (!bound.active) continue;
     ++c.pairs;
+    if (bound.radius > 0.0) ++c.with_radius;
     const std::vector<double> from_s = exact_field(cgal, mesh, s), from_t = exact_field(cgal, mesh, t);
     const double D = from_s[t];
     EXPECT_GE(bound.upper, D * (1.0 - 1e-12)) << s << " -> " << t;
@@ -74,6 +76,7 @@ Checked check_bound(const Mesh& mesh, int count, unsigned seed, double min_detou
 TEST(TargetBound, BelowTheDistanceOnShortestPathsOfHills) {
   const Checked c = check_bound(Mesh(test::hills(40, 6.0)), 30, 5, 1.0);
   EXPECT_GE(c.pairs, 20);
+  EXPECT_GE(c.with_radius, 5);  // both forms of the bound are checked
   EXPECT_GT(c.vertices, 500);
   // Fast marching on a fine mesh: the bound is most of the distance.
   EXPECT_GT(c.least_share, 0.7);
@@ -82,6 +85,7 @@ TEST(TargetBound, BelowTheDistanceOnShortestPathsOfHills) {
 TEST(TargetBound, BelowTheDistanceOnShortestPathsOfARoughTorus) {
   const Checked c = check_bound(Mesh(test::rough_torus(0.03, 11)), 30, 6, 1.0);
   EXPECT_GE(c.pairs, 20);
+  EXPECT_GE(c.with_radius, 5);
   EXPECT_GT(c.vertices, 500);
   EXPECT_GT(c.least_share, 0.7);
 }
