@@ -68,9 +68,11 @@ struct WindowSearchOptions {
   /// propagated as before: bench/README.md.) Checked between targets, so a far target's search
   /// may go past it.
   long resume_limit = 1L << 22;
-  /// A search to one target (shortest_path_by_windows) keys its windows with the lower bound of
-  /// geometry/geodesic/target_bound.h as well as the straight distance, when the pair bends
-  /// (target_bound.min_detour). Only the work changes: every distance stays exact.
+  /// A search to a target (shortest_path_by_windows; each target of shortest_paths_by_windows)
+  /// keys its windows with the lower bound of geometry/geodesic/target_bound.h as well as the
+  /// straight distance, when the pair bends (target_bound.min_detour). Only the work changes:
+  /// every distance stays exact (bench/README.md, session 15: 20-50 % less time per path at the
+  /// mean, p90 windows halved).
   bool use_target_bound = true;
   TargetBoundOptions target_bound;
 

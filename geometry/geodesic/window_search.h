@@ -34,7 +34,8 @@ class Search {
   // numbering.
   Search(const WindowMesh& window_mesh, int source, int target, const WindowSearchOptions& options,
          const Landmarks* landmarks = nullptr)
-      : mesh_(window_mesh.order.mesh),
+      : window_mesh_(window_mesh),
+        mesh_(window_mesh.order.mesh),
         original_(window_mesh.order.vertex_from_local.data()),
         pseudo_(window_mesh.pseudo_source),
         frame_(window_mesh.frame.data()),
@@ -54,13 +55,7 @@ class Search {
         recycle_(kReuse || target >= 0) {
     scratch_.begin(mesh_);
     copy_target_landmarks();
-    if constexpr (!kResume) {
-      if (target >= 0 && options.use_target_bound) {
-        build_target_bound(window_mesh, source, target, options.upper_bound, options.target_bound,
-                           &scratch_.target_bound);
-        if (scratch_.target_bound.active) bound_ = &scratch_.target_bound;
-      }
-    }
+    build_bound();
   }
 
   // The distances of a full run (target < 0), in the original numbering.
@@ -138,6 +133,17 @@ class Search {
     return result;
   }
 
+  // The target bound of geometry/geodesic/target_bound.h for the current target, when the
+  // options ask for it and the pair bends enough (a resumed search builds one per target: the
+  // windows it keeps are keyed again with it).
+  void build_bound() {
+    bound_ = nullptr;
+    if (target_ < 0 || !options_.use_target_bound) return;
+    build_target_bound(window_mesh_, source_, target_, options_.upper_bound,
+                       options_.target_bound, &scratch_.target_bound);
+    if (scratch_.target_bound.active) bound_ = &scratch_.target_bound;
+  }
+
   // The target's row of the landmark fields (ALT bounds need d(L, t) for every landmark L; a
   // full run has none).
   void copy_target_landmarks() {
@@ -152,6 +158,7 @@ class Search {
     target_ = target;
     target_position_ = mesh_.position(target);
     copy_target_landmarks();
+    build_bound();
     // The caller's bound, or a path found already.
     best_ = std::min(options_.upper_bound, dist(target));
     created_ = 0;
@@ -702,6 +709,7 @@ class Search {
     return true;
   }
 
+  const WindowMesh& window_mesh_;
   const Mesh& mesh_;     // the renumbered copy
   const int* original_;  // its vertex -> the original vertex
   const std::vector<char>& pseudo_;

@@ -156,6 +156,7 @@ TEST(TargetBound, TheSearchFindsTheSameDistancesWithFewerWindows) {
     WindowSearchOptions without;
     without.use_target_bound = false;
     long with_windows = 0, without_windows = 0;
+    std::pair<int, int> helped{-1, -1};  // the first pair the bound helped
     for (int i = 0; i < 40; ++i) {
       const int a = pick(rng), b = pick(rng);
       if (a == b) continue;
@@ -165,8 +166,27 @@ TEST(TargetBound, TheSearchFindsTheSameDistancesWithFewerWindows) {
       EXPECT_NEAR(r1.distance, r0.distance, 1e-12 * r0.distance) << what << " " << a << " -> " << b;
       with_windows += r1.windows;
       without_windows += r0.windows;
+      if (r1.windows < r0.windows && helped.first < 0) helped = {a, b};
     }
     EXPECT_LT(with_windows, without_windows) << what;
+    // One search resumed from target to target builds a bound per target: from that pair's
+    // source, to its target and to others.
+    ASSERT_GE(helped.first, 0) << what;
+    std::vector<int> targets = {helped.second};
+    for (int k = 1; k <= 5; ++k) targets.push_back(k * mesh.num_vertices() / 6);
+    const std::vector<WindowSearchResult> r1 =
+        shortest_paths_by_windows(mesh, wm, helped.first, targets);
+    const std::vector<WindowSearchResult> r0 =
+        shortest_paths_by_windows(mesh, wm, helped.first, targets, without);
+    long resumed_with = 0, resumed_without = 0;
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      if (targets[i] == helped.first) continue;
+      ASSERT_TRUE(r1[i].found && r0[i].found) << what;
+      EXPECT_NEAR(r1[i].distance, r0[i].distance, 1e-12 * r0[i].distance) << what;
+      resumed_with += r1[i].windows;
+      resumed_without += r0[i].windows;
+    }
+    EXPECT_LT(resumed_with, resumed_without) << what;
   }
 }
 
