@@ -46,6 +46,29 @@ double plane_wave(double up, double qx, double qy, double lq, double uq, double 
 
 }  // namespace
 
+double level_set_distance(const Vec3 corner[3], const double value[3], double r, const Vec3& t) {
+  // The points where the level set crosses the edges; through a corner it crosses two edges
+  // there (three points, one twice), so the segment is one of the pairs, not always the first.
+  Vec3 p[3];
+  int n = 0;
+  for (int e = 0; e < 3; ++e) {
+    const int a = e, z = (e + 1) % 3;
+    if ((value[a] - r) * (value[z] - r) > 0.0) continue;
+    const double w = value[a] == value[z] ? 0.0 : (r - value[a]) / (value[z] - value[a]);
+    p[n++] = corner[a] + w * (corner[z] - corner[a]);
+  }
+  double dist = kInf;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i; j < n; ++j) {
+      const Vec3 d = p[j] - p[i];
+      const double dd = d.squaredNorm();
+      const double q = dd > 0.0 ? std::clamp((t - p[i]).dot(d) / dd, 0.0, 1.0) : 0.0;
+      dist = std::min(dist, (p[i] + q * d - t).norm());
+    }
+  }
+  return dist;
+}
+
 void build_target_bound(const WindowMesh& wm, int source, int target, double upper_bound,
                         const TargetBoundOptions& options, TargetBound* b) {
   const Mesh& mesh = wm.order.mesh;
@@ -213,27 +236,11 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       for (int k = 1; k < kRadii; ++k) {
         const double r = radius[k];
         if (!(low <= r && r <= top)) continue;
-        // The level set psi = r in this face: the points where it crosses the edges.
-        Vec3 p[3];
-        int n = 0;
-        for (int e = 0; e < 3 && n < 3; ++e) {
-          const int a = e, z = (e + 1) % 3;
-          if ((u[a] - r) * (u[z] - r) > 0.0) continue;
-          const double w = u[a] == u[z] ? 0.0 : (r - u[a]) / (u[z] - u[a]);
-          p[n++] = mesh.position(id[a]) + w * (mesh.position(id[z]) - mesh.position(id[a]));
-        }
-        double dist = kInf;
-        if (n >= 2 && !(low == top)) {
-          // |t - segment p0 p1| (a level set crossing a corner gives that corner twice).
-          const Vec3 d = p[1] - p[0];
-          const double dd = d.squaredNorm();
-          const double q = dd > 0.0 ? std::clamp((pt - p[0]).dot(d) / dd, 0.0, 1.0) : 0.0;
-          dist = (p[0] + q * d - pt).norm();
-          if (n == 3) dist = std::min(dist, (p[2] - pt).norm());
-        } else {
-          // (A face level at r: the least corner distance less the longest edge.)
-          dist = std::min({sa.to_target, sb.to_target, sc.to_target}) - longest;
-        }
+        const Vec3 corner[3] = {mesh.position(id[0]), mesh.position(id[1]),
+                                mesh.position(id[2])};
+        const double dist = low == top ? std::min({sa.to_target, sb.to_target, sc.to_target}) -
+                                             longest  // (a face level at r)
+                                       : level_set_distance(corner, u, r, pt);
         rho[k] = std::min(rho[k], dist);
       }
       double slope = kInf;

@@ -24,7 +24,7 @@
 //      path from x first reaches psi = r at a point y of a face that the level set crosses,
 //      with d(y, t) >= rho(r), the least distance from t to those level-set segments; so
 //      h(x) = (psi(x) - r - E(r)) / L + rho(r) <= d(x, t) wherever psi(x) > r, E(r) summed
-//      over the faces with a corner above r. r (a few hundredths of psi(s), or 0) and L are
+//      over the faces with a corner above r. r (0, or 1-16 hundredths of psi(s)) and L are
 //      chosen to make h(s) largest. On the bunnies h(s) is 0.95-0.97 of the distance, against
 //      0.64 for the straight distance on the longest pair at 100K faces (bench/README.md,
 //      session 15).
@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/mesh/mesh.h"
 #include "geometry/geodesic/radix_queue.h"
 
 namespace windplan {
@@ -111,5 +112,10 @@ struct TargetBound {
 /// ellipsoid, O(n log n) in them.
 void build_target_bound(const WindowMesh& window_mesh, int source, int target, double upper_bound,
                         const TargetBoundOptions& options, TargetBound* bound);
+
+/// The least distance from t to the level set {psi = r} of the linear interpolant of `value`
+/// on the triangle `corner` (+infinity when r is outside the values' range; a face level at r
+/// is the caller's case). Step 4's rho(r) is the least of these over the faces it crosses.
+double level_set_distance(const Vec3 corner[3], const double value[3], double r, const Vec3& t);
 
 }  // namespace windplan

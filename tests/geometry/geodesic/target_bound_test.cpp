@@ -130,6 +130,23 @@ TEST(TargetBound, NoneForStraightPairs) {
   EXPECT_FALSE(bound.active);
 }
 
+// The level set's distance from t, against the segment worked out by hand, including a level
+// set through a corner (found in review: the first two crossings were then that corner twice,
+// and the distance was taken from it and the third crossing only, 1.414 for 1.265).
+TEST(TargetBound, LevelSetDistance) {
+  const Vec3 corner[3] = {Vec3(1, 1, 0), Vec3(-1, -1, 0), Vec3(1, -3, 0)};
+  const Vec3 t(0, 0, 0);
+  // Through corner 1: from (-1, -1) to the middle of edge 2 -> 0, (1, -1); nearest (0, -1).
+  const double through[3] = {0.5, 1.0, 1.5};
+  EXPECT_NEAR(level_set_distance(corner, through, 1.0, t), 1.0, 1e-12);
+  // Across edge 0 -> 1 a quarter of the way, (0.5, 0.5), and edge 1 -> 2 three quarters of
+  // the way, (0.5, -2.5): the segment x = 0.5, nearest (0.5, 0).
+  const double across[3] = {0.0, 4.0, 0.0};
+  EXPECT_NEAR(level_set_distance(corner, across, 1.0, t), 0.5, 1e-12);
+  // Outside the values' range: no level set.
+  EXPECT_EQ(level_set_distance(corner, through, 2.0, t), std::numeric_limits<double>::infinity());
+}
+
 TEST(TargetBound, OptionsAreChecked) {
   TargetBoundOptions o;
   std::string why;
