@@ -25,13 +25,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-std::vector<double> field(ExactGeodesic& cgal, const SurfacePoint& source,
-                          const std::vector<SurfacePoint>& pts) {
-  return cgal.distances(source, pts);
-}
-
-// Removes triangles of the squares listed (grid layout), keeps vertices (unreferenced ones are
-// dropped by reindexing).
+// The soup with the vertices no triangle uses dropped (the others renumbered in order).
 TriangleSoup compact(const TriangleSoup& s) {
   std::vector<int> used(s.points.size(), -1);
   TriangleSoup out;
@@ -161,8 +155,8 @@ void stress(const char* what, const TriangleSoup& soup, int count, unsigned seed
     int s = pick(rng), t = pick(rng);
     if (i == 0) t = s;  // source == target
     ++st.pairs;
-    const std::vector<double> fs = field(cgal, SurfacePoint::at_vertex(s), all);
-    const std::vector<double> ft = field(cgal, SurfacePoint::at_vertex(t), all);
+    const std::vector<double> fs = cgal.distances(SurfacePoint::at_vertex(s), all);
+    const std::vector<double> ft = cgal.distances(SurfacePoint::at_vertex(t), all);
     const double D = fs[t];
     build_target_bound(wm, local[s], local[t], kInf, bo, &bound);
     if (bound.active) {
@@ -218,7 +212,7 @@ void stress(const char* what, const TriangleSoup& soup, int count, unsigned seed
     std::vector<int> targets;
     for (int k = 0; k < 12; ++k) targets.push_back(pick(rng));
     targets.push_back(s);
-    const std::vector<double> fs = field(cgal, SurfacePoint::at_vertex(s), verts);
+    const std::vector<double> fs = cgal.distances(SurfacePoint::at_vertex(s), verts);
     for (int variant = 0; variant < 2; ++variant) {
       WindowSearchOptions o = opt;
       if (variant == 1) o.upper_bound = 1.0 + *std::max_element(fs.begin(), fs.end(), [](double a, double b) {
@@ -261,24 +255,5 @@ TEST(TargetBoundStress, Tiny) {
 TEST(TargetBoundStress, TwoComponents) { stress("two comps", two_components(), 40, 10); }
 TEST(TargetBoundStress, Cylinder) { stress("cylinder", test::open_cylinder(1.0, 3.0, 16, 6), 40, 11); }
 
-}  // namespace
-}  // namespace windplan
-namespace windplan {
-namespace {
-TEST(TargetBoundStress, FlatGridHolesMany) {
-  TriangleSoup s = grid_with_holes(16, 16.0, 0.0);
-  const Mesh mesh(s);
-  const WindowMesh wm = prepare_window_mesh(mesh);
-  TargetBoundOptions bo;
-  bo.min_detour = 1.0;
-  TargetBound b;
-  int active = 0;
-  for (int a = 0; a < mesh.num_vertices(); a += 3)
-    for (int c = 1; c < mesh.num_vertices(); c += 7) {
-      build_target_bound(wm, a, c, kInf, bo, &b);
-      active += b.active;
-    }
-  std::printf("active %d\n", active);
-}
 }  // namespace
 }  // namespace windplan
