@@ -9,7 +9,8 @@
 //   1. U: an edge path from the target to the source (A* on the vertex graph), or the caller's
 //      upper bound if smaller: U >= D, the distance sought. Every point y of a shortest path
 //      then has |y s| + |y t| <= D <= U: the path lies in the ellipsoid with foci s and t.
-//   2. psi: fast marching from the target (plane-wave updates, Kimmel and Sethian 1998) over the
+//   2. psi: fast marching from the target (point-source updates, each face placing the source
+//      from its two known corners, exact where the surface unfolds flat) over the
 //      vertices near that ellipsoid: an approximate distance, no bound by itself.
 //   3. What makes it a bound: psi is linear on each face, with slope g_f there. Along a shortest
 //      path from x to t, which crosses each face at most once in a segment of length l_f, psi

@@ -29,6 +29,7 @@ struct Checked {
   int vertices = 0;  // vertices on or near a shortest path checked
   double least_gain = 1e300;  // least h(s) / |s t| over the pairs with a bound
   double least_share = 1e300;  // least h(s) / D
+  double median_share = 0.0;   // median h(s) / D
   int with_radius = 0;         // pairs whose bound leaves out {psi <= r}, r > 0
 };
 
@@ -45,6 +46,7 @@ Checked check_bound(const Mesh& mesh, int count, unsigned seed, double min_detou
   options.min_detour = min_detour;
   TargetBound bound;
   Checked c;
+  std::vector<double> shares;
   for (int i = 0; i < count; ++i) {
     const int s = pick(rng), t = pick(rng);
     if (s == t) continue;
@@ -69,6 +71,11 @@ Checked check_bound(const Mesh& mesh, int count, unsigned seed, double min_detou
     const double hs = bound.at(local[s]);
     c.least_gain = std::min(c.least_gain, hs / (mesh.position(s) - mesh.position(t)).norm());
     c.least_share = std::min(c.least_share, hs / D);
+    shares.push_back(hs / D);
+  }
+  if (!shares.empty()) {
+    std::sort(shares.begin(), shares.end());
+    c.median_share = shares[(shares.size() - 1) / 2];
   }
   return c;
 }
@@ -78,8 +85,11 @@ TEST(TargetBound, BelowTheDistanceOnShortestPathsOfHills) {
   EXPECT_GE(c.pairs, 20);
   EXPECT_GE(c.with_radius, 5);  // both forms of the bound are checked
   EXPECT_GT(c.vertices, 500);
-  // Fast marching on a fine mesh: the bound is most of the distance.
-  EXPECT_GT(c.least_share, 0.7);
+  // Fast marching on a fine mesh: the bound is most of the distance. (Point-source updates
+  // raised the median from 0.908 with plane waves to 0.923, and lowered the least, on a short
+  // pair across a hill's flank, from 0.736 to 0.647.)
+  EXPECT_GT(c.least_share, 0.6);
+  EXPECT_GT(c.median_share, 0.915);
 }
 
 TEST(TargetBound, BelowTheDistanceOnShortestPathsOfARoughTorus) {
@@ -88,6 +98,7 @@ TEST(TargetBound, BelowTheDistanceOnShortestPathsOfARoughTorus) {
   EXPECT_GE(c.with_radius, 5);
   EXPECT_GT(c.vertices, 500);
   EXPECT_GT(c.least_share, 0.7);
+  EXPECT_GT(c.median_share, 0.86);  // 0.877 (plane waves: 0.844)
 }
 
 // Half a turn round the torus' hole the geodesic (6.90 by CGAL) bends far from the straight
@@ -112,6 +123,30 @@ TEST(TargetBound, FarTighterThanTheStraightDistanceRoundATorus) {
   EXPECT_GE(bound.upper, D);
   EXPECT_GT(hs, 0.85 * D) << "slope " << bound.slope << ", excess " << bound.excess;
   EXPECT_GT(hs, 1.1 * chord);
+}
+
+// On a plane the distance is the straight distance, which point-source fast marching follows
+// exactly (the plane wave of Kimmel and Sethian did not: h(s) was 0.94-0.967 of it on these
+// pairs, against 0.972-0.981). What remains below 1 is L and E: the linear pieces' slopes
+// round the target, where the distance's cone is sharp beside a unit grid.
+TEST(TargetBound, PointSourceFastMarchingOnAPlane) {
+  const Mesh mesh(test::grid(40, 40, 1.0));
+  const WindowMesh wm = prepare_window_mesh(mesh);
+  TargetBoundOptions options;
+  options.min_detour = 1.0;  // a straight pair: built on request only
+  TargetBound bound;
+  const std::vector<int>& local = wm.order.vertex_to_local;
+  for (const auto& [s, t] : {std::pair{0, 41 * 20 + 40}, std::pair{0, 41 * 13 + 40},
+                             std::pair{41 * 40, 30}, std::pair{5, 41 * 37 + 11}}) {
+    build_target_bound(wm, local[s], local[t], std::numeric_limits<double>::infinity(), options,
+                       &bound);
+    ASSERT_TRUE(bound.active);
+    const double chord = (mesh.position(s) - mesh.position(t)).norm();
+    const double hs = bound.at(local[s]);
+    EXPECT_LE(hs, chord) << s << " -> " << t;
+    EXPECT_GT(hs, 0.97 * chord) << s << " -> " << t << ": slope " << bound.slope << ", excess "
+                                << bound.excess;
+  }
 }
 
 // Along a grid line the edge path is the straight line: no bound is built (the straight
