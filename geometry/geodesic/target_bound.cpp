@@ -83,6 +83,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   b->radius = 0.0;
   b->vertices = 0;
   b->faces = 0;
+  b->faces_out = 0;
   if (source == target) return;
   using State = TargetBound::State;
   if (static_cast<int>(b->state_.size()) != nv) {
@@ -254,44 +255,75 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       for (int k = 0; k < kRadii; ++k) {
         if (top > radius[k]) steepest[k] = std::max(steepest[k], slope);
       }
-      if (!(slope <= kLimit[0])) steep.push_back({slope, top - low, top});
+      if (!(slope <= kLimit[0])) {
+        const double near_s =
+            std::min({sa.foci - sa.to_target, sb.foci - sb.to_target, sc.foci - sc.to_target}) -
+            longest;
+        steep.push_back({slope, top - low, top, low, near_s, 0});
+      }
     }
   }
   b->faces = faces;
-  // The (r, L) that makes the source's bound largest, with its rho and E.
+  // The (r, L) that makes the bound largest halfway, at psi = psi(s) / 2, with its rho and E,
+  // over the steep faces not ruled out (Steep::out). Every (r, L) gives a bound; halfway is
+  // where the band of windows A* must look at is widest (chosen at psi(s), the bound had 7 %
+  // more windows on the bunnies: bench/README.md, session 16).
   double best = -kInf, R = 0.0, L = 1.0, E = 0.0, rho_r = 0.0;
-  for (int k = 0; k < kRadii; ++k) {
-    if (!(radius[k] < us) || !std::isfinite(rho[k])) continue;
-    double excess[kLimits] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    for (const TargetBound::Steep& f : steep) {
-      if (!(f.top > radius[k])) continue;
+  const auto choose = [&](bool some_out) {
+    best = -kInf;
+    for (int k = 0; k < kRadii; ++k) {
+      if (!(radius[k] < us) || !std::isfinite(rho[k])) continue;
+      double excess[kLimits] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+      double steepest_in = kLimit[0];
+      for (const TargetBound::Steep& f : steep) {
+        if (!(f.top > radius[k]) || f.out) continue;
+        steepest_in = std::max(steepest_in, f.slope);
+        for (int l = 0; l < kLimits; ++l) {
+          if (f.slope > kLimit[l])
+            excess[l] += std::isfinite(f.slope) ? f.spread * (1.0 - kLimit[l] / f.slope) : f.spread;
+        }
+      }
+      const double steepest_k = some_out ? std::min(steepest[k], steepest_in) : steepest[k];
+      const auto consider = [&](double limit, double e) {
+        if (!std::isfinite(limit)) return;
+        // Margins for round-off (1e-9 relative: far below what moves a window, far above the
+        // slopes' own error).
+        limit *= 1.0 + 1e-9;
+        e = e * (1.0 + 1e-9) + 1e-12 * us;
+        const double rh = std::max(0.0, rho[k] * (1.0 - 1e-12));
+        const double halfway = (0.5 * us - radius[k] - e) / limit + rh;
+        if (halfway > best) {
+          best = halfway;
+          R = radius[k];
+          L = limit;
+          E = e;
+          rho_r = rh;
+        }
+      };
+      consider(steepest_k, 0.0);
       for (int l = 0; l < kLimits; ++l) {
-        if (f.slope > kLimit[l])
-          excess[l] += std::isfinite(f.slope) ? f.spread * (1.0 - kLimit[l] / f.slope) : f.spread;
+        if (kLimit[l] < steepest_k) consider(kLimit[l], excess[l]);
       }
     }
-    const auto consider = [&](double limit, double e) {
-      if (!std::isfinite(limit)) return;
-      // Margins for round-off (1e-9 relative: far below what moves a window, far above the
-      // slopes' own error).
-      limit *= 1.0 + 1e-9;
-      e = e * (1.0 + 1e-9) + 1e-12 * us;
-      const double rh = std::max(0.0, rho[k] * (1.0 - 1e-12));
-      const double at_source = (us - radius[k] - e) / limit + rh;
-      if (at_source > best) {
-        best = at_source;
-        R = radius[k];
-        L = limit;
-        E = e;
-        rho_r = rh;
-      }
-    };
-    consider(steepest[k], 0.0);
-    for (int l = 0; l < kLimits; ++l) {
-      if (kLimit[l] < steepest[k]) consider(kLimit[l], excess[l]);
+  };
+  // 5. A steep face each of whose points y has |y s| + h(y) > U meets no shortest path from s
+  // to t (at a point y of one, h(y) <= d(y, t) by 3 and 4, so |y s| + h(y) <= d(s, y) +
+  // d(y, t) = D <= U). The bound at a point x of such a path needs only the faces that the
+  // path's tail from x to t crosses, so L and E are chosen again without those faces. Over a
+  // face, |y s| >= (its corners' least |v s|) - (its longest edge), and h, linear there, is
+  // least at a corner (-infinity: a corner with psi <= r, the face kept).
+  choose(false);
+  if (best > -kInf) {
+    long out = 0;
+    for (TargetBound::Steep& f : steep) {
+      const double h_low = R == 0.0 || f.low > R ? (f.low - R - E) / L + rho_r : -kInf;
+      f.out = f.near_s + h_low > U;
+      out += f.out;
     }
+    if (out > 0) choose(true);
+    b->faces_out = out;
   }
-  if (!(best > 0.0)) return;
+  if (!(best > -kInf && (us - R - E) / L + rho_r > 0.0)) return;
   for (const int v : order) {
     State& sv = state[v];
     sv.value = (R == 0.0 || sv.value > R) ? (sv.value - R - E) / L + rho_r : -kInf;

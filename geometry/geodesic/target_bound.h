@@ -26,9 +26,13 @@
 //      with d(y, t) >= rho(r), the least distance from t to those level-set segments; so
 //      h(x) = (psi(x) - r - E(r)) / L + rho(r) <= d(x, t) wherever psi(x) > r, E(r) summed
 //      over the faces with a corner above r. r (0, or 1-16 hundredths of psi(s)) and L are
-//      chosen to make h(s) largest. On the bunnies h(s) is 0.95-0.97 of the distance, against
-//      0.64 for the straight distance on the longest pair at 100K faces (bench/README.md,
-//      session 15).
+//      chosen to make h largest halfway, where psi = psi(s) / 2.
+//   5. A face each of whose points y has |y s| + h(y) > U meets no shortest path from s to t
+//      (on one, |y s| + h(y) <= d(s, y) + d(y, t) = D <= U by 3 and 4); the bound at a point
+//      of such a path needs only the faces of the path's tail, so L and E are chosen again
+//      without those faces.
+//   On the bunnies h(s) is 0.95-0.98 of the distance, against 0.64 for the straight distance on
+//   the longest pair at 100K faces (bench/README.md, sessions 15 and 16).
 // The window search keys a window with max(straight bound, this bound), exact as before: the
 // bound holds on the shortest path, which is all the A* stop needs (a window off it keyed too
 // high is dropped, and no shortest path passes through it). h is not 1-Lipschitz where a
@@ -68,6 +72,7 @@ struct TargetBound {
   double radius = 0.0;  ///< r: {psi <= r} round the target left out (mesh units; 0: none)
   long vertices = 0;    ///< vertices given a value by the fast marching
   long faces = 0;       ///< faces whose slopes entered L and E
+  long faces_out = 0;   ///< steep faces step 5 found on no shortest path (left out of L and E)
 
   /// The lower bound at vertex v (mesh units; -infinity: none, e.g. v far from the ellipsoid).
   /// Linear along every edge between its ends' values.
@@ -97,6 +102,9 @@ struct TargetBound {
   // A face whose slope exceeds the least limit tried: its slope, spread and largest psi.
   struct Steep {
     double slope, spread, top;
+    double low;     // least psi of its corners
+    double near_s;  // least |v s| of its corners, less its longest edge
+    char out;       // on no shortest path from the source (ruled out by a first bound)
   };
   unsigned stamp_ = 0;
   std::vector<State> state_;

@@ -31,6 +31,7 @@ struct Checked {
   double least_share = 1e300;  // least h(s) / D
   double median_share = 0.0;   // median h(s) / D
   int with_radius = 0;         // pairs whose bound leaves out {psi <= r}, r > 0
+  int with_faces_out = 0;      // pairs whose bound left steep faces out (step 5)
 };
 
 // For `count` random pairs of `mesh`: the bound at every vertex v with d(s, v) + d(v, t) <= U
@@ -56,6 +57,7 @@ Checked check_bound(const Mesh& mesh, int count, unsigned seed, double min_detou
     if (!bound.active) continue;
     ++c.pairs;
     if (bound.radius > 0.0) ++c.with_radius;
+    if (bound.faces_out > 0) ++c.with_faces_out;
     const std::vector<double> from_s = exact_field(cgal, mesh, s), from_t = exact_field(cgal, mesh, t);
     const double D = from_s[t];
     EXPECT_GE(bound.upper, D * (1.0 - 1e-12)) << s << " -> " << t;
@@ -84,6 +86,7 @@ TEST(TargetBound, BelowTheDistanceOnShortestPathsOfHills) {
   const Checked c = check_bound(Mesh(test::hills(40, 6.0)), 30, 5, 1.0);
   EXPECT_GE(c.pairs, 20);
   EXPECT_GE(c.with_radius, 5);  // both forms of the bound are checked
+  EXPECT_GE(c.with_faces_out, 5);  // and bounds with faces left out
   EXPECT_GT(c.vertices, 500);
   // Fast marching on a fine mesh: the bound is most of the distance. (Point-source updates
   // raised the median from 0.908 with plane waves to 0.923, and lowered the least, on a short
@@ -96,9 +99,12 @@ TEST(TargetBound, BelowTheDistanceOnShortestPathsOfARoughTorus) {
   const Checked c = check_bound(Mesh(test::rough_torus(0.03, 11)), 30, 6, 1.0);
   EXPECT_GE(c.pairs, 20);
   EXPECT_GE(c.with_radius, 5);
+  EXPECT_GE(c.with_faces_out, 5);
   EXPECT_GT(c.vertices, 500);
-  EXPECT_GT(c.least_share, 0.7);
-  EXPECT_GT(c.median_share, 0.86);  // 0.877 (plane waves: 0.844)
+  // Least 0.707, median 0.861: L and E are chosen for the bound halfway (where the A* band is
+  // widest), not at the source; chosen at the source (commit 164a8a0), 0.754 and 0.877.
+  EXPECT_GT(c.least_share, 0.68);
+  EXPECT_GT(c.median_share, 0.84);
 }
 
 // Half a turn round the torus' hole the geodesic (6.90 by CGAL) bends far from the straight
