@@ -37,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/geodesic/edge_path.h"
 #include "geometry/geodesic/target_bound.h"
 #include "geometry/mesh/mesh.h"
 #include "geometry/mesh/mesh_order.h"
@@ -137,6 +138,11 @@ struct WindowMesh {
   std::vector<RingCorner> ring;
   /// The longest edge (mesh units; geometry/geodesic/target_bound.h).
   double max_edge = 0.0;
+  /// The vertex graph with the diagonals across convex pairs of faces (geometry/geodesic/
+  /// edge_path.h; no via), whose shortest paths are a few per mille longer than the
+  /// geodesics, not a few per cent: target_bound.h's upper bound U (12 bytes per entry, about
+  /// 12 entries per vertex).
+  EdgeGraph graph;
 };
 WindowMesh prepare_window_mesh(const Mesh& mesh);
 

@@ -103,17 +103,21 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   };
   const int* ring_start = wm.ring_start.data();
   const RingCorner* ring = wm.ring.data();
+  const EdgeGraph& graph = wm.graph;
   const Vec3 ps = mesh.position(source), pt = mesh.position(target);
   const double chord = (ps - pt).norm();
   auto& queue = b->queue_;
 
-  // 1. U: A* over the vertex graph from the target to the source (the straight distance to the
-  // source is consistent). An edge path is a surface path, so its length bounds D from above.
-  // (Every edge is seen from both of its faces: twice, harmlessly.)
+  // 1. U: A* from the target to the source over the vertex graph with diagonals (a mesh edge,
+  // or the straight line across the edge between two faces whose unfolding is convex: the
+  // straight distance to the source is consistent). Such a path is a surface path, so its
+  // length bounds D from above; the diagonals bring it within a few per mille of D (a few per
+  // cent along edges alone), which narrows the ellipsoid of 2 and 3 (bench/README.md,
+  // session 16).
   queue.clear();
   touch(target).graph = 0.0;
   queue.push({chord, target});
-  double edge_path = kInf;
+  double graph_path = kInf;
   while (!queue.empty()) {
     const TargetBound::Item e = queue.pop();
     const int v = e.v;
@@ -122,23 +126,20 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     sv.closed = 1;
     const double gv = sv.graph;
     if (v == source) {
-      edge_path = gv;
+      graph_path = gv;
       break;
     }
-    for (int i = ring_start[v]; i < ring_start[v + 1]; ++i) {
-      const RingCorner& c = ring[i];
-      for (const auto& [w, len] : {std::pair<int, double>{c.next, c.len},
-                                   std::pair<int, double>{c.after, c.len_after}}) {
-        State& sw = touch(w);
-        const double g = gv + len;
-        if (g < sw.graph) {
-          sw.graph = g;
-          queue.push({g + (mesh.position(w) - ps).norm(), w});
-        }
+    for (int j = graph.offsets[v]; j < graph.offsets[v + 1]; ++j) {
+      const int w = graph.neighbors[j];
+      State& sw = touch(w);
+      const double g = gv + graph.weights[j];
+      if (g < sw.graph) {
+        sw.graph = g;
+        queue.push({g + (mesh.position(w) - ps).norm(), w});
       }
     }
   }
-  const double U = std::min(upper_bound, edge_path);
+  const double U = std::min(upper_bound, graph_path);
   b->upper = U;
   if (!std::isfinite(U) || U < options.min_detour * chord) return;
 

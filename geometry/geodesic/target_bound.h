@@ -6,9 +6,10 @@
 // The straight distance |x t| bounds a path from x to t from below, but poorly where the surface
 // bulges between them: a pair whose geodesic is 1.57x its straight distance makes the A* search
 // explore most of a 100K-face bunny (bench/README.md, session 14). This bound is built per query:
-//   1. U: an edge path from the target to the source (A* on the vertex graph), or the caller's
-//      upper bound if smaller: U >= D, the distance sought. Every point y of a shortest path
-//      then has |y s| + |y t| <= D <= U: the path lies in the ellipsoid with foci s and t.
+//   1. U: a path from the target to the source along edges and diagonals across convex pairs of
+//      faces (A* on that graph), or the caller's upper bound if smaller: U >= D, the distance
+//      sought. Every point y of a shortest path then has |y s| + |y t| <= D <= U: the path lies
+//      in the ellipsoid with foci s and t.
 //   2. psi: fast marching from the target (point-source updates, each face placing the source
 //      from its two known corners, exact where the surface unfolds flat) over the
 //      vertices near that ellipsoid: an approximate distance, no bound by itself.
@@ -54,10 +55,12 @@ namespace windplan {
 struct WindowMesh;  // geometry/geodesic/geodesic_windows.h
 
 struct TargetBoundOptions {
-  /// Built only when U (an edge path's length) is at least this many times the straight distance
-  /// |s t| (dimensionless): below, the straight distance is already within this factor of the
-  /// geodesic's and the field would cost more than it saves (bench/README.md, session 15).
-  double min_detour = 1.1;
+  /// Built only when U (the length of a path along edges and diagonals, within a few per mille
+  /// of the geodesic's) is at least this many times the straight distance |s t|
+  /// (dimensionless): below, the straight distance is already within this factor of the
+  /// geodesic's and the field would cost more than it saves (bench/README.md, sessions 15-16:
+  /// 1.1 when U ran along edges only, a few per cent longer).
+  double min_detour = 1.08;
 
   bool is_valid(std::string* why) const;
 };
