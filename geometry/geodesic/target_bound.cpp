@@ -13,6 +13,10 @@ bool TargetBoundOptions::is_valid(std::string* why) const {
     if (why) *why = "min_detour must be >= 1 (dimensionless; 1: always build the bound)";
     return false;
   }
+  if (!(min_edges >= 0.0)) {
+    if (why) *why = "min_edges must be >= 0 (longest edges; +inf: by min_detour alone)";
+    return false;
+  }
   return true;
 }
 
@@ -141,7 +145,9 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   }
   const double U = std::min(upper_bound, graph_path);
   b->upper = U;
-  if (!std::isfinite(U) || U < options.min_detour * chord) return;
+  if (!std::isfinite(U) ||
+      (U < options.min_detour * chord && U < options.min_edges * wm.max_edge))
+    return;
 
   // 2. psi: fast marching from the target over the vertices within U + 2 max_edge of the foci
   // (every corner of a face that the ellipsoid meets: see 3), in Dijkstra's order. (Until

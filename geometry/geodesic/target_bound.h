@@ -61,6 +61,10 @@ struct TargetBoundOptions {
   /// geodesic's and the field would cost more than it saves (bench/README.md, sessions 15-16:
   /// 1.1 when U ran along edges only, a few per cent longer).
   double min_detour = 1.08;
+  /// ... or when U is at least this many of the mesh's longest edge (dimensionless): on a long
+  /// pair the straight distance's band holds so many windows that even a nearly straight pair
+  /// gains (bench/README.md, session 16). +infinity: by min_detour alone.
+  double min_edges = 60.0;
 
   bool is_valid(std::string* why) const;
 };

@@ -181,6 +181,33 @@ TEST(TargetBound, NoneForStraightPairs) {
   EXPECT_FALSE(bound.active);
 }
 
+// A long, nearly straight pair gets the bound from its length alone (min_edges): on a plane U
+// (edges and diagonals) is 1.023 |s t|, below min_detour, but 128 units is more than 60 longest
+// edges (sqrt 2 each). Without min_edges, none; a short pair, none.
+TEST(TargetBound, LongPairsGetTheBoundByLength) {
+  const Mesh mesh(test::grid(120, 60, 1.0));
+  const WindowMesh wm = prepare_window_mesh(mesh);
+  const std::vector<int>& local = wm.order.vertex_to_local;
+  const int s = 0, t = 121 * 40 + 119;  // (0, 0) -> (119, 40)
+  const double chord = (mesh.position(s) - mesh.position(t)).norm();
+  TargetBound bound;
+  build_target_bound(wm, local[s], local[t], std::numeric_limits<double>::infinity(), {},
+                     &bound);
+  ASSERT_TRUE(bound.active);
+  EXPECT_LT(bound.upper, TargetBoundOptions{}.min_detour * chord);
+  const double hs = bound.at(local[s]);
+  EXPECT_LE(hs, chord);  // the plane's distance
+  EXPECT_GT(hs, 0.95 * chord);
+  TargetBoundOptions by_detour;
+  by_detour.min_edges = std::numeric_limits<double>::infinity();
+  build_target_bound(wm, local[s], local[t], std::numeric_limits<double>::infinity(), by_detour,
+                     &bound);
+  EXPECT_FALSE(bound.active);
+  build_target_bound(wm, local[s], local[121 * 10 + 30],
+                     std::numeric_limits<double>::infinity(), {}, &bound);
+  EXPECT_FALSE(bound.active);
+}
+
 // The level set's distance from t, against the segment worked out by hand, including a level
 // set through a corner (found in review: the first two crossings were then that corner twice,
 // and the distance was taken from it and the third crossing only, 1.414 for 1.265).
@@ -205,6 +232,10 @@ TEST(TargetBound, OptionsAreChecked) {
   o.min_detour = 0.9;
   EXPECT_FALSE(o.is_valid(&why));
   EXPECT_NE(why.find("min_detour"), std::string::npos);
+  o = {};
+  o.min_edges = -1.0;
+  EXPECT_FALSE(o.is_valid(&why));
+  EXPECT_NE(why.find("min_edges"), std::string::npos);
   const Mesh mesh(test::grid(4, 4, 1.0));
   const WindowMesh wm = prepare_window_mesh(mesh);
   WindowSearchOptions w;
