@@ -207,10 +207,10 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   // |y s| + |y t| <= U + 2 (the face's longest edge) (the sum is 2-Lipschitz and every point
   // of the face is within its longest edge of each corner), so a face with a corner beyond
   // does not meet it, and every corner of a face that meets it lies within U + 2 max_edge,
-  // hence was reached by 2 (a shortest path's faces join
-  // the target's through edges of faces that meet the ellipsoid, or through the vertices it
-  // passes). A corner not reached lies on a part of the surface that no such edge joins to
-  // the target's: the face is not a shortest path's. Each face is taken at its least corner.
+  // hence was reached by 2 (a shortest path's faces join the target's through edges of faces
+  // that meet the ellipsoid, or through the vertices it passes). A corner not reached lies on
+  // a part of the surface that no such edge joins to the target's: the face is not a shortest
+  // path's. Each face is taken at its least corner.
   // (Until session 16 a face was kept unless all its corners lay beyond: sound, wider.)
   //
   // The steepest faces lie round the target (a cone's apex, which no linear piece follows), so

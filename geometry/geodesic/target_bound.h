@@ -102,7 +102,7 @@ struct TargetBound {
     char accepted;  // given its final value by pass 2
     char closed;    // settled by pass 1
     double value;   // pass 2's psi, then h
-    double graph;   // pass 1's edge-path length from the target
+    double graph;   // pass 1's path length from the target (edges and diagonals)
     double foci;    // |v s| + |v t|; < 0: not yet
     double to_target;  // |v t| (with foci)
   };
