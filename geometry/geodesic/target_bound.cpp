@@ -150,8 +150,10 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     return;
 
   // 2. psi: fast marching from the target over the vertices within U + 2 max_edge of the foci
-  // (every corner of a face that the ellipsoid meets: see 3), in Dijkstra's order. (Until
-  // session 16 it reached U + 4 max_edge: the same windows, 2-5 % more time per path.)
+  // (every corner of a face that the ellipsoid meets: see 3), in Dijkstra's order (a
+  // point-source value may fall below the key last popped: the radix queue raises its key, and
+  // psi may be any function for 3). (Until session 16 it reached U + 4 max_edge: the same
+  // windows, 2-5 % more time per path.)
   const double reach = U + 2.0 * wm.max_edge;
   // |w s| + |w t| (w touched), computed once per query.
   const auto foci = [&](State& s, int w) {
@@ -261,6 +263,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       if (c.cy > 0.0 && c.len > 0.0) {
         const double gx = (u[1] - u[0]) / c.len, gy = ((u[2] - u[0]) - gx * c.cx) / c.cy;
         slope = std::sqrt(gx * gx + gy * gy);
+        if (std::isnan(slope)) slope = kInf;  // (an overflow: taken as the steepest)
       }
       for (int k = 0; k < kRadii; ++k) {
         if (top > radius[k]) steepest[k] = std::max(steepest[k], slope);

@@ -8,8 +8,9 @@
 // explore most of a 100K-face bunny (bench/README.md, session 14). This bound is built per query:
 //   1. U: a path from the target to the source along edges and diagonals across convex pairs of
 //      faces (A* on that graph), or the caller's upper bound if smaller: U >= D, the distance
-//      sought. Every point y of a shortest path then has |y s| + |y t| <= D <= U: the path lies
-//      in the ellipsoid with foci s and t.
+//      sought, unless the caller's bound is below D, when the search finds no path anyway.
+//      Every point y of a shortest path then has |y s| + |y t| <= D <= U: the path lies in the
+//      ellipsoid with foci s and t.
 //   2. psi: fast marching from the target (point-source updates, each face placing the source
 //      from its two known corners, exact where the surface unfolds flat) over the
 //      vertices near that ellipsoid: an approximate distance, no bound by itself.
@@ -42,7 +43,10 @@
 // (by induction from the source: each is pushed while its parent, keyed <= D, is propagated),
 // so they all come out before the search stops.
 // tests/geometry/geodesic/target_bound_test.cpp checks h <= d(v, t) against CGAL at every
-// vertex the proof covers, on meshes where fast marching's slopes exceed 1.
+// vertex v with d(s, v) + d(v, t) <= U, on meshes where fast marching's slopes exceed 1. The
+// proof covers them too: every point z of a shortest path from v to t has d(s, z) + d(z, t)
+// <= U, so steps 3 and 4 hold at z (the first bound), z lies on no face step 5 rules out, and
+// the tail from z crosses only faces L and E count.
 #include <limits>
 #include <string>
 #include <vector>
@@ -122,8 +126,9 @@ struct TargetBound {
 
 /// Builds `bound` for a search from `source` to `target`, vertices of window_mesh's renumbered
 /// copy (window_mesh.order.mesh). `upper_bound`: a length the search needs to look below
-/// (+infinity: none). Leaves bound->active false when the pair is nearly straight
-/// (options.min_detour), the source is unreachable, or source == target.
+/// (+infinity: none). Leaves bound->active false when the pair is nearly straight and short
+/// (options.min_detour, options.min_edges), the source is unreachable, source == target, or
+/// the bound at the source would not be positive.
 /// Cost: an A* over the vertex graph and a fast marching over the vertices near the
 /// ellipsoid, O(n log n) in them.
 void build_target_bound(const WindowMesh& window_mesh, int source, int target, double upper_bound,
