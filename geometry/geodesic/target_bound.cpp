@@ -282,7 +282,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   // where the band of windows A* must look at is widest (chosen at psi(s), the bound had 7 %
   // more windows on the bunnies: bench/README.md, session 16).
   double best = -kInf, R = 0.0, L = 1.0, E = 0.0, rho_r = 0.0;
-  const auto choose = [&](bool some_out) {
+  const auto choose = [&]() {
     best = -kInf;
     for (int k = 0; k < kRadii; ++k) {
       if (!(radius[k] < us) || !std::isfinite(rho[k])) continue;
@@ -296,7 +296,9 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
             excess[l] += std::isfinite(f.slope) ? f.spread * (1.0 - kLimit[l] / f.slope) : f.spread;
         }
       }
-      const double steepest_k = some_out ? std::min(steepest[k], steepest_in) : steepest[k];
+      // (Every face steeper than kLimit[0] is in `steep`: with none ruled out this is
+      // steepest[k].)
+      const double steepest_k = std::min(steepest[k], steepest_in);
       const auto consider = [&](double limit, double e) {
         if (!std::isfinite(limit)) return;
         // Margins for round-off (1e-9 relative: far below what moves a window, far above the
@@ -325,7 +327,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   // path's tail from x to t crosses, so L and E are chosen again without those faces. Over a
   // face, |y s| >= (its corners' least |v s|) - (its longest edge), and h, linear there, is
   // least at a corner (-infinity: a corner with psi <= r, the face kept).
-  choose(false);
+  choose();
   if (best > -kInf) {
     long out = 0;
     for (TargetBound::Steep& f : steep) {
@@ -333,7 +335,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       f.out = f.near_s + h_low > U;
       out += f.out;
     }
-    if (out > 0) choose(true);
+    if (out > 0) choose();
     b->faces_out = out;
   }
   if (!(best > -kInf && (us - R - E) / L + rho_r > 0.0)) return;
