@@ -149,6 +149,71 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       (U < options.min_detour * chord && U < options.min_edges * wm.max_edge))
     return;
 
+  // 3 (its statistics, gathered while 2 runs). L and E over the faces the ellipsoid may meet:
+  // every corner of a face that meets it has |y s| + |y t| <= U + 2 (the face's longest edge)
+  // (the sum is 2-Lipschitz and every point of the face is within its longest edge of each
+  // corner), so a face with a corner beyond does not meet it, and every corner of a face that
+  // meets it lies within U + 2 max_edge, hence is reached by 2 (a shortest path's faces join
+  // the target's through edges of faces that meet the ellipsoid, or through the vertices it
+  // passes). A corner not reached lies on a part of the surface that no such edge joins to the
+  // target's: the face is not a shortest path's. Each face is taken when the last of its
+  // corners is accepted, its values then final (until session 17 by a pass over the accepted
+  // vertices after 2, which read each vertex's state again: a fifth of the bound's time).
+  //
+  // The steepest faces lie round the target (a cone's apex, which no linear piece follows), so
+  // the path's last stretch, inside {psi <= r}, is left out: from x with psi(x) > r, the
+  // shortest path first reaches psi = r at a point y of a face that the level set crosses,
+  // so d(y, t) >= |y t| >= rho(r), the least distance from t to those level-set segments;
+  // before y it crosses only faces with a corner above r. Hence
+  //   psi(x) <= r + L (d(x, t) - rho(r)) + E(r),   E(r): the excess of those faces,
+  //   h(x) = (psi(x) - r - E(r)) / L + rho(r) <= d(x, t),
+  // at every vertex with psi > r (and so along the edges between them). r = 0 is the bound
+  // without it (rho(0) = 0); the radii are fractions of U, known before 2 (U is within a few
+  // per mille of psi(s)).
+  constexpr int kLimits = 7;
+  constexpr double kLimit[kLimits] = {1.01, 1.02, 1.03, 1.05, 1.1, 1.2, 1.4};
+  constexpr int kRadii = 6;
+  const double radius[kRadii] = {0.0, 0.01 * U, 0.02 * U, 0.04 * U, 0.08 * U, 0.16 * U};
+  double rho[kRadii] = {0.0, kInf, kInf, kInf, kInf, kInf};
+  double steepest[kRadii] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+  auto& steep = b->steep_;
+  steep.clear();
+  long faces = 0;
+  // The face v, c.next, c.after (v at the origin of c's frame), all accepted.
+  const auto face_statistics = [&](int v, const RingCorner& c, const State& sa, const State& sb,
+                                   const State& sc) {
+    const double len_bc = std::sqrt((c.len - c.cx) * (c.len - c.cx) + c.cy * c.cy);
+    const double longest = std::max({c.len, c.len_after, len_bc});
+    if (std::max({sa.foci, sb.foci, sc.foci}) - 2.0 * longest > U) return;
+    ++faces;
+    const double u[3] = {sa.value, sb.value, sc.value};
+    const double top = std::max({u[0], u[1], u[2]}), low = std::min({u[0], u[1], u[2]});
+    for (int k = 1; k < kRadii; ++k) {
+      const double r = radius[k];
+      if (!(low <= r && r <= top)) continue;
+      const Vec3 corner[3] = {mesh.position(v), mesh.position(c.next), mesh.position(c.after)};
+      const double dist = low == top ? std::min({sa.to_target, sb.to_target, sc.to_target}) -
+                                           longest  // (a face level at r)
+                                     : level_set_distance(corner, u, r, pt);
+      rho[k] = std::min(rho[k], dist);
+    }
+    double slope = kInf;
+    if (c.cy > 0.0 && c.len > 0.0) {
+      const double gx = (u[1] - u[0]) / c.len, gy = ((u[2] - u[0]) - gx * c.cx) / c.cy;
+      slope = std::sqrt(gx * gx + gy * gy);
+      if (std::isnan(slope)) slope = kInf;  // (an overflow: taken as the steepest)
+    }
+    for (int k = 0; k < kRadii; ++k) {
+      if (top > radius[k]) steepest[k] = std::max(steepest[k], slope);
+    }
+    if (!(slope <= kLimit[0])) {
+      const double near_s =
+          std::min({sa.foci - sa.to_target, sb.foci - sb.to_target, sc.foci - sc.to_target}) -
+          longest;
+      steep.push_back({slope, top - low, top, low, near_s, 0});
+    }
+  };
+
   // 2. psi: fast marching from the target over the vertices within U + 2 max_edge of the foci
   // (every corner of a face that the ellipsoid meets: see 3), in Dijkstra's order (a
   // point-source value may fall below the key last popped: the radix queue raises its key, and
@@ -184,6 +249,10 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       const RingCorner& c = ring[i];
       State& sb = touch(c.next);
       State& sc = touch(c.after);
+      if (sb.accepted && sc.accepted) {
+        face_statistics(v, c, sv, sb, sc);
+        continue;
+      }
       const bool b_open = !sb.accepted && foci(sb, c.next) <= reach;
       const bool c_open = !sc.accepted && foci(sc, c.after) <= reach;
       if (!b_open && !c_open) continue;
@@ -204,78 +273,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   }
   b->vertices = static_cast<long>(order.size());
   if (!(state[source].mark == stamp && state[source].accepted)) return;
-
-  // 3. L and E over the faces the ellipsoid may meet: every corner of a face that meets it has
-  // |y s| + |y t| <= U + 2 (the face's longest edge) (the sum is 2-Lipschitz and every point
-  // of the face is within its longest edge of each corner), so a face with a corner beyond
-  // does not meet it, and every corner of a face that meets it lies within U + 2 max_edge,
-  // hence was reached by 2 (a shortest path's faces join the target's through edges of faces
-  // that meet the ellipsoid, or through the vertices it passes). A corner not reached lies on
-  // a part of the surface that no such edge joins to the target's: the face is not a shortest
-  // path's. Each face is taken at its least corner.
-  // (Until session 16 a face was kept unless all its corners lay beyond: sound, wider.)
-  //
-  // The steepest faces lie round the target (a cone's apex, which no linear piece follows), so
-  // the path's last stretch, inside {psi <= r}, is left out: from x with psi(x) > r, the
-  // shortest path first reaches psi = r at a point y of a face that the level set crosses,
-  // so d(y, t) >= |y t| >= rho(r), the least distance from t to those level-set segments;
-  // before y it crosses only faces with a corner above r. Hence
-  //   psi(x) <= r + L (d(x, t) - rho(r)) + E(r),   E(r): the excess of those faces,
-  //   h(x) = (psi(x) - r - E(r)) / L + rho(r) <= d(x, t),
-  // at every vertex with psi > r (and so along the edges between them). r = 0 is the bound
-  // without it (rho(0) = 0).
-  constexpr int kLimits = 7;
-  constexpr double kLimit[kLimits] = {1.01, 1.02, 1.03, 1.05, 1.1, 1.2, 1.4};
-  constexpr int kRadii = 6;
   const double us = state[source].value;
-  const double radius[kRadii] = {0.0, 0.01 * us, 0.02 * us, 0.04 * us, 0.08 * us, 0.16 * us};
-  double rho[kRadii] = {0.0, kInf, kInf, kInf, kInf, kInf};
-  double steepest[kRadii] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
-  auto& steep = b->steep_;
-  steep.clear();
-  long faces = 0;
-  for (const int v : order) {
-    const State& sa = state[v];
-    for (int i = ring_start[v]; i < ring_start[v + 1]; ++i) {
-      const RingCorner& c = ring[i];
-      if (c.next < v || c.after < v) continue;
-      const State& sb = state[c.next];
-      const State& sc = state[c.after];
-      if (!(sb.mark == stamp && sb.accepted && sc.mark == stamp && sc.accepted)) continue;
-      const double len_bc = std::sqrt((c.len - c.cx) * (c.len - c.cx) + c.cy * c.cy);
-      const double longest = std::max({c.len, c.len_after, len_bc});
-      if (std::max({sa.foci, sb.foci, sc.foci}) - 2.0 * longest > U) continue;
-      ++faces;
-      const double u[3] = {sa.value, sb.value, sc.value};
-      const int id[3] = {v, c.next, c.after};
-      const double top = std::max({u[0], u[1], u[2]}), low = std::min({u[0], u[1], u[2]});
-      for (int k = 1; k < kRadii; ++k) {
-        const double r = radius[k];
-        if (!(low <= r && r <= top)) continue;
-        const Vec3 corner[3] = {mesh.position(id[0]), mesh.position(id[1]),
-                                mesh.position(id[2])};
-        const double dist = low == top ? std::min({sa.to_target, sb.to_target, sc.to_target}) -
-                                             longest  // (a face level at r)
-                                       : level_set_distance(corner, u, r, pt);
-        rho[k] = std::min(rho[k], dist);
-      }
-      double slope = kInf;
-      if (c.cy > 0.0 && c.len > 0.0) {
-        const double gx = (u[1] - u[0]) / c.len, gy = ((u[2] - u[0]) - gx * c.cx) / c.cy;
-        slope = std::sqrt(gx * gx + gy * gy);
-        if (std::isnan(slope)) slope = kInf;  // (an overflow: taken as the steepest)
-      }
-      for (int k = 0; k < kRadii; ++k) {
-        if (top > radius[k]) steepest[k] = std::max(steepest[k], slope);
-      }
-      if (!(slope <= kLimit[0])) {
-        const double near_s =
-            std::min({sa.foci - sa.to_target, sb.foci - sb.to_target, sc.foci - sc.to_target}) -
-            longest;
-        steep.push_back({slope, top - low, top, low, near_s, 0});
-      }
-    }
-  }
   b->faces = faces;
   // The (r, L) that makes the bound largest halfway, at psi = psi(s) / 2, with its rho and E,
   // over the steep faces not ruled out (Steep::out). Every (r, L) gives a bound; halfway is

@@ -27,7 +27,7 @@
 //      path from x first reaches psi = r at a point y of a face that the level set crosses,
 //      with d(y, t) >= rho(r), the least distance from t to those level-set segments; so
 //      h(x) = (psi(x) - r - E(r)) / L + rho(r) <= d(x, t) wherever psi(x) > r, E(r) summed
-//      over the faces with a corner above r. r (0, or 1-16 hundredths of psi(s)) and L are
+//      over the faces with a corner above r. r (0, or 1-16 hundredths of U) and L are
 //      chosen to make h largest halfway, where psi = psi(s) / 2.
 //   5. A face each of whose points y has |y s| + h(y) > U meets no shortest path from s to t
 //      (on one, |y s| + h(y) <= d(s, y) + d(y, t) = D <= U by 3 and 4); the bound at a point
@@ -130,7 +130,7 @@ struct TargetBound {
 /// (options.min_detour, options.min_edges), the source is unreachable, source == target, or
 /// the bound at the source would not be positive.
 /// Cost: an A* over the vertex graph and a fast marching over the vertices near the
-/// ellipsoid, O(n log n) in them.
+/// ellipsoid, O(n log n) in them; the faces' slopes are read as the marching completes each.
 void build_target_bound(const WindowMesh& window_mesh, int source, int target, double upper_bound,
                         const TargetBoundOptions& options, TargetBound* bound);
 
