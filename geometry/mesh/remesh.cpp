@@ -3,8 +3,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <vector>
 
 #include <CGAL/AABB_traits.h>
@@ -13,6 +15,7 @@
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 
 #include "geometry/base/errors.h"
+#include "geometry/base/parallel.h"
 #include "geometry/mesh/cgal_mesh_types.h"
 
 namespace windplan {
@@ -22,6 +25,7 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 namespace {
 
 using face_descriptor = SurfaceMesh::Face_index;
+using vertex_descriptor = SurfaceMesh::Vertex_index;
 using edge_descriptor = SurfaceMesh::Edge_index;
 using PatchMap = SurfaceMesh::Property_map<face_descriptor, int>;
 using ConstraintMap = SurfaceMesh::Property_map<edge_descriptor, bool>;
@@ -69,6 +73,9 @@ class InputSurface {
     }
     for (const auto& [id, tris] : triangles_) {
       auto tree = std::make_unique<Tree>(tris.begin(), tris.end());
+      // Built here, not lazily at the first query: the patches are remeshed in parallel (each
+      // queries only its own tree, but nothing is left to build under a lock).
+      tree->build();
       tree->accelerate_distance_queries();
       trees_.emplace(id, std::move(tree));
     }
@@ -105,6 +112,238 @@ void check_patches(const SurfaceMesh& sm, const ConstraintMap& constrained, cons
                            std::to_string(patch[sm.face(sm.opposite(h))]) + " after " + stage);
     }
   }
+}
+
+// Every unconstrained edge longer than `length` cut into equal pieces no longer than it, and the
+// polygons this makes of its faces triangulated by a constrained Delaunay triangulation in their
+// plane (PMP::triangulate_faces): a long sliver becomes a strip of triangles. Splitting edge by
+// edge (PMP::split_long_edges, or the remesher's own splits) makes fans at its short side's
+// corners instead, which the remesher then spends most of its time collapsing. The new vertices
+// lie on the input edges, the new faces inside their input face.
+// A convex planar polygon (a triangle whose sides were cut into pieces) triangulated by clipping,
+// again and again, the ear whose new edge is the shortest, at a corner (never at a point on a
+// straight side): a sliver with points along its long sides becomes a zigzag strip. The
+// triangles keep the face's patch.
+void triangulate_cut_face(face_descriptor f, SurfaceMesh& sm, PatchMap& patch) {
+  const int id = patch[f];
+  std::vector<SurfaceMesh::Halfedge_index> hs;
+  for (;;) {
+    hs.clear();
+    for (auto h : CGAL::halfedges_around_face(sm.halfedge(f), sm)) hs.push_back(h);
+    const std::size_t n = hs.size();
+    if (n <= 3) return;
+    std::size_t best = n;
+    double best_length = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      // The ear at v = target(hs[i]), between u = source(hs[i]) and w = target(hs[i + 1]).
+      const CgalPoint& u = sm.point(sm.source(hs[i]));
+      const CgalPoint& v = sm.point(sm.target(hs[i]));
+      const CgalPoint& w = sm.point(sm.target(hs[(i + 1) % n]));
+      const auto uv = v - u, vw = w - v;
+      const double sine2 = CGAL::cross_product(uv, vw).squared_length() /
+                           (uv.squared_length() * vw.squared_length());
+      if (!(sine2 > 1e-18)) continue;  // v lies on a straight side: no corner
+      const double length = CGAL::squared_distance(u, w);
+      if (best == n || length < best_length) {
+        best = i;
+        best_length = length;
+      }
+    }
+    if (best == n) {
+      throw InvariantError("remesh: a face cut along its long edges has no corner left");
+    }
+    const auto into_u = hs[(best + n - 1) % n], into_w = hs[(best + 1) % n];
+    const auto u_to_w = CGAL::Euler::split_face(into_u, into_w, sm);  // the ear is on w -> u's side
+    f = sm.face(u_to_w);
+    patch[f] = id;
+    patch[sm.face(sm.opposite(u_to_w))] = id;
+  }
+}
+
+// Every unconstrained edge longer than `length` cut into equal pieces no longer than it, and the
+// polygons this makes of its faces triangulated into strips (triangulate_cut_face): splitting
+// edge by edge (PMP::split_long_edges, or the remesher's own splits) makes fans at a sliver's
+// short side instead, which the remesher then spends most of its time collapsing. The new
+// vertices lie on the input edges, the new faces inside their input face, with its patch.
+void cut_long_edges(SurfaceMesh& sm, const ConstraintMap& constrained, PatchMap& patch,
+                    double length) {
+  std::vector<edge_descriptor> long_edges;
+  for (edge_descriptor e : sm.edges()) {
+    const auto h = sm.halfedge(e);
+    if (!constrained[e] &&
+        CGAL::squared_distance(sm.point(sm.source(h)), sm.point(sm.target(h))) > length * length)
+      long_edges.push_back(e);
+  }
+  std::vector<face_descriptor> cut_faces;
+  for (edge_descriptor e : long_edges) {
+    const auto h = sm.halfedge(e);
+    for (auto g : {h, sm.opposite(h)})
+      if (!sm.is_border(g)) cut_faces.push_back(sm.face(g));
+    const CgalPoint a = sm.point(sm.source(h)), b = sm.point(sm.target(h));
+    const int n = static_cast<int>(std::ceil(std::sqrt(CGAL::squared_distance(a, b)) / length));
+    for (int k = 1; k < n; ++k) {
+      const auto piece = CGAL::Euler::split_edge(h, sm);  // source(h) -> new vertex; then h
+      sm.point(sm.target(piece)) = a + (b - a) * (static_cast<double>(k) / n);
+    }
+  }
+  std::sort(cut_faces.begin(), cut_faces.end());
+  cut_faces.erase(std::unique(cut_faces.begin(), cut_faces.end()), cut_faces.end());
+  for (face_descriptor f : cut_faces) triangulate_cut_face(f, sm, patch);
+}
+
+// Both passes on one mesh (the coarse one if asked, then the fine one), borders and patch
+// borders protected. CGAL keeps the patch of every face it creates (face_patch_map). It projects
+// only vertices inside a patch (border vertices are constrained), so a face next to each has
+// its patch.
+void remesh_passes(SurfaceMesh& sm, ConstraintMap& constrained, PatchMap& patch,
+                   const InputSurface& surface, const RemeshOptions& options) {
+  auto project = [&](vertex_descriptor v) {
+    auto h = sm.halfedge(v);
+    if (sm.is_border(h)) h = sm.opposite(h);
+    return surface.closest_point(patch[sm.face(h)], sm.point(v));
+  };
+  if (options.coarse_factor > 0.0) {
+    // Splitting long slivers (a CAD cylinder's are its whole length) to the target directly
+    // makes ~5 times the final vertices, most of them collapsed again: ~4x the time at 2 mm on
+    // the shipped vessel. One pass at a coarser target first turns them into triangles of that
+    // size, cheaply.
+    PMP::isotropic_remeshing(faces(sm), options.coarse_factor * options.target_edge_length, sm,
+                             CGAL::parameters::number_of_iterations(1)
+                                 .edge_is_constrained_map(constrained)
+                                 .protect_constraints(true)
+                                 .face_patch_map(patch)
+                                 .projection_functor(project));
+    check_patches(sm, constrained, patch, "the coarse pass");
+  }
+  PMP::isotropic_remeshing(faces(sm), options.target_edge_length, sm,
+                           CGAL::parameters::number_of_iterations(options.iterations)
+                               .edge_is_constrained_map(constrained)
+                               .protect_constraints(true)
+                               .face_patch_map(patch)
+                               .projection_functor(project));
+  check_patches(sm, constrained, patch, "remeshing");
+}
+
+// One patch as a mesh of its own: its borders (the whole mesh's boundary and the patch borders)
+// are its boundary, protected; every vertex remembers its vertex in the whole mesh.
+struct Part {
+  int id = 0;
+  double work = 0.0;  // its share of the remeshing (input faces + output faces, estimated)
+  SurfaceMesh sm;
+  PatchMap patch;
+  ConstraintMap constrained;
+  SurfaceMesh::Property_map<vertex_descriptor, int> whole;
+};
+
+// The patches of `sm`, each as a Part (in increasing patch id), or none when a patch is not a
+// manifold of its own (it touches itself at a vertex) or when there is only one.
+std::vector<std::unique_ptr<Part>> cut_into_patches(const SurfaceMesh& sm, const PatchMap& patch,
+                                                    double target_edge_length) {
+  std::map<int, std::vector<face_descriptor>> faces_of;
+  for (face_descriptor f : sm.faces()) faces_of[patch[f]].push_back(f);
+  std::vector<std::unique_ptr<Part>> parts;  // (the property maps point into each Part's mesh)
+  if (faces_of.size() < 2) return parts;
+  std::vector<vertex_descriptor> local(sm.num_vertices(), SurfaceMesh::null_vertex());
+  for (const auto& [id, fs] : faces_of) {
+    parts.push_back(std::make_unique<Part>());
+    Part& p = *parts.back();
+    p.id = id;
+    p.patch = p.sm.add_property_map<face_descriptor, int>("f:windplan_patch", id).first;
+    p.constrained = p.sm.add_property_map<edge_descriptor, bool>("e:windplan_constrained").first;
+    p.whole = p.sm.add_property_map<vertex_descriptor, int>("v:windplan_whole", -1).first;
+    std::vector<vertex_descriptor> touched;
+    double area = 0.0;
+    for (face_descriptor f : fs) {
+      std::array<vertex_descriptor, 3> t;
+      int k = 0;
+      for (vertex_descriptor v : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
+        if (local[v.idx()] == SurfaceMesh::null_vertex()) {
+          local[v.idx()] = p.sm.add_vertex(sm.point(v));
+          p.whole[local[v.idx()]] = static_cast<int>(v.idx());
+          touched.push_back(v);
+        }
+        t[k++] = local[v.idx()];
+      }
+      if (p.sm.add_face(t[0], t[1], t[2]) == SurfaceMesh::null_face()) return {};
+      area += std::sqrt(CGAL::squared_area(sm.point(CGAL::target(sm.halfedge(f), sm)),
+                                           sm.point(CGAL::target(sm.next(sm.halfedge(f)), sm)),
+                                           sm.point(CGAL::source(sm.halfedge(f), sm))));
+    }
+    for (vertex_descriptor v : touched) local[v.idx()] = SurfaceMesh::null_vertex();
+    // A vertex where the patch touches itself has more halfedges into it than its umbrella.
+    std::vector<int> into(p.sm.num_vertices(), 0);
+    for (auto h : p.sm.halfedges()) ++into[p.sm.target(h).idx()];
+    for (vertex_descriptor v : p.sm.vertices()) {
+      int umbrella = 0;
+      for (auto h : CGAL::halfedges_around_target(v, p.sm)) {
+        (void)h;
+        ++umbrella;
+      }
+      if (umbrella != into[v.idx()]) return {};
+    }
+    for (edge_descriptor e : p.sm.edges()) p.constrained[e] = p.sm.is_border(e);
+    p.work = static_cast<double>(fs.size()) +
+             area / (std::sqrt(3.0) / 4.0 * target_edge_length * target_edge_length);
+  }
+  return parts;
+}
+
+// The remeshed parts sewn into one mesh along their borders, which the remeshing kept in place
+// (protected: never split, collapsed or moved): a part's border vertex is its whole-mesh vertex,
+// shared with the parts on the other side. Faces and vertices in part order. False when two
+// parts made the same edge, a chord between two border vertices on both sides (on meshes coarse
+// for their patches), which the whole mesh could not have.
+bool sew_patches(const SurfaceMesh& sm, const std::vector<std::unique_ptr<Part>>& parts,
+                 Mesh* mesh, std::vector<int>* face_patch) {
+  std::vector<int> sewn(sm.num_vertices(), -1);  // whole-mesh vertex -> output vertex
+  std::vector<char> on_border;                    // per output vertex
+  std::vector<Vec3> points;
+  std::vector<Tri> triangles;
+  for (const auto& part : parts) {
+    const Part& p = *part;
+    std::vector<int> index(p.sm.num_vertices(), -1);
+    for (vertex_descriptor v : p.sm.vertices()) {
+      const CgalPoint& q = p.sm.point(v);
+      if (p.sm.is_border(v)) {
+        const int w = p.whole[v];
+        if (w < 0 || sm.point(vertex_descriptor(w)) != q) {
+          throw InvariantError("remesh: patch " + std::to_string(p.id) +
+                               " moved or made a vertex on its border");
+        }
+        if (sewn[w] < 0) {
+          sewn[w] = static_cast<int>(points.size());
+          points.emplace_back(q.x(), q.y(), q.z());
+          on_border.push_back(1);
+        }
+        index[v.idx()] = sewn[w];
+      } else {
+        index[v.idx()] = static_cast<int>(points.size());
+        points.emplace_back(q.x(), q.y(), q.z());
+        on_border.push_back(0);
+      }
+    }
+    for (face_descriptor f : p.sm.faces()) {
+      Tri t;
+      int k = 0;
+      for (vertex_descriptor v : CGAL::vertices_around_face(p.sm.halfedge(f), p.sm))
+        t[k++] = index[v.idx()];
+      triangles.push_back(t);
+      face_patch->push_back(p.id);
+    }
+  }
+  // Every edge between two border vertices: at most two triangles.
+  std::map<std::pair<int, int>, int> chords;
+  for (const Tri& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      if (on_border[a] && on_border[b] && ++chords[std::minmax(a, b)] > 2) {
+        face_patch->clear();
+        return false;
+      }
+    }
+  }
+  *mesh = Mesh(TriangleSoup{std::move(points), std::move(triangles)});
+  return true;
 }
 
 }  // namespace
@@ -161,39 +400,37 @@ RemeshResult remesh_isotropic(const Mesh& mesh, const std::vector<int>& face_pat
                         CGAL::parameters::edge_is_constrained_map(constrained));
   fill_new_face_patches(sm, constrained, patch);
   check_patches(sm, constrained, patch, "splitting the borders");
-  // From here CGAL keeps the patch of every face it creates (face_patch_map). It projects only
-  // vertices inside a patch (border vertices are constrained), so the face of any halfedge into
-  // them has their patch.
+  // Sides longer than the first pass's target cut into strips (cut_long_edges), not fans.
+  cut_long_edges(sm, constrained, patch,
+                 std::max(options.coarse_factor, 4.0 / 3.0) * options.target_edge_length);
   const InputSurface surface(mesh, face_patch);
-  auto project = [&](SurfaceMesh::Vertex_index v) {
-    return surface.closest_point(patch[sm.face(sm.halfedge(v))], sm.point(v));
-  };
-  if (options.coarse_factor > 0.0) {
-    // Splitting long slivers (a CAD cylinder's are its whole length) to the target directly
-    // makes ~5 times the final vertices, most of them collapsed again: ~4x the time at 2 mm on
-    // the shipped vessel. One pass at a coarser target first turns them into triangles of that
-    // size, cheaply.
-    PMP::isotropic_remeshing(faces(sm), options.coarse_factor * options.target_edge_length, sm,
-                             CGAL::parameters::number_of_iterations(1)
-                                 .edge_is_constrained_map(constrained)
-                                 .protect_constraints(true)
-                                 .face_patch_map(patch)
-                                 .projection_functor(project));
-    check_patches(sm, constrained, patch, "the coarse pass");
-  }
-  PMP::isotropic_remeshing(faces(sm), options.target_edge_length, sm,
-                           CGAL::parameters::number_of_iterations(options.iterations)
-                               .edge_is_constrained_map(constrained)
-                               .protect_constraints(true)
-                               .face_patch_map(patch)
-                               .projection_functor(project));
-  check_patches(sm, constrained, patch, "remeshing");
-  sm.collect_garbage();
   RemeshResult out;
   out.faces_before = mesh.num_faces();
-  out.face_patch.reserve(sm.number_of_faces());
-  for (face_descriptor f : sm.faces()) out.face_patch.push_back(patch[f]);
-  out.mesh = from_surface_mesh(sm);
+  std::vector<std::unique_ptr<Part>> parts =
+      cut_into_patches(sm, patch, options.target_edge_length);
+  bool sewn = false;
+  if (parts.size() >= 2) {
+    // The patches meet only along protected borders, so each is remeshed on its own, in
+    // parallel (the largest first), and the pieces are sewn together along those borders.
+    std::vector<int> order(parts.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return parts[a]->work > parts[b]->work; });
+    parallel_for_index(static_cast<int>(parts.size()), [&](int i) {
+      Part& part = *parts[order[i]];
+      remesh_passes(part.sm, part.constrained, part.patch, surface, options);
+    });
+    sewn = sew_patches(sm, parts, &out.mesh, &out.face_patch);
+  }
+  if (!sewn) {
+    // One patch, a patch that touches itself at a vertex, or a chord made on both sides of a
+    // border: the whole mesh at once.
+    remesh_passes(sm, constrained, patch, surface, options);
+    sm.collect_garbage();
+    out.face_patch.reserve(sm.number_of_faces());
+    for (face_descriptor f : sm.faces()) out.face_patch.push_back(patch[f]);
+    out.mesh = from_surface_mesh(sm);
+  }
   out.faces_after = out.mesh.num_faces();
   out.time_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -1,11 +1,14 @@
 // Isotropic remeshing: edge lengths near the target, boundary and patch borders kept in place,
 // patch ids carried over (also onto the faces cut off when long borders are split), closed
-// meshes stay closed, bad options refused.
+// meshes stay closed, patches remeshed apart (in parallel) and sewn back the same at any thread
+// count, bad options refused.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "geometry/base/errors.h"
+#include "geometry/base/parallel.h"
 #include "geometry/mesh/remesh.h"
 #include "geometry/region/winding_surface.h"
 #include "tests/mesh_fixtures.h"
@@ -146,6 +149,129 @@ TEST(Remesh, ClosedMeshStaysClosed) {
   EXPECT_EQ(res.mesh.genus(), 0);
   EXPECT_EQ(res.mesh.num_components(), 1);
   for (int p : res.face_patch) EXPECT_EQ(p, 0);
+}
+
+// The smallest angle of each face (degrees), sorted.
+std::vector<double> smallest_angles(const Mesh& m) {
+  std::vector<double> out;
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const Tri& t = m.triangle(f);
+    double least = 180.0;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = m.position(t[(k + 1) % 3]) - m.position(t[k]);
+      const Vec3 b = m.position(t[(k + 2) % 3]) - m.position(t[k]);
+      least = std::min(least, std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI);
+    }
+    out.push_back(least);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(Remesh, SliversAsLongAsTheTubeBecomeWellShapedTriangles) {
+  // One row of 300 mm slivers, 2.6 mm wide (a CAD cylinder's tessellation), cut into strips
+  // before the remeshing (for speed: bench/README.md, session 18): the triangles come out well
+  // shaped, as without the cut.
+  const double r = 50, len = 300;
+  const Mesh in(test::open_cylinder(r, len, 120, 1));
+  RemeshOptions o;
+  o.target_edge_length = 3.0;
+  const RemeshResult res = remesh_isotropic(in, {}, o);
+  const std::vector<double> a = smallest_angles(res.mesh);
+  EXPECT_GT(a.front(), 20.0);
+  EXPECT_GT(a[a.size() / 20], 38.0) << "the 5th percentile of the faces' smallest angles";
+  EXPECT_GT(a[a.size() / 2], 48.0) << "the median";
+  const auto el = res.mesh.edge_length_stats();
+  EXPECT_NEAR(el[1], 3.0, 0.5);
+  EXPECT_LT(el[2], 5.0);
+  EXPECT_EQ(res.mesh.boundary_loops().size(), 2u);
+}
+
+// A closed sphere cut into the four quadrants of its x-y plane (patches 0-3).
+std::vector<int> quadrant_patches(const Mesh& in) {
+  std::vector<int> patch(in.num_faces());
+  for (int f = 0; f < in.num_faces(); ++f) {
+    const Vec3 c = in.face_centroid(f);
+    patch[f] = (c.x() < 0 ? 1 : 0) + (c.y() < 0 ? 2 : 0);
+  }
+  return patch;
+}
+
+TEST(Remesh, PatchesRemeshedApartAreSewnAlongTheirBorders) {
+  const Mesh in(test::uv_sphere(50, 48, 24));
+  const std::vector<int> patch = quadrant_patches(in);
+  RemeshOptions o;
+  o.target_edge_length = 4.0;
+  const RemeshResult res = remesh_isotropic(in, patch, o);
+  const Mesh& m = res.mesh;
+  EXPECT_TRUE(m.is_closed());
+  EXPECT_EQ(m.genus(), 0);
+  EXPECT_EQ(m.num_components(), 1);
+  ASSERT_EQ(res.face_patch.size(), static_cast<std::size_t>(m.num_faces()));
+  // Every face in its quadrant; every edge between two quadrants on the meridian planes x = 0
+  // or y = 0, where the input's borders were.
+  int wrong = 0, borders = 0;
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const Vec3 c = m.face_centroid(f);
+    wrong += res.face_patch[f] != (c.x() < 0 ? 1 : 0) + (c.y() < 0 ? 2 : 0);
+  }
+  EXPECT_EQ(wrong, 0);
+  for (int h = 0; h < m.num_halfedges(); ++h) {
+    const int g = m.twin(h);
+    if (m.face(h) < 0 || m.face(g) < 0 ||
+        res.face_patch[m.face(h)] == res.face_patch[m.face(g)])
+      continue;
+    ++borders;
+    const Vec3 a = m.position(m.from(h)), b = m.position(m.to(h));
+    EXPECT_TRUE((std::abs(a.x()) < 1e-9 && std::abs(b.x()) < 1e-9) ||
+                (std::abs(a.y()) < 1e-9 && std::abs(b.y()) < 1e-9))
+        << a.transpose() << " - " << b.transpose();
+  }
+  EXPECT_GT(borders, 0);
+  const auto el = m.edge_length_stats();
+  EXPECT_NEAR(el[1], 4.0, 1.0);
+  EXPECT_GT(smallest_angles(m)[m.num_faces() / 2], 45.0);
+}
+
+TEST(Remesh, TheSameMeshAtAnyThreadCount) {
+  const Mesh in(test::uv_sphere(50, 48, 24));
+  const std::vector<int> patch = quadrant_patches(in);
+  RemeshOptions o;
+  o.target_edge_length = 4.0;
+  RemeshResult one, two;
+  {
+    const ThreadLimit limit(1);
+    one = remesh_isotropic(in, patch, o);
+  }
+  {
+    const ThreadLimit limit(2);
+    two = remesh_isotropic(in, patch, o);
+  }
+  EXPECT_EQ(one.mesh.points(), two.mesh.points());
+  EXPECT_EQ(one.mesh.triangles(), two.mesh.triangles());
+  EXPECT_EQ(one.face_patch, two.face_patch);
+}
+
+TEST(Remesh, PatchesThatTouchThemselvesAtAVertexAreRemeshedWhole) {
+  // A checkerboard of patches by octant: each touches itself at the poles and along the
+  // equator's corners, so it is no manifold on its own; the mesh is remeshed as one.
+  const Mesh in(test::uv_sphere(50, 48, 24));
+  std::vector<int> patch(in.num_faces());
+  for (int f = 0; f < in.num_faces(); ++f) {
+    const Vec3 c = in.face_centroid(f);
+    patch[f] = ((c.x() < 0) + (c.y() < 0) + (c.z() < 0)) % 2;
+  }
+  RemeshOptions o;
+  o.target_edge_length = 4.0;
+  const RemeshResult res = remesh_isotropic(in, patch, o);
+  EXPECT_TRUE(res.mesh.is_closed());
+  EXPECT_EQ(res.mesh.genus(), 0);
+  int wrong = 0;
+  for (int f = 0; f < res.mesh.num_faces(); ++f) {
+    const Vec3 c = res.mesh.face_centroid(f);
+    wrong += res.face_patch[f] != ((c.x() < 0) + (c.y() < 0) + (c.z() < 0)) % 2;
+  }
+  EXPECT_EQ(wrong, 0);
 }
 
 TEST(Remesh, BadOptionsAndSizesAreRefused) {
