@@ -1,7 +1,14 @@
 #include "export/files/sha256.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <cpuid.h>
+#include <immintrin.h>
+#define WINDPLAN_SHA_NI 1
+#endif
 
 #include "geometry/base/errors.h"
 
@@ -21,11 +28,84 @@ constexpr std::uint32_t kK[64] = {
 
 inline std::uint32_t rotr(std::uint32_t x, int n) { return (x >> n) | (x << (32 - n)); }
 
+#ifdef WINDPLAN_SHA_NI
+bool cpu_has_sha() {
+  unsigned a = 0, b = 0, c = 0, d = 0;
+  if (!__get_cpuid(1, &a, &b, &c, &d)) return false;
+  const bool ssse3 = c & (1u << 9), sse41 = c & (1u << 19);
+  if (!__get_cpuid_count(7, 0, &a, &b, &c, &d)) return false;
+  return ssse3 && sse41 && (b & (1u << 29));  // CPUID.7.0:EBX bit 29: SHA
+}
+
+// n blocks through the SHA extensions. The instructions keep the state as two halves, ABEF and
+// CDGH (lane 3 first); sha256rnds2 does two rounds with the low two words of its message
+// operand (W + K); sha256msg1 / msg2 extend the message schedule four words at a time.
+__attribute__((target("sha,sse4.1,ssse3"))) void sha_ni_blocks(std::uint32_t h[8],
+                                                                 const unsigned char* p,
+                                                                 std::size_t n) {
+  const __m128i byteswap = _mm_set_epi64x(0x0c0d0e0f08090a0bULL, 0x0405060700010203ULL);
+  __m128i dcba = _mm_loadu_si128(reinterpret_cast<const __m128i*>(h));
+  __m128i hgfe = _mm_loadu_si128(reinterpret_cast<const __m128i*>(h + 4));
+  const __m128i cdab = _mm_shuffle_epi32(dcba, 0xB1);
+  const __m128i efgh = _mm_shuffle_epi32(hgfe, 0x1B);
+  __m128i abef = _mm_alignr_epi8(cdab, efgh, 8);
+  __m128i cdgh = _mm_blend_epi16(efgh, cdab, 0xF0);
+  for (; n > 0; --n, p += 64) {
+    const __m128i abef_in = abef, cdgh_in = cdgh;
+    __m128i w[16];
+    for (int i = 0; i < 16; ++i) {
+      if (i < 4) {
+        w[i] = _mm_shuffle_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16 * i)),
+                                byteswap);
+      } else {
+        // w[t] = w[t-16] + s0(w[t-15]) + w[t-7] + s1(w[t-2]), four at a time.
+        __m128i x = _mm_sha256msg1_epu32(w[i - 4], w[i - 3]);
+        x = _mm_add_epi32(x, _mm_alignr_epi8(w[i - 1], w[i - 2], 4));
+        w[i] = _mm_sha256msg2_epu32(x, w[i - 1]);
+      }
+      __m128i wk =
+          _mm_add_epi32(w[i], _mm_loadu_si128(reinterpret_cast<const __m128i*>(kK + 4 * i)));
+      cdgh = _mm_sha256rnds2_epu32(cdgh, abef, wk);
+      wk = _mm_shuffle_epi32(wk, 0x0E);
+      abef = _mm_sha256rnds2_epu32(abef, cdgh, wk);
+    }
+    abef = _mm_add_epi32(abef, abef_in);
+    cdgh = _mm_add_epi32(cdgh, cdgh_in);
+  }
+  const __m128i feba = _mm_shuffle_epi32(abef, 0x1B);
+  const __m128i dchg = _mm_shuffle_epi32(cdgh, 0xB1);
+  dcba = _mm_blend_epi16(feba, dchg, 0xF0);
+  hgfe = _mm_alignr_epi8(dchg, feba, 8);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(h), dcba);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(h + 4), hgfe);
+}
+#endif
+
 }  // namespace
 
-Sha256::Sha256()
-    : h_{0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
+bool Sha256::hardware_available() {
+#ifdef WINDPLAN_SHA_NI
+  static const bool has = cpu_has_sha();
+  return has;
+#else
+  return false;
+#endif
+}
+
+Sha256::Sha256(bool hardware)
+    : hardware_(hardware && hardware_available()),
+      h_{0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
          0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19} {}
+
+void Sha256::blocks(const unsigned char* p, std::size_t n) {
+#ifdef WINDPLAN_SHA_NI
+  if (hardware_) {
+    sha_ni_blocks(h_, p, n);
+    return;
+  }
+#endif
+  for (; n > 0; --n, p += 64) block(p);
+}
 
 void Sha256::block(const unsigned char* p) {
   std::uint32_t w[64];
@@ -67,17 +147,22 @@ void Sha256::block(const unsigned char* p) {
 void Sha256::update(const void* data, std::size_t size) {
   const unsigned char* p = static_cast<const unsigned char*>(data);
   total_ += size;
-  while (size > 0) {
+  if (buf_len_ > 0) {
     const std::size_t n = std::min<std::size_t>(64 - buf_len_, size);
     std::memcpy(buf_ + buf_len_, p, n);
     buf_len_ += n;
     p += n;
     size -= n;
-    if (buf_len_ == 64) {
-      block(buf_);
-      buf_len_ = 0;
-    }
+    if (buf_len_ < 64) return;
+    blocks(buf_, 1);
+    buf_len_ = 0;
   }
+  // Whole blocks straight from the input, the rest kept.
+  blocks(p, size / 64);
+  p += size / 64 * 64;
+  size %= 64;
+  std::memcpy(buf_, p, size);
+  buf_len_ = size;
 }
 
 std::string Sha256::hex_digest() {
