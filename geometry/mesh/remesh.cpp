@@ -1,9 +1,9 @@
 // A CGAL translation unit: never include OCCT here (its Handle macro breaks CGAL headers).
 #include "geometry/mesh/remesh.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <algorithm>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -114,12 +114,6 @@ void check_patches(const SurfaceMesh& sm, const ConstraintMap& constrained, cons
   }
 }
 
-// Every unconstrained edge longer than `length` cut into equal pieces no longer than it, and the
-// polygons this makes of its faces triangulated by a constrained Delaunay triangulation in their
-// plane (PMP::triangulate_faces): a long sliver becomes a strip of triangles. Splitting edge by
-// edge (PMP::split_long_edges, or the remesher's own splits) makes fans at its short side's
-// corners instead, which the remesher then spends most of its time collapsing. The new vertices
-// lie on the input edges, the new faces inside their input face.
 // A convex planar polygon (a triangle whose sides were cut into pieces) triangulated by clipping,
 // again and again, the ear whose new edge is the shortest, at a corner (never at a point on a
 // straight side): a sliver with points along its long sides becomes a zigzag strip. The
@@ -144,13 +138,27 @@ void triangulate_cut_face(face_descriptor f, SurfaceMesh& sm, PatchMap& patch) {
                            (uv.squared_length() * vw.squared_length());
       if (!(sine2 > 1e-18)) continue;  // v lies on a straight side: no corner
       const double length = CGAL::squared_distance(u, w);
-      if (best == n || length < best_length) {
-        best = i;
-        best_length = length;
+      if (best != n && length >= best_length) continue;
+      // In a convex polygon only a vertex on the new edge u-w itself (a straight side running
+      // from u or w) can spoil the ear: it would leave a polygon with no area.
+      bool spoiled = false;
+      const auto uw = w - u;
+      for (std::size_t j = 0; j < n && !spoiled; ++j) {
+        const CgalPoint& x = sm.point(sm.target(hs[j]));
+        if (x == u || x == v || x == w) continue;
+        const auto ux = x - u;
+        const double along = ux * uw;
+        spoiled = along > 0.0 && along < uw.squared_length() &&
+                  CGAL::cross_product(uw, ux).squared_length() <=
+                      1e-18 * uw.squared_length() * ux.squared_length();
       }
+      if (spoiled) continue;
+      best = i;
+      best_length = length;
     }
     if (best == n) {
-      throw InvariantError("remesh: a face cut along its long edges has no corner left");
+      throw InvariantError("remesh: a face cut along its long edges has no corner left (" +
+                           std::to_string(n) + " sides)");
     }
     const auto into_u = hs[(best + n - 1) % n], into_w = hs[(best + 1) % n];
     const auto u_to_w = CGAL::Euler::split_face(into_u, into_w, sm);  // the ear is on w -> u's side
@@ -164,9 +172,19 @@ void triangulate_cut_face(face_descriptor f, SurfaceMesh& sm, PatchMap& patch) {
 // polygons this makes of its faces triangulated into strips (triangulate_cut_face): splitting
 // edge by edge (PMP::split_long_edges, or the remesher's own splits) makes fans at a sliver's
 // short side instead, which the remesher then spends most of its time collapsing. The new
-// vertices lie on the input edges, the new faces inside their input face, with its patch.
+// vertices lie on the input edges, the new faces inside their input face, with its patch. A mesh
+// with a face of no area (its corners on a line) is left as it is: cut next to such a face,
+// CGAL's tangential relaxation crashed (remesh_test.cpp), where it remeshes the uncut mesh.
 void cut_long_edges(SurfaceMesh& sm, const ConstraintMap& constrained, PatchMap& patch,
                     double length) {
+  for (face_descriptor f : sm.faces()) {
+    const auto g = sm.halfedge(f);
+    const CgalPoint& a = sm.point(sm.source(g));
+    const auto ab = sm.point(sm.target(g)) - a, ac = sm.point(sm.target(sm.next(g))) - a;
+    if (!(CGAL::cross_product(ab, ac).squared_length() >
+          1e-12 * ab.squared_length() * ac.squared_length()))
+      return;
+  }
   std::vector<edge_descriptor> long_edges;
   for (edge_descriptor e : sm.edges()) {
     const auto h = sm.halfedge(e);

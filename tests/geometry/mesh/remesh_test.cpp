@@ -274,6 +274,23 @@ TEST(Remesh, PatchesThatTouchThemselvesAtAVertexAreRemeshedWhole) {
   EXPECT_EQ(wrong, 0);
 }
 
+TEST(Remesh, AMeshWithAFaceOfNoAreaIsRemeshedUncut) {
+  // A 300 mm strip (two triangles) with a face of no area below its long edge A-B (its third
+  // corner M on the edge). Cut into strips, it crashed in CGAL's tangential relaxation; uncut,
+  // CGAL remeshes it.
+  TriangleSoup soup;
+  soup.points = {Vec3(0, 0, 0), Vec3(150, 0, 0), Vec3(300, 0, 0), Vec3(0, 2.6, 0),
+                 Vec3(300, 2.6, 0)};  // A, M, B, C, D
+  soup.triangles = {{0, 2, 4}, {0, 4, 3}, {0, 1, 2}};
+  const Mesh in(soup);
+  RemeshOptions o;
+  o.target_edge_length = 10.0;
+  RemeshResult res;
+  ASSERT_NO_THROW(res = remesh_isotropic(in, {}, o));
+  EXPECT_GT(res.mesh.num_faces(), 3);
+  EXPECT_NEAR(res.mesh.total_area(), in.total_area(), 1e-6 * in.total_area());
+}
+
 TEST(Remesh, BadOptionsAndSizesAreRefused) {
   const Mesh in(test::open_cylinder(20, 100, 16, 2));
   RemeshOptions o;
