@@ -3,8 +3,9 @@
 // shop checks a set with `sha256sum` before loading a program. Small and self-contained so that
 // windplan needs no crypto library; verified against the FIPS test vectors and sha256sum. On x86
 // processors with the SHA extensions (Intel since 2016-2019, AMD since Zen) the blocks go
-// through the sha256rnds2 / sha256msg instructions, about 5x faster (a job's files are hashed
-// after they are written: 150 MB for vessel_unequal); elsewhere through portable code.
+// through the sha256rnds2 / sha256msg instructions, about 8x faster (1,450 against 140-175 MB/s
+// on 103 MB; a job's files are hashed after they are written: 150 MB for vessel_unequal);
+// elsewhere through portable code.
 #include <cstdint>
 #include <filesystem>
 #include <string>

@@ -292,12 +292,7 @@ std::vector<std::unique_ptr<Part>> cut_into_patches(const SurfaceMesh& sm, const
     std::vector<int> into(p.sm.num_vertices(), 0);
     for (auto h : p.sm.halfedges()) ++into[p.sm.target(h).idx()];
     for (vertex_descriptor v : p.sm.vertices()) {
-      int umbrella = 0;
-      for (auto h : CGAL::halfedges_around_target(v, p.sm)) {
-        (void)h;
-        ++umbrella;
-      }
-      if (umbrella != into[v.idx()]) return {};
+      if (static_cast<int>(p.sm.degree(v)) != into[v.idx()]) return {};  // (degree: its umbrella)
     }
     for (edge_descriptor e : p.sm.edges()) p.constrained[e] = p.sm.is_border(e);
     p.work = static_cast<double>(fs.size()) +
