@@ -1,6 +1,7 @@
 #include "planner/winding/tube_friction.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -8,6 +9,7 @@
 
 #include "geometry/base/errors.h"
 #include "geometry/base/format_number.h"
+#include "geometry/base/parallel.h"
 #include "geometry/mesh/closest_point.h"
 #include "planner/winding/fibre_metrics.h"
 
@@ -586,12 +588,16 @@ TubeFrictionWinding plan_tube_friction(const TubeSurface& line, double s0, doubl
     ++w.summary.evaluations;
     return phase(planner.circuit(theta, delta, false).end.th) - phase_theta;
   };
-  auto advance = [&](double theta, double delta) {
-    return advance_from(theta, phase(theta), delta);
-  };
+  // The advance sampled round the section: 48 circuits, independent of one another (traced in
+  // parallel, folded in order).
+  std::array<double, 48> sampled;
+  parallel_for_index(48, [&](int j) {
+    const double theta = 2.0 * M_PI * j / 48.0;
+    sampled[j] = phase(planner.circuit(theta, 0.0, false).end.th) - phase(theta);
+  });
+  w.summary.evaluations += 48;
   double least = std::numeric_limits<double>::infinity(), most = 0.0;
-  for (int j = 0; j < 48; ++j) {
-    const double a = advance(2.0 * M_PI * j / 48.0, 0.0);
+  for (const double a : sampled) {
     least = std::min(least, a);
     most = std::max(most, a);
   }

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "geometry/base/errors.h"
+#include "geometry/base/parallel.h"
 #include "planner/job/job.h"
 #include "planner/pipeline.h"
 #include "tests/test_data.h"
@@ -368,6 +369,45 @@ TEST(TubeFriction, OvalSectionLaysAClosedPatternEvenlyAlongTheLoop) {
   for (std::size_t i = 0; i < at.size(); ++i) {
     const double gap = i + 1 < at.size() ? at[i + 1] - at[i] : at[0] + girth - at[i];
     EXPECT_NEAR(gap, girth / 20.0, 0.5) << i;
+  }
+}
+
+// The pattern's 48 sampled circuits are traced in parallel: the plan is the same, bit for bit,
+// on one thread and on two.
+TEST(TubeFriction, OvalPlanIsTheSameOnOneThreadAndOnTwo) {
+  const std::string yaml =
+      "name: oval\n"
+      "mandrel:\n"
+      "  source: section\n"
+      "  linear_deflection: 0.5\n"
+      "  angular_deflection: 8\n"
+      "  section:\n"
+      "    shape: ellipse\n"
+      "    semi_axes: [80, 50]\n"
+      "    length: 300\n"
+      "    ends: {type: flat}\n"
+      "winding:\n"
+      "  angle: 55\n"
+      "  slippage: 0.15\n"
+      "  band_width: 12\n"
+      "  mu: 0.2\n"
+      "  circuits: 5\n";
+  const Job job = load_job_from_string(yaml, "/tmp/oval.yaml");
+  std::vector<std::vector<Vec3>> by_threads;
+  for (int threads : {1, 2}) {
+    const ThreadLimit limit(threads);
+    const PipelineResult r = plan_job(job);
+    ASSERT_TRUE(r.tube.friction);
+    std::vector<Vec3> points;
+    for (const Circuit& c : r.plan.circuits) {
+      for (const FibrePoint& q : c.points) points.push_back(q.position);
+    }
+    by_threads.push_back(points);
+  }
+  ASSERT_FALSE(by_threads[0].empty());
+  ASSERT_EQ(by_threads[0].size(), by_threads[1].size());
+  for (std::size_t i = 0; i < by_threads[0].size(); ++i) {
+    ASSERT_EQ(by_threads[0][i], by_threads[1][i]) << "point " << i;
   }
 }
 
