@@ -11,6 +11,7 @@
 #include "export/machine/eye_envelope.h"
 #include "export/machine/kinematics.h"
 #include "export/machine/resample.h"
+#include "export/program/polyline_track.h"
 #include "geometry/base/errors.h"
 #include "geometry/mesh/closest_point.h"
 
@@ -267,37 +268,6 @@ double lay_straight(const Surface& surf, const Vec3& eye, Surface::Point* P, dou
   return laid;
 }
 
-// Distance of p to the polyline q (cumulative arc length sq), searched on the segments from
-// `back` mm behind the last match to `ahead` mm after it; moves ptr to the best segment. The
-// window is short in arc length so that a later pass crossing this one is never taken for it.
-// Only the segments between `first` and `limit` (the points of one layer, between two tie-ons:
-// the step from a layer's last point to the next one's first is no fibre, and a layer's first
-// point is reached by a rapid only, never by tracking).
-double track(const std::vector<Vec3>& q, const std::vector<double>& sq, const Vec3& p, double back,
-             double ahead, int first, int limit, int* ptr) {
-  const int m = static_cast<int>(q.size());
-  limit = std::min(limit, m - 1);
-  if (limit <= first) {
-    *ptr = first;
-    return (p - q[first]).norm();
-  }
-  const int hi_max = limit - 1;
-  int lo = std::clamp(*ptr, first, hi_max), hi = lo;
-  while (lo > first && sq[*ptr] - sq[lo] < back) --lo;
-  while (hi < hi_max && sq[hi] - sq[*ptr] < ahead) ++hi;
-  double best = std::numeric_limits<double>::infinity();
-  int at = *ptr;
-  for (int j = lo; j <= hi; ++j) {
-    const double dd = distance_to_segment(p, q[j], q[j + 1]);
-    if (dd < best) {
-      best = dd;
-      at = j;
-    }
-  }
-  *ptr = at;
-  return best;
-}
-
 int reversals(const std::vector<double>& v) {
   int count = 0, dir = 0;
   for (std::size_t i = 1; i < v.size(); ++i) {
@@ -545,8 +515,8 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
           double worst = 0.0;
           for (int i = 1; i <= m; ++i) {
             const Vec3 q = anchor.p + (static_cast<double>(i) / m) * (to - anchor.p);
-            worst = std::max(worst, track(planned, planned_s, q, options.search_back,
-                                          options.search_ahead, first, last, &lptr));
+            worst = std::max(worst, track_polyline(planned, planned_s, q, options.search_back,
+                                                   options.search_ahead, first, last, &lptr));
           }
           return worst;
         };
@@ -649,13 +619,13 @@ ReplayResult replay_program(const GcodeProgram& program, const WindingPlan& plan
             }
           }
           r.straight_substeps += (P.p - anchor.p).norm() > 0.0;
-          dev = track(planned, planned_s, P.p, options.search_back, options.search_ahead, first,
-                      last, &ptr);
+          dev = track_polyline(planned, planned_s, P.p, options.search_back, options.search_ahead,
+                               first, last, &ptr);
           if ((P.p - anchor.p).norm() > 0.0) {
             // The fibre lies on a flat face beyond its anchor, held at no far end: it swings with
             // the eye and is not laid yet; what is laid ends at the anchor.
-            dev = track(planned, planned_s, anchor.p, options.search_back, options.search_ahead,
-                        first, last, &lptr);
+            dev = track_polyline(planned, planned_s, anchor.p, options.search_back,
+                                 options.search_ahead, first, last, &lptr);
           } else {
             lptr = ptr;
           }
