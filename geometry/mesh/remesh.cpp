@@ -12,6 +12,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 
 #include "geometry/base/errors.h"
@@ -283,9 +284,7 @@ std::vector<std::unique_ptr<Part>> cut_into_patches(const SurfaceMesh& sm, const
         t[k++] = local[v.idx()];
       }
       if (p.sm.add_face(t[0], t[1], t[2]) == SurfaceMesh::null_face()) return {};
-      area += std::sqrt(CGAL::squared_area(sm.point(CGAL::target(sm.halfedge(f), sm)),
-                                           sm.point(CGAL::target(sm.next(sm.halfedge(f)), sm)),
-                                           sm.point(CGAL::source(sm.halfedge(f), sm))));
+      area += PMP::face_area(f, sm);
     }
     for (vertex_descriptor v : touched) local[v.idx()] = SurfaceMesh::null_vertex();
     // A vertex where the patch touches itself has more halfedges into it than its umbrella.
@@ -306,10 +305,10 @@ std::vector<std::unique_ptr<Part>> cut_into_patches(const SurfaceMesh& sm, const
 // shared with the parts on the other side. Faces and vertices in part order. False when two
 // parts made the same edge, a chord between two border vertices on both sides (on meshes coarse
 // for their patches), which the whole mesh could not have.
-bool sew_patches(const SurfaceMesh& sm, const std::vector<std::unique_ptr<Part>>& parts,
-                 Mesh* mesh, std::vector<int>* face_patch) {
+bool sew_patches(const SurfaceMesh& sm, const std::vector<std::unique_ptr<Part>>& parts, Mesh* mesh,
+                 std::vector<int>* face_patch) {
   std::vector<int> sewn(sm.num_vertices(), -1);  // whole-mesh vertex -> output vertex
-  std::vector<char> on_border;                    // per output vertex
+  std::vector<char> on_border;                   // per output vertex
   std::vector<Vec3> points;
   std::vector<Tri> triangles;
   for (const auto& part : parts) {

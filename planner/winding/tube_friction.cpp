@@ -584,16 +584,19 @@ TubeFrictionWinding plan_tube_friction(const TubeSurface& line, double s0, doubl
   const bool even_theta = line.even_is_theta();
   const double s_ref = 0.5 * (s0 + s1);
   auto phase = [&](double theta) { return even_theta ? theta : planner.phase(theta, s_ref); };
-  auto advance_from = [&](double theta, double phase_theta, double delta) {
-    ++w.summary.evaluations;
+  auto circuit_advance = [&](double theta, double phase_theta, double delta) {
     return phase(planner.circuit(theta, delta, false).end.th) - phase_theta;
   };
+  auto advance_from = [&](double theta, double phase_theta, double delta) {
+    ++w.summary.evaluations;
+    return circuit_advance(theta, phase_theta, delta);
+  };
   // The advance sampled round the section: 48 circuits, independent of one another (traced in
-  // parallel, folded in order).
+  // parallel, folded in order; counted here, not in the threads).
   std::array<double, 48> sampled;
   parallel_for_index(48, [&](int j) {
     const double theta = 2.0 * M_PI * j / 48.0;
-    sampled[j] = phase(planner.circuit(theta, 0.0, false).end.th) - phase(theta);
+    sampled[j] = circuit_advance(theta, phase(theta), 0.0);
   });
   w.summary.evaluations += 48;
   double least = std::numeric_limits<double>::infinity(), most = 0.0;
