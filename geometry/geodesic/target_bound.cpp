@@ -179,6 +179,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   auto& steep = b->steep_;
   steep.clear();
   long faces = 0;
+  double face_spread = 0.0;
   // The face v, c.next, c.after (v at the origin of c's frame), all accepted.
   const auto face_statistics = [&](int v, const RingCorner& c, const State& sa, const State& sb,
                                    const State& sc) {
@@ -188,6 +189,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     ++faces;
     const double u[3] = {sa.value, sb.value, sc.value};
     const double top = std::max({u[0], u[1], u[2]}), low = std::min({u[0], u[1], u[2]});
+    face_spread = std::max(face_spread, top - low);
     for (int k = 1; k < kRadii; ++k) {
       const double r = radius[k];
       if (!(low <= r && r <= top)) continue;
@@ -258,6 +260,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       if (!b_open && !c_open) continue;
       const auto offer = [&](State& s, int w, double u) {
         if (u < s.value) {
+          if (s.value == kInf) __builtin_prefetch(ring + ring_start[w]);
           s.value = u;
           queue.push({u, w});
         }
@@ -279,7 +282,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   // over the steep faces not ruled out (Steep::out). Every (r, L) gives a bound; halfway is
   // where the band of windows A* must look at is widest (chosen at psi(s), the bound had 7 %
   // more windows on the bunnies: bench/README.md, session 16).
-  double best = -kInf, R = 0.0, L = 1.0, E = 0.0, rho_r = 0.0;
+  double best = -kInf, R = 0.0, L = 1.0, E = 0.0, rho_r = 0.0, L_raw = kInf;
   const auto choose = [&]() {
     best = -kInf;
     for (int k = 0; k < kRadii; ++k) {
@@ -294,28 +297,43 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
             excess[l] += std::isfinite(f.slope) ? f.spread * (1.0 - kLimit[l] / f.slope) : f.spread;
         }
       }
+      // The excess that step 6 leaves at psi = psi(s) / 2 (the faces whose least corner is
+      // below halfway + spread + E): the halfway bound as built (chosen by the whole E, 1-2 %
+      // more windows at 100K and on the kitten: bench/README.md, session 20).
+      double excess_half[kLimits] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+      for (const TargetBound::Steep& f : steep) {
+        if (!(f.top > radius[k]) || f.out) continue;
+        for (int l = 0; l < kLimits; ++l) {
+          if (f.slope > kLimit[l] && f.low <= 0.5 * us + face_spread + excess[l])
+            excess_half[l] +=
+                std::isfinite(f.slope) ? f.spread * (1.0 - kLimit[l] / f.slope) : f.spread;
+        }
+      }
       // (Every face steeper than kLimit[0] is in `steep`: with none ruled out this is
       // steepest[k].)
       const double steepest_k = std::min(steepest[k], steepest_in);
-      const auto consider = [&](double limit, double e) {
+      const auto consider = [&](double limit, double e, double e_half) {
         if (!std::isfinite(limit)) return;
+        const double raw = e > 0.0 ? limit : kInf;  // (step 6's faces: steeper than this)
         // Margins for round-off (1e-9 relative: far below what moves a window, far above the
         // slopes' own error).
         limit *= 1.0 + 1e-9;
         e = e * (1.0 + 1e-9) + 1e-12 * us;
+        e_half = e_half * (1.0 + 1e-9) + 1e-12 * us;
         const double rh = std::max(0.0, rho[k] * (1.0 - 1e-12));
-        const double halfway = (0.5 * us - radius[k] - e) / limit + rh;
+        const double halfway = (0.5 * us - radius[k] - e_half) / limit + rh;
         if (halfway > best) {
           best = halfway;
           R = radius[k];
           L = limit;
           E = e;
           rho_r = rh;
+          L_raw = raw;
         }
       };
-      consider(steepest_k, 0.0);
+      consider(steepest_k, 0.0, 0.0);
       for (int l = 0; l < kLimits; ++l) {
-        if (kLimit[l] < steepest_k) consider(kLimit[l], excess[l]);
+        if (kLimit[l] < steepest_k) consider(kLimit[l], excess[l], excess_half[l]);
       }
     }
   };
@@ -337,9 +355,40 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     b->faces_out = out;
   }
   if (!(best > -kInf && (us - R - E) / L + rho_r > 0.0)) return;
+  // 6. E by level (the header's proof): each vertex takes E(psi + spread + E), spread the
+  // largest psi range of a face that entered 3, so h stays linear along every edge a shortest
+  // path crosses; each face is counted one level early (round-off in the level's index).
+  auto& by_level = b->by_level_;
+  by_level.clear();
+  b->level_width_ = 0.0;
+  double top_value = 0.0;
+  for (const int v : order) top_value = std::max(top_value, state[v].value);
+  constexpr int kLevels = 256;
+  const double shift = face_spread + E;
+  const double width = (top_value + shift) / kLevels;
+  if (std::isfinite(L_raw) && width > 0.0) {
+    by_level.assign(kLevels, 0.0);
+    for (const TargetBound::Steep& f : steep) {
+      if (!(f.top > R) || f.out || !(f.slope > L_raw)) continue;
+      const int level = std::clamp(static_cast<int>(std::floor(f.low / width)) - 1, 0, kLevels - 1);
+      by_level[level] += std::isfinite(f.slope) ? f.spread * (1.0 - L_raw / f.slope) : f.spread;
+    }
+    for (int i = 1; i < kLevels; ++i) by_level[i] += by_level[i - 1];
+    for (double& e : by_level) e = std::min(E, e * (1.0 + 1e-9) + 1e-12 * us);
+    b->level_width_ = width;
+  }
   for (const int v : order) {
     State& sv = state[v];
-    sv.value = (R == 0.0 || sv.value > R) ? (sv.value - R - E) / L + rho_r : -kInf;
+    if (!(R == 0.0 || sv.value > R)) {
+      sv.value = -kInf;
+      continue;
+    }
+    double e = E;
+    if (!by_level.empty()) {
+      const double level = std::floor((sv.value + shift) / width);
+      e = level < kLevels ? by_level[static_cast<int>(level)] : E;
+    }
+    sv.value = (sv.value - R - e) / L + rho_r;
   }
   b->slope = L;
   b->excess = E;

@@ -33,6 +33,16 @@
 //      (on one, |y s| + h(y) <= d(s, y) + d(y, t) = D <= U by 3 and 4); the bound at a point
 //      of such a path needs only the faces of the path's tail, so L and E are chosen again
 //      without those faces.
+//   6. E by level: near the target only the steep faces below it count. A face the tail from
+//      x crosses holds a point y with d(y, t) <= d(x, t), so its least corner value is at
+//      most psi(y) <= q + E, q = r + L (d(x, t) - rho) (3 and 4 at y). With E(p) the excess of
+//      the faces whose least corner is at most p (nondecreasing), psi(x) <= q + E(q + E); had
+//      q < psi(x) - E(psi(x) + E), then q + E(q + E) < psi(x). So
+//      h(x) = (psi(x) - r - E(psi(x) + E)) / L + rho(r) <= d(x, t). Along an edge psi stays
+//      within the largest spread of a face of either end's value, so each vertex takes E at
+//      its value + that spread + E and h stays linear along edges; E(p) is tabulated in 256
+//      levels, each face counted one level early. 3-5 % fewer windows on the four benchmark
+//      meshes (bench/README.md, session 20).
 //   On the bunnies h(s) is 0.95-0.98 of the distance, against 0.64 for the straight distance on
 //   the longest pair at 100K faces (bench/README.md, sessions 15 and 16).
 // The window search keys a window with max(straight bound, this bound), exact as before: the
@@ -46,7 +56,7 @@
 // vertex v with d(s, v) + d(v, t) <= U, on meshes where fast marching's slopes exceed 1. The
 // proof covers them too: every point z of a shortest path from v to t has d(s, z) + d(z, t)
 // <= U, so steps 3 and 4 hold at z (the first bound), z lies on no face step 5 rules out, and
-// the tail from z crosses only faces L and E count.
+// the tail from z crosses only faces L and E count, and those below its level for 6.
 #include <limits>
 #include <string>
 #include <vector>
@@ -85,6 +95,10 @@ struct TargetBound {
   long faces = 0;       ///< faces whose slopes entered L and E
   long faces_out = 0;   ///< steep faces step 5 found on no shortest path (left out of L and E)
 
+  /// Step 6's excess E(p) for p in [i w, (i + 1) w), i = 0..255 (w = level_width(); empty:
+  /// E at every level, e.g. no face steeper than L). Nondecreasing, at most `excess`.
+  const std::vector<double>& excess_by_level() const { return by_level_; }
+  double level_width() const { return level_width_; }  ///< w (mesh units)
   /// The lower bound at vertex v (mesh units; -infinity: none, e.g. v far from the ellipsoid).
   /// Linear along every edge between its ends' values.
   double at(int v) const {
@@ -121,6 +135,8 @@ struct TargetBound {
   std::vector<State> state_;
   std::vector<Steep> steep_;
   std::vector<int> order_;  // vertices accepted by pass 2
+  std::vector<double> by_level_;  // step 6: E up to each level of psi
+  double level_width_ = 0.0;
   RadixQueue<Item> queue_;
 };
 
