@@ -298,7 +298,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
         }
       }
       // The excess that step 6 leaves at psi = psi(s) / 2 (the faces whose least corner is
-      // below halfway + spread + E): the halfway bound as built (chosen by the whole E, 1-2 %
+      // below halfway + spread + E): the halfway bound as built (chosen by the whole E, 1.3 %
       // more windows at 100K and on the kitten: bench/README.md, session 20).
       double excess_half[kLimits] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
       for (const TargetBound::Steep& f : steep) {

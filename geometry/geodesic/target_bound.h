@@ -41,7 +41,7 @@
 //      h(x) = (psi(x) - r - E(psi(x) + E)) / L + rho(r) <= d(x, t). Along an edge psi stays
 //      within the largest spread of a face of either end's value, so each vertex takes E at
 //      its value + that spread + E and h stays linear along edges; E(p) is tabulated in 256
-//      levels, each face counted one level early. 3-5 % fewer windows on the four benchmark
+//      levels, each face counted one level early. 4-6 % fewer windows on the four benchmark
 //      meshes (bench/README.md, session 20).
 //   On the bunnies h(s) is 0.95-0.98 of the distance, against 0.64 for the straight distance on
 //   the longest pair at 100K faces (bench/README.md, sessions 15 and 16).
