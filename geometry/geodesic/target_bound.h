@@ -95,8 +95,10 @@ struct TargetBound {
   long faces = 0;       ///< faces whose slopes entered L and E
   long faces_out = 0;   ///< steep faces step 5 found on no shortest path (left out of L and E)
 
-  /// Step 6's excess E(p) for p in [i w, (i + 1) w), i = 0..255 (w = level_width(); empty:
-  /// E at every level, e.g. no face steeper than L). Nondecreasing, at most `excess`.
+  /// Step 6's table: entry i (0..255) is the excess of the steep faces whose least corner
+  /// value is below (i + 1) w, w = level_width(), each face counted one level early; a vertex
+  /// of value p takes the entry of p + (the largest face spread) + E. Empty: E at every level
+  /// (e.g. no face steeper than L). Nondecreasing, at most `excess`.
   const std::vector<double>& excess_by_level() const { return by_level_; }
   double level_width() const { return level_width_; }  ///< w (mesh units)
   /// The lower bound at vertex v (mesh units; -infinity: none, e.g. v far from the ellipsoid).
