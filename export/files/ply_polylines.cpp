@@ -29,6 +29,13 @@ void put_point(std::string& out, const Vec3& p) {
   put_number(out, p.z());
 }
 
+void put_vertex(std::string& out, const Vec3& p, long long circuit) {
+  put_point(out, p);
+  out += ' ';
+  put_integer(out, circuit);
+  out += '\n';
+}
+
 void put_edge(std::string& out, std::size_t a, std::size_t b, long long circuit) {
   put_integer(out, static_cast<long long>(a));
   out += ' ';
@@ -64,20 +71,10 @@ std::string paths_ply(const WindingPlan& plan) {
       "property int vertex1\nproperty int vertex2\nproperty int circuit\nend_header\n";
   out.reserve(out.size() + 48 * nv + 20 * ne);
   for (const Circuit& c : plan.circuits) {
-    for (const FibrePoint& p : c.points) {
-      put_point(out, p.position);
-      out += ' ';
-      put_integer(out, c.index);
-      out += '\n';
-    }
+    for (const FibrePoint& p : c.points) put_vertex(out, p.position, c.index);
   }
   for (std::size_t k = 0; k < plan.cutlines.size(); ++k) {
-    for (const Vec3& p : plan.cutlines[k].points) {
-      put_point(out, p);
-      out += ' ';
-      put_integer(out, -1 - static_cast<long long>(k));
-      out += '\n';
-    }
+    for (const Vec3& p : plan.cutlines[k].points) put_vertex(out, p, -1 - static_cast<long long>(k));
   }
   std::size_t base = 0;
   for (const Circuit& c : plan.circuits) {

@@ -283,6 +283,11 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   // where the band of windows A* must look at is widest (chosen at psi(s), the bound had 7 %
   // more windows on the bunnies: bench/README.md, session 16).
   double best = -kInf, R = 0.0, L = 1.0, E = 0.0, rho_r = 0.0, L_raw = kInf;
+  // A steep face's excess over the limit L (3): spread (1 - L / g); all its spread when g
+  // overflowed.
+  const auto face_excess = [](const TargetBound::Steep& f, double limit) {
+    return std::isfinite(f.slope) ? f.spread * (1.0 - limit / f.slope) : f.spread;
+  };
   const auto choose = [&]() {
     best = -kInf;
     for (int k = 0; k < kRadii; ++k) {
@@ -294,7 +299,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
         steepest_in = std::max(steepest_in, f.slope);
         for (int l = 0; l < kLimits; ++l) {
           if (f.slope > kLimit[l])
-            excess[l] += std::isfinite(f.slope) ? f.spread * (1.0 - kLimit[l] / f.slope) : f.spread;
+            excess[l] += face_excess(f, kLimit[l]);
         }
       }
       // The excess that step 6 leaves at psi = psi(s) / 2 (the faces whose least corner is
@@ -305,8 +310,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
         if (!(f.top > radius[k]) || f.out) continue;
         for (int l = 0; l < kLimits; ++l) {
           if (f.slope > kLimit[l] && f.low <= 0.5 * us + face_spread + excess[l])
-            excess_half[l] +=
-                std::isfinite(f.slope) ? f.spread * (1.0 - kLimit[l] / f.slope) : f.spread;
+            excess_half[l] += face_excess(f, kLimit[l]);
         }
       }
       // (Every face steeper than kLimit[0] is in `steep`: with none ruled out this is
@@ -371,7 +375,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     for (const TargetBound::Steep& f : steep) {
       if (!(f.top > R) || f.out || !(f.slope > L_raw)) continue;
       const int level = std::clamp(static_cast<int>(std::floor(f.low / width)) - 1, 0, kLevels - 1);
-      by_level[level] += std::isfinite(f.slope) ? f.spread * (1.0 - L_raw / f.slope) : f.spread;
+      by_level[level] += face_excess(f, L_raw);
     }
     for (int i = 1; i < kLevels; ++i) by_level[i] += by_level[i - 1];
     for (double& e : by_level) e = std::min(E, e * (1.0 + 1e-9) + 1e-12 * us);
