@@ -288,34 +288,50 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   const auto face_excess = [](const TargetBound::Steep& f, double limit) {
     return std::isfinite(f.slope) ? f.spread * (1.0 - limit / f.slope) : f.spread;
   };
+  // Each face's sums are gathered in one pass: a face counts for the radii below its top (the
+  // first few, the radii rising), so it is added to the bucket of the last of them and the
+  // buckets are summed downwards; its excess over each limit is computed once.
   const auto choose = [&]() {
     best = -kInf;
+    double excess[kRadii][kLimits] = {};
+    double steepest_in[kRadii];
+    std::fill(steepest_in, steepest_in + kRadii, kLimit[0]);
+    const auto radii_below = [&](double top) {
+      int n = 0;
+      while (n < kRadii && top > radius[n]) ++n;
+      return n;
+    };
+    for (const TargetBound::Steep& f : steep) {
+      if (f.out) continue;
+      const int n = radii_below(f.top);
+      if (n == 0) continue;
+      steepest_in[n - 1] = std::max(steepest_in[n - 1], f.slope);
+      for (int l = 0; l < kLimits && f.slope > kLimit[l]; ++l)
+        excess[n - 1][l] += face_excess(f, kLimit[l]);
+    }
+    for (int k = kRadii - 2; k >= 0; --k) {
+      steepest_in[k] = std::max(steepest_in[k], steepest_in[k + 1]);
+      for (int l = 0; l < kLimits; ++l) excess[k][l] += excess[k + 1][l];
+    }
+    // The excess that step 6 leaves at psi = psi(s) / 2 (the faces whose least corner is
+    // below halfway + spread + E): the halfway bound as built (chosen by the whole E, 1.3 %
+    // more windows at 100K and on the kitten: bench/README.md, session 20).
+    double excess_half[kRadii][kLimits] = {};
+    for (const TargetBound::Steep& f : steep) {
+      if (f.out) continue;
+      const int n = radii_below(f.top);
+      for (int l = 0; l < kLimits && f.slope > kLimit[l]; ++l) {
+        const double e = face_excess(f, kLimit[l]);
+        for (int k = 0; k < n; ++k) {
+          if (f.low <= 0.5 * us + face_spread + excess[k][l]) excess_half[k][l] += e;
+        }
+      }
+    }
     for (int k = 0; k < kRadii; ++k) {
       if (!(radius[k] < us) || !std::isfinite(rho[k])) continue;
-      double excess[kLimits] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-      double steepest_in = kLimit[0];
-      for (const TargetBound::Steep& f : steep) {
-        if (!(f.top > radius[k]) || f.out) continue;
-        steepest_in = std::max(steepest_in, f.slope);
-        for (int l = 0; l < kLimits; ++l) {
-          if (f.slope > kLimit[l])
-            excess[l] += face_excess(f, kLimit[l]);
-        }
-      }
-      // The excess that step 6 leaves at psi = psi(s) / 2 (the faces whose least corner is
-      // below halfway + spread + E): the halfway bound as built (chosen by the whole E, 1.3 %
-      // more windows at 100K and on the kitten: bench/README.md, session 20).
-      double excess_half[kLimits] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-      for (const TargetBound::Steep& f : steep) {
-        if (!(f.top > radius[k]) || f.out) continue;
-        for (int l = 0; l < kLimits; ++l) {
-          if (f.slope > kLimit[l] && f.low <= 0.5 * us + face_spread + excess[l])
-            excess_half[l] += face_excess(f, kLimit[l]);
-        }
-      }
       // (Every face steeper than kLimit[0] is in `steep`: with none ruled out this is
       // steepest[k].)
-      const double steepest_k = std::min(steepest[k], steepest_in);
+      const double steepest_k = std::min(steepest[k], steepest_in[k]);
       const auto consider = [&](double limit, double e, double e_half) {
         if (!std::isfinite(limit)) return;
         const double raw = e > 0.0 ? limit : kInf;  // (step 6's faces: steeper than this)
@@ -337,7 +353,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       };
       consider(steepest_k, 0.0, 0.0);
       for (int l = 0; l < kLimits; ++l) {
-        if (kLimit[l] < steepest_k) consider(kLimit[l], excess[l], excess_half[l]);
+        if (kLimit[l] < steepest_k) consider(kLimit[l], excess[k][l], excess_half[k][l]);
       }
     }
   };

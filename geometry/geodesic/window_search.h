@@ -331,14 +331,18 @@ class Search {
   // The window's queue key (*order) and its lower bound of the paths to the target through it
   // (*bound, the A* bound), both its distance from the source in a full run.
   void keys(const Window& w, double* order, double* bound) {
+    // The window's least distance from the source, computed only where it is used (the A*
+    // order of a search to one target without landmarks needs none).
+    const auto nearest = [&] {
+      return w.sigma + norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0});
+    };
+    if (target_ < 0) {
+      *order = *bound = nearest();
+      return;
+    }
     // min over x in [b0, b1] of |I - (x, 0)| + |(x, 0) - t|: the target at its distance r
     // from the edge's line, unfolded to the other side (T = (tx, r)); the sum is convex in x
     // with its minimum where I -> T crosses the line.
-    const double nearest = w.sigma + norm(w.source - Vec2{std::clamp(w.source.x, w.b0, w.b1), 0.0});
-    if (target_ < 0) {
-      *order = *bound = nearest;
-      return;
-    }
     const double len = length(w);
     const Vec2 T = target_in_frame(w.h);
     const Vec2& I = w.source;
@@ -348,12 +352,12 @@ class Search {
     double key = w.sigma + norm(X - I) + norm(T - X);
     if (bound_ != nullptr) key = std::max(key, target_bound_key(w, len));
     if (landmarks_ != nullptr) {
-      key =
-          std::max(key, nearest + landmark_edge_bound(*landmarks_, target_landmark_.data(),
-                                                      original_[frame_[w.h].from],
-                                                      original_[frame_[w.h].to], len, w.b0, w.b1));
+      const double through = landmark_edge_bound(*landmarks_, target_landmark_.data(),
+                                                 original_[frame_[w.h].from],
+                                                 original_[frame_[w.h].to], len, w.b0, w.b1);
+      key = std::max(key, nearest() + through);
     }
-    *order = distance_order_ ? nearest : key;
+    *order = distance_order_ ? nearest() : key;
     *bound = key;
   }
 
