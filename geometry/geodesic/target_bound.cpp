@@ -110,15 +110,20 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   const EdgeGraph& graph = wm.graph;
   const Vec3 ps = mesh.position(source), pt = mesh.position(target);
   const double chord = (ps - pt).norm();
+  // Both passes keep Dijkstra's order only to within a bucket, a 32nd of the longest edge
+  // (geometry/geodesic/bucket_queue.h): neither needs it exact (below), and the windows are the
+  // same to within a few per million (bench/README.md, session 21).
   auto& queue = b->queue_;
+  const double bucket = wm.max_edge > 0.0 ? wm.max_edge / 32.0 : 1.0;
 
   // 1. U: A* from the target to the source over the vertex graph with diagonals (a mesh edge,
   // or the straight line across the edge between two faces whose unfolding is convex: the
   // straight distance to the source is consistent). Such a path is a surface path, so its
   // length bounds D from above; the diagonals bring it within a few per mille of D (a few per
   // cent along edges alone), which narrows the ellipsoid of 2 and 3 (bench/README.md,
-  // session 16).
-  queue.clear();
+  // session 16). (A vertex closed out of order keeps a path a little longer than its shortest:
+  // still a path.)
+  queue.reset(bucket);
   touch(target).graph = 0.0;
   queue.push({chord, target});
   double graph_path = kInf;
@@ -220,9 +225,9 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   };
 
   // 2. psi: fast marching from the target over the vertices within U + 2 max_edge of the foci
-  // (every corner of a face that the ellipsoid meets: see 3), in Dijkstra's order (a
-  // point-source value may fall below the key last popped: the radix queue raises its key, and
-  // psi may be any function for 3). (Until session 16 it reached U + 4 max_edge: the same
+  // (every corner of a face that the ellipsoid meets: see 3), in Dijkstra's order to within a
+  // bucket (a point-source value may fall below the current bucket: the queue takes it there,
+  // and psi may be any function for 3). (Until session 16 it reached U + 4 max_edge: the same
   // windows, 2-5 % more time per path.)
   const double reach = U + 2.0 * wm.max_edge;
   // |w s| + |w t| (w touched), computed once per query.
@@ -234,7 +239,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     }
     return s.foci;
   };
-  queue.clear();
+  queue.reset(bucket);
   auto& order = b->order_;
   order.clear();
   state[target].value = 0.0;

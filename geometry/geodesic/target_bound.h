@@ -62,7 +62,7 @@
 #include <vector>
 
 #include "geometry/mesh/mesh.h"
-#include "geometry/geodesic/radix_queue.h"
+#include "geometry/geodesic/bucket_queue.h"
 
 namespace windplan {
 
@@ -139,7 +139,7 @@ struct TargetBound {
   std::vector<int> order_;  // vertices accepted by pass 2
   std::vector<double> by_level_;  // step 6: E up to each level of psi
   double level_width_ = 0.0;
-  RadixQueue<Item> queue_;
+  BucketQueue<Item> queue_;
 };
 
 /// Builds `bound` for a search from `source` to `target`, vertices of window_mesh's renumbered
@@ -148,7 +148,8 @@ struct TargetBound {
 /// (options.min_detour, options.min_edges), the source is unreachable, source == target, or
 /// the bound at the source would not be positive.
 /// Cost: an A* over the vertex graph and a fast marching over the vertices near the
-/// ellipsoid, O(n log n) in them; the faces' slopes are read as the marching completes each.
+/// ellipsoid, O(n) in them with a bucket queue (plus one step per bucket, a 32nd of the longest
+/// edge, up to U); the faces' slopes are read as the marching completes each.
 void build_target_bound(const WindowMesh& window_mesh, int source, int target, double upper_bound,
                         const TargetBoundOptions& options, TargetBound* bound);
 
