@@ -8,7 +8,7 @@
 // It serves searches whose order need only be close to Dijkstra's: the target bound's two passes
 // (geometry/geodesic/target_bound.cpp), where any function is a valid psi and any path's length
 // a valid upper bound. There it takes a quarter of the bound's instructions off the radix heap's
-// (geometry/geodesic/radix_queue.h) with the same windows to within a few per million
+// (geometry/geodesic/radix_queue.h) with the same windows to within 2e-5 of their number
 // (bench/README.md, session 21). Exact orders use the radix heap.
 #include <cstddef>
 #include <vector>

@@ -112,7 +112,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   const double chord = (ps - pt).norm();
   // Both passes keep Dijkstra's order only to within a bucket, a 32nd of the longest edge
   // (geometry/geodesic/bucket_queue.h): neither needs it exact (below), and the windows are the
-  // same to within a few per million (bench/README.md, session 21).
+  // same to within 2e-5 of their number (bench/README.md, session 21).
   auto& queue = b->queue_;
   const double bucket = wm.max_edge > 0.0 ? wm.max_edge / 32.0 : 1.0;
 
