@@ -298,7 +298,8 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   };
   // Each face's sums are gathered in one pass: a face counts for the radii below its top (the
   // first few, the radii rising), so it is added to the bucket of the last of them and the
-  // buckets are summed downwards; its excess over each limit is computed once.
+  // buckets are summed downwards; its excess over each limit is computed once per pass (it
+  // was once per radius).
   const auto choose = [&]() {
     best = -kInf;
     double excess[kRadii][kLimits] = {};
