@@ -32,7 +32,7 @@ class BucketQueue {
       v.clear();
     }
     current_ = 0;
-    width_ = width;
+    per_width_ = 1.0 / width;
   }
 
   bool empty() const { return size_ == 0; }
@@ -41,7 +41,7 @@ class BucketQueue {
   /// Adds `item`: to the current bucket when its key is below it, to the ring's last bucket when
   /// its key lies beyond the ring.
   void push(const Item& item) {
-    const double at = item.key / width_;
+    const double at = item.key * per_width_;
     const long b = at < static_cast<double>(current_) ? current_
                    : at >= static_cast<double>(current_ + kBuckets - 1)
                        ? current_ + kBuckets - 1
@@ -63,8 +63,8 @@ class BucketQueue {
  private:
   std::vector<Item> buckets_[kBuckets];
   std::size_t size_ = 0;
-  long current_ = 0;  // the current bucket's number (on the ring: modulo kBuckets)
-  double width_ = 1.0;
+  long current_ = 0;        // the current bucket's number (on the ring: modulo kBuckets)
+  double per_width_ = 1.0;  // 1 / the bucket width
 };
 
 }  // namespace windplan

@@ -66,7 +66,7 @@ WindowMesh prepare_window_mesh(const Mesh& original) {
     const int first = mesh.vertex_halfedge(v);
     for (int o = first; o >= 0;) {
       const HalfedgeFrame& f = w.frame[o];
-      w.ring.push_back({f.to, f.opposite, f.len, f.len_prev, f.cx, f.cy});
+      w.ring.push_back({f.to, f.opposite, f.len, f.len_prev, f.cx, f.cy, f.len_next});
       o = mesh.ccw_rotate(o);
       if (o == first) break;
     }

@@ -112,12 +112,13 @@ struct alignas(64) HalfedgeFrame {
 };
 
 /// A face seen from one of its corners v: the other corners (next, then the one after), the
-/// lengths of v -> next and v -> after, and the face's frame (v at the origin, next at
-/// (len, 0), after at (cx, cy), cy >= 0).
+/// lengths of v -> next, v -> after and next -> after, and the face's frame (v at the origin,
+/// next at (len, 0), after at (cx, cy), cy >= 0).
 struct RingCorner {
   int next, after;
   double len, len_after;
   double cx, cy;
+  double len_across;
 };
 
 /// Per-mesh data of the window search, built once per mesh (O(V log V + F log F)). The search

@@ -25,30 +25,39 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // The point source S in the plane with |S P| = up and |S Q| = uq, on the side of P Q away from
-// R (P at the origin, Q at (qx, qy), |P Q| = lq); its distance to R, or +infinity when no such S
-// exists or the segment S R misses P Q (the corners' values then come from no one source seen
-// through the edge). Exact where the surface unfolds flat between S and R, which the plane
-// wave (a source at infinity) is not: on the bunnies, 3 % fewer windows (bench/README.md,
-// session 16).
-double point_source(double up, double qx, double qy, double lq, double uq, double rx, double ry) {
-  const double ex = qx / lq, ey = qy / lq;
-  // The unit normal of P Q towards R, and R in the frame (along P Q, along the normal).
-  double mx = -ey, my = ex;
-  if (mx * rx + my * ry < 0.0) {
-    mx = -mx;
-    my = -my;
-  }
-  const double re = rx * ex + ry * ey, rm = rx * mx + ry * my;
+// R (P at the origin, Q at lq (ex, ey), per_lq = 1 / lq), given R in the frame of P Q: re
+// along it, rm > 0 along its normal towards R. Returns S's distance to R, or +infinity when no
+// such S exists or the segment S R misses P Q (the corners' values then come from no one
+// source seen through the edge). Exact where the surface unfolds flat between S and R, which
+// the plane wave (a source at infinity) is not: on the bunnies, 3 % fewer windows
+// (bench/README.md, session 16). No division here: the caller's one reciprocal serves.
+inline double point_source(double up, double lq, double per_lq, double uq, double re, double rm) {
   if (!(rm > 0.0)) return kInf;
   // S = (a, -b): |S P| = up, |S Q| = uq.
-  const double a = (up * up - uq * uq + lq * lq) / (2.0 * lq);
+  const double a = (up * up - uq * uq + lq * lq) * (0.5 * per_lq);
   const double bb = up * up - a * a;
   if (!(bb >= 0.0)) return kInf;
   const double b = std::sqrt(bb);
-  // Where S R crosses the line of P Q.
-  const double cross = a + (re - a) * b / (b + rm);
-  if (!(cross >= 0.0 && cross <= lq)) return kInf;
+  // S R crosses the line of P Q at x = a + (re - a) b / (b + rm), which must lie on P Q
+  // (compared times b + rm > 0).
+  const double cross = a * (b + rm) + (re - a) * b;
+  if (!(cross >= 0.0 && cross <= lq * (b + rm))) return kInf;
   return std::sqrt((re - a) * (re - a) + (rm + b) * (rm + b));
+}
+
+// The face's third corner C = (cx, cy), cy > 0, lit through A B (A at the origin, B at
+// (len, 0)) by the source at distances ua from A and ub from B.
+inline double source_through_next(double ua, double ub, double len, double cx, double cy) {
+  return point_source(ua, len, 1.0 / len, ub, cx, cy);
+}
+
+// B = (len, 0) lit through A C (C at (cx, cy), cy > 0, |A C| = la) by the source at distances
+// ua from A and uc from C. In the frame of A C (unit e = C / la), B lies at len (ex, ey),
+// ey > 0 on the normal's side away from the source.
+inline double source_through_after(double ua, double uc, double la, double len, double cx,
+                                   double cy) {
+  const double per_la = 1.0 / la;
+  return point_source(ua, la, per_la, uc, len * (cx * per_la), len * (cy * per_la));
 }
 
 }  // namespace
@@ -110,6 +119,16 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   const EdgeGraph& graph = wm.graph;
   const Vec3 ps = mesh.position(source), pt = mesh.position(target);
   const double chord = (ps - pt).norm();
+  // |w s| + |w t| (w touched), computed once per query (the A* of 1 keys by |w s|, the
+  // marching of 2 stops at the ellipsoid by the sum).
+  const auto foci = [&](State& s, int w) {
+    if (s.foci < 0.0) {
+      const Vec3& p = mesh.position(w);
+      s.to_target = (p - pt).norm();
+      s.foci = (p - ps).norm() + s.to_target;
+    }
+    return s.foci;
+  };
   // Both passes keep Dijkstra's order only to within a bucket, a 32nd of the longest edge
   // (geometry/geodesic/bucket_queue.h): neither needs it exact (below), and the windows are the
   // same to within 2e-5 of their number (bench/README.md, session 21).
@@ -144,7 +163,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       const double g = gv + graph.weights[j];
       if (g < sw.graph) {
         sw.graph = g;
-        queue.push({g + (mesh.position(w) - ps).norm(), w});
+        queue.push({g + (foci(sw, w) - sw.to_target), w});
       }
     }
   }
@@ -183,7 +202,13 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   constexpr int kRadii = 6;
   const double radius[kRadii] = {0.0, 0.01 * U, 0.02 * U, 0.04 * U, 0.08 * U, 0.16 * U};
   double rho[kRadii] = {0.0, kInf, kInf, kInf, kInf, kInf};
+  // steepest[k]: the largest slope of a face with a corner above radius k, gathered per face in
+  // the bucket of the last radius below its top and taken downwards after 2. The mild faces
+  // (below kLimit[0], most of them) enter as slope^2 = num / den, the largest kept as its pair
+  // (compared by cross products: no division or root for them).
   double steepest[kRadii] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+  double mild_num[kRadii] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+  double mild_den[kRadii] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
   auto& steep = b->steep_;
   steep.clear();
   long faces = 0;
@@ -191,8 +216,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   // The face v, c.next, c.after (v at the origin of c's frame), all accepted.
   const auto face_statistics = [&](int v, const RingCorner& c, const State& sa, const State& sb,
                                    const State& sc) {
-    const double len_bc = std::sqrt((c.len - c.cx) * (c.len - c.cx) + c.cy * c.cy);
-    const double longest = std::max({c.len, c.len_after, len_bc});
+    const double longest = std::max({c.len, c.len_after, c.len_across});
     if (std::max({sa.foci, sb.foci, sc.foci}) - 2.0 * longest > U) return;
     ++faces;
     const double u[3] = {sa.value, sb.value, sc.value};
@@ -207,15 +231,35 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
                                      : level_set_distance(corner, u, r, pt);
       rho[k] = std::min(rho[k], dist);
     }
+    // The radii below the face's top (a prefix: the radii rise; most faces lie above them all).
+    int n = kRadii;
+    if (!(top > radius[kRadii - 1])) {
+      n = 0;
+      while (n < kRadii && top > radius[n]) ++n;
+    }
+    // psi's gradient g in the frame: g . (len, 0) = d1, g . (cx, cy) = d2, so
+    // |g|^2 = ((d1 cy)^2 + (d2 len - d1 cx)^2) / (len cy)^2 = num / den. A face below the least
+    // limit by more than 1e-9 (far beyond round-off) is mild: it only enters steepest. Any other
+    // face, and one whose num or den over- or underflowed, takes its slope as before.
+    if (c.cy > 0.0 && c.len > 0.0) {
+      const double d1 = u[1] - u[0], d2 = u[2] - u[0];
+      const double p = d1 * c.cy, q = d2 * c.len - d1 * c.cx, area = c.len * c.cy;
+      const double num = p * p + q * q, den = area * area;
+      if (den > 0.0 && num <= (1.0 - 1e-9) * kLimit[0] * kLimit[0] * den) {
+        if (n > 0 && num * mild_den[n - 1] > mild_num[n - 1] * den) {
+          mild_num[n - 1] = num;
+          mild_den[n - 1] = den;
+        }
+        return;
+      }
+    }
     double slope = kInf;
     if (c.cy > 0.0 && c.len > 0.0) {
       const double gx = (u[1] - u[0]) / c.len, gy = ((u[2] - u[0]) - gx * c.cx) / c.cy;
       slope = std::sqrt(gx * gx + gy * gy);
       if (std::isnan(slope)) slope = kInf;  // (an overflow: taken as the steepest)
     }
-    for (int k = 0; k < kRadii; ++k) {
-      if (top > radius[k]) steepest[k] = std::max(steepest[k], slope);
-    }
+    if (n > 0) steepest[n - 1] = std::max(steepest[n - 1], slope);
     if (!(slope <= kLimit[0])) {
       const double near_s =
           std::min({sa.foci - sa.to_target, sb.foci - sb.to_target, sc.foci - sc.to_target}) -
@@ -230,15 +274,6 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   // and psi may be any function for 3). (Until session 16 it reached U + 4 max_edge: the same
   // windows, 2-5 % more time per path.)
   const double reach = U + 2.0 * wm.max_edge;
-  // |w s| + |w t| (w touched), computed once per query.
-  const auto foci = [&](State& s, int w) {
-    if (s.foci < 0.0) {
-      const Vec3& p = mesh.position(w);
-      s.to_target = (p - pt).norm();
-      s.foci = (p - ps).norm() + s.to_target;
-    }
-    return s.foci;
-  };
   queue.reset(bucket);
   auto& order = b->order_;
   order.clear();
@@ -277,10 +312,14 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       if (c_open) offer(sc, c.after, uv + c.len_after);
       if (!(c.cy > 0.0 && c.len > 0.0 && c.len_after > 0.0)) continue;
       if (c_open && sb.accepted)
-        offer(sc, c.after, point_source(uv, c.len, 0.0, c.len, sb.value, c.cx, c.cy));
+        offer(sc, c.after, source_through_next(uv, sb.value, c.len, c.cx, c.cy));
       if (b_open && sc.accepted)
-        offer(sb, c.next, point_source(uv, c.cx, c.cy, c.len_after, sc.value, c.len, 0.0));
+        offer(sb, c.next, source_through_after(uv, sc.value, c.len_after, c.len, c.cx, c.cy));
     }
+  }
+  for (int k = kRadii - 1; k >= 0; --k) {
+    steepest[k] = std::max(steepest[k], std::sqrt(mild_num[k] / mild_den[k]));
+    if (k + 1 < kRadii) steepest[k] = std::max(steepest[k], steepest[k + 1]);
   }
   b->vertices = static_cast<long>(order.size());
   if (!(state[source].mark == stamp && state[source].accepted)) return;
@@ -325,16 +364,25 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     // The excess that step 6 leaves at psi = psi(s) / 2 (the faces whose least corner is
     // below halfway + spread + E): the halfway bound as built (chosen by the whole E, 1.3 %
     // more windows at 100K and on the kitten: bench/README.md, session 20).
+    // excess[k][l] falls as k rises, so the radii whose threshold a face's least corner is
+    // under are a prefix of those below its top: the face goes to the bucket of the last of
+    // them, and the buckets are summed downwards (as above).
+    double threshold[kLimits][kRadii];
+    for (int l = 0; l < kLimits; ++l) {
+      for (int k = 0; k < kRadii; ++k) threshold[l][k] = 0.5 * us + face_spread + excess[k][l];
+    }
     double excess_half[kRadii][kLimits] = {};
     for (const TargetBound::Steep& f : steep) {
       if (f.out) continue;
       const int n = radii_below(f.top);
       for (int l = 0; l < kLimits && f.slope > kLimit[l]; ++l) {
-        const double e = face_excess(f, kLimit[l]);
-        for (int k = 0; k < n; ++k) {
-          if (f.low <= 0.5 * us + face_spread + excess[k][l]) excess_half[k][l] += e;
-        }
+        int m = 0;
+        while (m < n && f.low <= threshold[l][m]) ++m;
+        if (m > 0) excess_half[m - 1][l] += face_excess(f, kLimit[l]);
       }
+    }
+    for (int k = kRadii - 2; k >= 0; --k) {
+      for (int l = 0; l < kLimits; ++l) excess_half[k][l] += excess_half[k + 1][l];
     }
     for (int k = 0; k < kRadii; ++k) {
       if (!(radius[k] < us) || !std::isfinite(rho[k])) continue;
@@ -406,6 +454,9 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     for (double& e : by_level) e = std::min(E, e * (1.0 + 1e-9) + 1e-12 * us);
     b->level_width_ = width;
   }
+  // (Products by the reciprocals, not divisions: L carries a margin of 1e-9, and each face is
+  // counted a level early, far beyond the reciprocals' round-off.)
+  const double per_width = width > 0.0 ? 1.0 / width : 0.0, per_limit = 1.0 / L;
   for (const int v : order) {
     State& sv = state[v];
     if (!(R == 0.0 || sv.value > R)) {
@@ -414,10 +465,10 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     }
     double e = E;
     if (!by_level.empty()) {
-      const double level = std::floor((sv.value + shift) / width);
+      const double level = std::floor((sv.value + shift) * per_width);
       e = level < kLevels ? by_level[static_cast<int>(level)] : E;
     }
-    sv.value = (sv.value - R - e) / L + rho_r;
+    sv.value = (sv.value - R - e) * per_limit + rho_r;
   }
   b->slope = L;
   b->excess = E;
