@@ -240,12 +240,14 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     // psi's gradient g in the frame: g . (len, 0) = d1, g . (cx, cy) = d2, so
     // |g|^2 = ((d1 cy)^2 + (d2 len - d1 cx)^2) / (len cy)^2 = num / den. A face below the least
     // limit by more than 1e-9 (far beyond round-off) is mild: it only enters steepest. Any other
-    // face, and one whose num or den over- or underflowed, takes its slope as before.
+    // face takes its slope as before, and so does a face whose den lies outside [1e-140, 1e140]
+    // (edges beyond about 1e-35 and 1e35), where den could lose its precision or the cross
+    // products below overflow.
     if (c.cy > 0.0 && c.len > 0.0) {
       const double d1 = u[1] - u[0], d2 = u[2] - u[0];
       const double p = d1 * c.cy, q = d2 * c.len - d1 * c.cx, area = c.len * c.cy;
       const double num = p * p + q * q, den = area * area;
-      if (den > 0.0 && num <= (1.0 - 1e-9) * kLimit[0] * kLimit[0] * den) {
+      if (den >= 1e-140 && den <= 1e140 && num <= (1.0 - 1e-9) * kLimit[0] * kLimit[0] * den) {
         if (n > 0 && num * mild_den[n - 1] > mild_num[n - 1] * den) {
           mild_num[n - 1] = num;
           mild_den[n - 1] = den;

@@ -195,6 +195,52 @@ TEST(TargetBound, NoneForStraightPairs) {
   EXPECT_FALSE(bound.active);
 }
 
+// The bound scales with the mesh: on the hills shrunk or grown by 1e30 and 1e37 it is the
+// unit mesh's bound times the factor, to 1e-9 of U. At 1e+-30 the faces below the least limit
+// take the slope^2 = num / den path, with no root or division; at 1e+-37 (edges beyond 1e-35
+// and 1e35) that path would lose den's precision or overflow its cross products, and they take
+// the slope as the steep faces do.
+TEST(TargetBound, TheSameBoundAtEveryScale) {
+  const TriangleSoup unit = test::hills(30, 6.0);
+  const Mesh mesh(unit);
+  const WindowMesh wm = prepare_window_mesh(mesh);
+  const std::vector<int>& local = wm.order.vertex_to_local;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
+  std::vector<std::pair<int, int>> pairs;
+  while (pairs.size() < 12) {
+    const int s = pick(rng), t = pick(rng);
+    if (s != t) pairs.push_back({s, t});
+  }
+  TargetBound bound, scaled_bound;
+  for (const double k : {1e-37, 1e-30, 1e30, 1e37}) {
+    TriangleSoup soup = unit;
+    for (Vec3& p : soup.points) p *= k;
+    const Mesh scaled(soup);
+    const WindowMesh swm = prepare_window_mesh(scaled);
+    ASSERT_EQ(swm.order.vertex_to_local, local);
+    int active = 0;
+    for (const auto& [s, t] : pairs) {
+      build_target_bound(wm, local[s], local[t], kInf, {}, &bound);
+      build_target_bound(swm, local[s], local[t], kInf, {}, &scaled_bound);
+      ASSERT_EQ(scaled_bound.active, bound.active) << k << ": " << s << " -> " << t;
+      if (!bound.active) continue;
+      ++active;
+      EXPECT_NEAR(scaled_bound.upper / k, bound.upper, 1e-12 * bound.upper);
+      EXPECT_NEAR(scaled_bound.slope, bound.slope, 1e-12);
+      for (int v = 0; v < mesh.num_vertices(); ++v) {
+        const double h = bound.at(local[v]), hk = scaled_bound.at(local[v]);
+        ASSERT_EQ(std::isfinite(hk), std::isfinite(h)) << k << ": vertex " << v;
+        if (std::isfinite(h)) {
+          EXPECT_NEAR(hk / k, h, 1e-9 * bound.upper) << k << ": vertex " << v;
+        }
+      }
+    }
+    EXPECT_GE(active, 6) << k;
+  }
+}
+
 // A long, nearly straight pair gets the bound from its length alone (min_edges): on a plane U
 // (edges and diagonals) is 1.023 |s t|, below min_detour, but 128 units is more than 60 longest
 // edges (sqrt 2 each). Without min_edges, none; a short pair, none.
