@@ -209,6 +209,14 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   double steepest[kRadii] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
   double mild_num[kRadii] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
   double mild_den[kRadii] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0};
+  // How many radii lie below a face's top: a prefix, the radii rising (most faces lie above
+  // them all).
+  const auto radii_below = [&](double top) {
+    if (top > radius[kRadii - 1]) return kRadii;
+    int n = 0;
+    while (n < kRadii && top > radius[n]) ++n;
+    return n;
+  };
   auto& steep = b->steep_;
   steep.clear();
   long faces = 0;
@@ -231,18 +239,14 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
                                      : level_set_distance(corner, u, r, pt);
       rho[k] = std::min(rho[k], dist);
     }
-    // The radii below the face's top (a prefix: the radii rise; most faces lie above them all).
-    int n = kRadii;
-    if (!(top > radius[kRadii - 1])) {
-      n = 0;
-      while (n < kRadii && top > radius[n]) ++n;
-    }
+    const int n = radii_below(top);
     // psi's gradient g in the frame: g . (len, 0) = d1, g . (cx, cy) = d2, so
     // |g|^2 = ((d1 cy)^2 + (d2 len - d1 cx)^2) / (len cy)^2 = num / den. A face below the least
     // limit by more than 1e-9 (far beyond round-off) is mild: it only enters steepest. Any other
     // face takes its slope as before, and so does a face whose den lies outside [1e-140, 1e140]
     // (edges beyond about 1e-35 and 1e35), where den could lose its precision or the cross
     // products below overflow.
+    double slope = kInf;
     if (c.cy > 0.0 && c.len > 0.0) {
       const double d1 = u[1] - u[0], d2 = u[2] - u[0];
       const double p = d1 * c.cy, q = d2 * c.len - d1 * c.cx, area = c.len * c.cy;
@@ -254,10 +258,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
         }
         return;
       }
-    }
-    double slope = kInf;
-    if (c.cy > 0.0 && c.len > 0.0) {
-      const double gx = (u[1] - u[0]) / c.len, gy = ((u[2] - u[0]) - gx * c.cx) / c.cy;
+      const double gx = d1 / c.len, gy = (d2 - gx * c.cx) / c.cy;
       slope = std::sqrt(gx * gx + gy * gy);
       if (std::isnan(slope)) slope = kInf;  // (an overflow: taken as the steepest)
     }
@@ -346,11 +347,6 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     double excess[kRadii][kLimits] = {};
     double steepest_in[kRadii];
     std::fill(steepest_in, steepest_in + kRadii, kLimit[0]);
-    const auto radii_below = [&](double top) {
-      int n = 0;
-      while (n < kRadii && top > radius[n]) ++n;
-      return n;
-    };
     for (const TargetBound::Steep& f : steep) {
       if (f.out) continue;
       const int n = radii_below(f.top);
