@@ -73,7 +73,6 @@ WindowMesh prepare_window_mesh(const Mesh& original) {
   }
   w.ring_start[mesh.num_vertices()] = static_cast<int>(w.ring.size());
   w.graph = build_edge_graph(mesh, {}, true);
-  std::vector<int>().swap(w.graph.via);
   return w;
 }
 

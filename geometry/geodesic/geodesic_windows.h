@@ -23,7 +23,10 @@
 //
 // Order: without an upper bound, A* (the target is reached first, then the bound prunes); with
 // one, Dijkstra's order by the distance from the source, pruned by the same bound (a window is
-// then propagated after the shorter windows that may cut it). The queue holds halfedges, each
+// then propagated after the shorter windows that may cut it). A search to one target with the
+// target bound gets one before it starts: the bound's graph path straightened into a locally
+// shortest geodesic, usually D itself (geometry/geodesic/target_bound.h, step 1; 8-14 % fewer
+// windows than A* on the benchmark meshes, bench/README.md, session 23). The queue holds halfedges, each
 // at the smallest key of the windows queued on it, and a halfedge out of the queue propagates
 // all of them at once (Qin et al.'s list at a time, "Fast and exact discrete geodesic
 // computation based on triangle-oriented wavefront propagation", SIGGRAPH 2016): its data is
@@ -140,9 +143,10 @@ struct WindowMesh {
   /// The longest edge (mesh units; geometry/geodesic/target_bound.h).
   double max_edge = 0.0;
   /// The vertex graph with the diagonals across convex pairs of faces (geometry/geodesic/
-  /// edge_path.h; no via), whose shortest paths are a few per mille longer than the
-  /// geodesics, not a few per cent: target_bound.h's upper bound U (12 bytes per entry, about
-  /// 12 entries per vertex).
+  /// edge_path.h, with the edges they cross), whose shortest paths are about a per cent longer
+  /// than the geodesics (1.2 % at the median of the 50 benchmark pairs at 20K faces,
+  /// bench/README.md, session 23), not a few per cent: target_bound.h's path for U (16 bytes
+  /// per entry, about 12 entries per vertex).
   EdgeGraph graph;
 };
 WindowMesh prepare_window_mesh(const Mesh& mesh);

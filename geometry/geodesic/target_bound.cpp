@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/base/errors.h"
+#include "geometry/geodesic/edge_path.h"
 #include "geometry/geodesic/geodesic_windows.h"
+#include "geometry/geodesic/refine_path.h"
 
 namespace windplan {
 
@@ -60,6 +63,40 @@ inline double source_through_after(double ua, double uc, double la, double len, 
   return point_source(ua, la, per_la, uc, len * (cx * per_la), len * (cy * per_la));
 }
 
+// Step 1's graph path (from `source`, each vertex's parent_entry the graph entry of the vertex
+// after it towards `target`) straightened into a locally shortest geodesic of its corridor: its
+// length (+infinity when the corridor cannot be built). A diagonal entry u -> w names the edge it
+// crosses in u's face; the path runs w -> u, so its strip crosses that edge's twin.
+double straightened_length(const WindowMesh& wm, int source, int target,
+                           const std::vector<int>& parent_entry) {
+  const Mesh& mesh = wm.order.mesh;
+  const EdgeGraph& graph = wm.graph;
+  std::vector<int> vertices{source}, via{-1};
+  for (int v = source; v != target;) {
+    if (vertices.size() > static_cast<std::size_t>(mesh.num_vertices())) return kInf;
+    const int j = parent_entry[v];
+    const int u = static_cast<int>(std::upper_bound(graph.offsets.begin(), graph.offsets.end(), j) -
+                                   graph.offsets.begin()) - 1;
+    vertices.push_back(u);
+    via.push_back(graph.via.empty() || graph.via[j] < 0 ? -1 : mesh.twin(graph.via[j]));
+    v = u;
+  }
+  // The straightening's rounds stop at 100 iterations: any path it leaves is a surface path,
+  // hence a valid U (the funnel already gives the shortest path of the corridor).
+  GeodesicOptions options;
+  options.max_iterations = 100;
+  try {
+    const SurfacePath strip = strip_from_vertex_path(mesh, SurfacePoint::at_vertex(source), vertices,
+                                                     SurfacePoint::at_vertex(target), &via);
+    const double length = refine_path(mesh, strip, {}, options).summary.final_length;
+    return length > 0.0 ? length : kInf;
+  } catch (const Error&) {
+    // A corridor the strip code cannot follow (its invariants name it): U stays the graph
+    // path's length, and the search runs as A* (nothing it finds depends on this).
+    return kInf;
+  }
+}
+
 }  // namespace
 
 double level_set_distance(const Vec3 corner[3], const double value[3], double r, const Vec3& t) {
@@ -97,10 +134,12 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   b->vertices = 0;
   b->faces = 0;
   b->faces_out = 0;
+  b->local_length = kInf;
   if (source == target) return;
   using State = TargetBound::State;
   if (static_cast<int>(b->state_.size()) != nv) {
     b->state_.assign(nv, State{0u, 0, 0, kInf, kInf, -1.0, 0.0});
+    b->parent_entry_.assign(nv, -1);
     b->stamp_ = 0;
   }
   if (++b->stamp_ == 0) {
@@ -138,7 +177,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   // 1. U: A* from the target to the source over the vertex graph with diagonals (a mesh edge,
   // or the straight line across the edge between two faces whose unfolding is convex: the
   // straight distance to the source is consistent). Such a path is a surface path, so its
-  // length bounds D from above; the diagonals bring it within a few per mille of D (a few per
+  // length bounds D from above; the diagonals bring it within about a per cent of D (a few per
   // cent along edges alone), which narrows the ellipsoid of 2 and 3 (bench/README.md,
   // session 16). (A vertex closed out of order keeps a path a little longer than its shortest:
   // still a path.)
@@ -163,11 +202,16 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       const double g = gv + graph.weights[j];
       if (g < sw.graph) {
         sw.graph = g;
+        b->parent_entry_[w] = j;
         queue.push({g + (foci(sw, w) - sw.to_target), w});
       }
     }
   }
-  const double U = std::min(upper_bound, graph_path);
+  if (options.straighten_upper && std::isfinite(graph_path)) {
+    const double l = straightened_length(wm, source, target, b->parent_entry_);
+    if (l < graph_path) b->local_length = l;
+  }
+  const double U = std::min({upper_bound, graph_path, b->local_length * (1.0 + 1e-9)});
   b->upper = U;
   if (!std::isfinite(U) ||
       (U < options.min_detour * chord && U < options.min_edges * wm.max_edge))

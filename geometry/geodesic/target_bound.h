@@ -11,6 +11,13 @@
 //      sought, unless the caller's bound is below D, when the search finds no path anyway.
 //      Every point y of a shortest path then has |y s| + |y t| <= D <= U: the path lies in the
 //      ellipsoid with foci s and t.
+//      That path is about 1 % longer than D; straightened in its corridor into a locally
+//      shortest geodesic (geometry/geodesic/refine_path.h) it is usually D itself (39 of the 50
+//      benchmark pairs at 20K faces to 1e-9, 45 within 6e-5): its length l, a surface path's,
+//      becomes U (times 1 + 1e-9 against round-off) and TargetBound::local_length. The window
+//      search then knows a length within a hair of D from its start and runs in Dijkstra's
+//      order below it, which leaves fewer windows cut in vain than A* order does (8-14 % fewer
+//      windows on the four benchmark meshes, bench/README.md, session 23).
 //   2. psi: fast marching from the target (point-source updates, each face placing the source
 //      from its two known corners, exact where the surface unfolds flat) over the
 //      vertices near that ellipsoid: an approximate distance, no bound by itself.
@@ -69,8 +76,8 @@ namespace windplan {
 struct WindowMesh;  // geometry/geodesic/geodesic_windows.h
 
 struct TargetBoundOptions {
-  /// Built only when U (the length of a path along edges and diagonals, within a few per mille
-  /// of the geodesic's) is at least this many times the straight distance |s t|
+  /// Built only when U (the length of a path along edges and diagonals, about 1 % above the
+  /// geodesic's, or that path straightened) is at least this many times the straight distance |s t|
   /// (dimensionless): below, the straight distance is already within this factor of the
   /// geodesic's and the field would cost more than it saves (bench/README.md, sessions 15-16:
   /// 1.1 when U ran along edges only, a few per cent longer).
@@ -79,6 +86,9 @@ struct TargetBoundOptions {
   /// pair the straight distance's band holds so many windows that even a nearly straight pair
   /// gains (bench/README.md, session 16). +infinity: by min_detour alone.
   double min_edges = 60.0;
+  /// Straighten the path of step 1 into a locally shortest geodesic of its corridor and take
+  /// its length as U (step 1). False: U is the graph path's length, and the search runs as A*.
+  bool straighten_upper = true;
 
   bool is_valid(std::string* why) const;
 };
@@ -94,6 +104,9 @@ struct TargetBound {
   long vertices = 0;    ///< vertices given a value by the fast marching
   long faces = 0;       ///< faces whose slopes entered L and E
   long faces_out = 0;   ///< steep faces step 5 found on no shortest path (left out of L and E)
+  /// The length of the straightened path of step 1 (mesh units; +infinity: none, e.g. the
+  /// option is off or the straightening failed). A surface path's length, so >= D.
+  double local_length = std::numeric_limits<double>::infinity();
 
   /// Step 6's table: entry i (0..255) is the excess of the steep faces whose least corner
   /// value is below (i + 1) w, w = level_width(), each face counted one level early; a vertex
@@ -137,6 +150,7 @@ struct TargetBound {
   std::vector<State> state_;
   std::vector<Steep> steep_;
   std::vector<int> order_;  // vertices accepted by pass 2
+  std::vector<int> parent_entry_;  // per vertex: the graph entry that gave it its length in pass 1
   std::vector<double> by_level_;  // step 6: E up to each level of psi
   double level_width_ = 0.0;
   BucketQueue<Item> queue_;
@@ -147,9 +161,10 @@ struct TargetBound {
 /// (+infinity: none). Leaves bound->active false when the pair is nearly straight and short
 /// (options.min_detour, options.min_edges), the source is unreachable, source == target, or
 /// the bound at the source would not be positive.
-/// Cost: an A* over the vertex graph and a fast marching over the vertices near the
-/// ellipsoid, O(n) in them with a bucket queue (plus one step per bucket, a 32nd of the longest
-/// edge, up to U); the faces' slopes are read as the marching completes each.
+/// Cost: an A* over the vertex graph, the straightening of its path (O(path) per round of
+/// geometry/geodesic/refine_path.h) and a fast marching over the vertices near the ellipsoid,
+/// O(n) in them with a bucket queue (plus one step per bucket, a 32nd of the longest edge, up
+/// to U); the faces' slopes are read as the marching completes each.
 void build_target_bound(const WindowMesh& window_mesh, int source, int target, double upper_bound,
                         const TargetBoundOptions& options, TargetBound* bound);
 

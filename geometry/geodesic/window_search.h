@@ -142,6 +142,17 @@ class Search {
     build_target_bound(window_mesh_, source_, target_, options_.upper_bound,
                        options_.target_bound, &scratch_.target_bound);
     if (scratch_.target_bound.active) bound_ = &scratch_.target_bound;
+    // A straightened path's length (target_bound.h, step 1), usually D itself: from here on
+    // the search looks for paths no longer than it (best_ keeps a margin of 1e-9: it admits
+    // only paths strictly shorter, and U may be D exactly), in Dijkstra's order like any
+    // search under an upper bound. (A resumable search keeps its windows for later targets and
+    // its A* order.)
+    if constexpr (!kResume) {
+      if (std::isfinite(scratch_.target_bound.local_length)) {
+        best_ = std::min(best_, scratch_.target_bound.upper * (1.0 + 1e-9));
+        distance_order_ = true;
+      }
+    }
   }
 
   // The target's row of the landmark fields (ALT bounds need d(L, t) for every landmark L; a
@@ -736,7 +747,7 @@ class Search {
   std::vector<char> continues_;
   double best_;
   int insert_after_ = -1;  // compete's place for w in its halfedge's list (-1: the head)
-  const bool distance_order_;
+  bool distance_order_;  // (set again when the bound brings a straightened length)
   // Windows propagated or dead give their slots to later ones (free_), so that only the
   // wavefront stays in memory (bench/README.md, session 11: 13.6M windows made by a full run at
   // 300K faces, a few 10K alive at a time; session 14: 1-3 % of a search to a target's): a full

@@ -39,14 +39,18 @@ struct Checked {
 // For `count` random pairs of `mesh`: the bound at every vertex v with d(s, v) + d(v, t) <= U
 // (exactly, by CGAL) is at most d(v, t). (It holds on the shortest paths from s to t; and every
 // point y of a shortest path from such a v to t has |y s| + |y t| <= d(s, v) + d(v, t) <= U, so
-// the path crosses only faces whose slopes entered the bound: the same proof.)
-Checked check_bound(const Mesh& mesh, int count, unsigned seed, double min_detour) {
+// the path crosses only faces whose slopes entered the bound: the same proof.) `straighten`:
+// U is step 1's straightened path (within a hair of D: few vertices to check), or the graph
+// path's length (about 1 % longer: the bound over a wider ellipsoid).
+Checked check_bound(const Mesh& mesh, int count, unsigned seed, double min_detour,
+                    bool straighten) {
   const WindowMesh wm = prepare_window_mesh(mesh);
   ExactGeodesic cgal(mesh);
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
   TargetBoundOptions options;
   options.min_detour = min_detour;
+  options.straighten_upper = straighten;
   TargetBound bound;
   Checked c;
   std::vector<double> shares;
@@ -93,7 +97,7 @@ Checked check_bound(const Mesh& mesh, int count, unsigned seed, double min_detou
 }
 
 TEST(TargetBound, BelowTheDistanceOnShortestPathsOfHills) {
-  const Checked c = check_bound(Mesh(test::hills(40, 6.0)), 30, 5, 1.0);
+  const Checked c = check_bound(Mesh(test::hills(40, 6.0)), 30, 5, 1.0, false);
   EXPECT_GE(c.pairs, 20);
   EXPECT_GE(c.with_radius, 5);  // both forms of the bound are checked
   EXPECT_GE(c.with_faces_out, 5);  // and bounds with faces left out
@@ -105,10 +109,16 @@ TEST(TargetBound, BelowTheDistanceOnShortestPathsOfHills) {
   // halfway, 0.929.)
   EXPECT_GT(c.least_share, 0.6);
   EXPECT_GT(c.median_share, 0.925);
+  // The default, U straightened: the same bound to within what step 5 and the narrower
+  // ellipsoid change (median 0.931), checked at the fewer vertices within that U.
+  const Checked d = check_bound(Mesh(test::hills(40, 6.0)), 30, 5, 1.0, true);
+  EXPECT_GE(d.pairs, 20);
+  EXPECT_GT(d.vertices, 250);
+  EXPECT_GT(d.median_share, 0.925);
 }
 
 TEST(TargetBound, BelowTheDistanceOnShortestPathsOfARoughTorus) {
-  const Checked c = check_bound(Mesh(test::rough_torus(0.03, 11)), 30, 6, 1.0);
+  const Checked c = check_bound(Mesh(test::rough_torus(0.03, 11)), 30, 6, 1.0, false);
   EXPECT_GE(c.pairs, 20);
   EXPECT_GE(c.with_radius, 5);
   EXPECT_GE(c.with_faces_out, 5);
@@ -119,6 +129,10 @@ TEST(TargetBound, BelowTheDistanceOnShortestPathsOfARoughTorus) {
   // whole E halfway (before step 6), 0.707 and 0.861.
   EXPECT_GT(c.least_share, 0.68);
   EXPECT_GT(c.median_share, 0.875);
+  const Checked d = check_bound(Mesh(test::rough_torus(0.03, 11)), 30, 6, 1.0, true);
+  EXPECT_GE(d.pairs, 20);
+  EXPECT_GT(d.vertices, 200);
+  EXPECT_GT(d.median_share, 0.875);
 }
 
 // Half a turn round the torus' hole the geodesic (6.90 by CGAL) bends far from the straight
@@ -209,7 +223,7 @@ TEST(TargetBound, TheSameBoundAtEveryScale) {
   std::mt19937 rng(17);
   std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
   std::vector<std::pair<int, int>> pairs;
-  while (pairs.size() < 12) {
+  while (pairs.size() < 16) {
     const int s = pick(rng), t = pick(rng);
     if (s != t) pairs.push_back({s, t});
   }
@@ -228,6 +242,7 @@ TEST(TargetBound, TheSameBoundAtEveryScale) {
       if (!bound.active) continue;
       ++active;
       EXPECT_NEAR(scaled_bound.upper / k, bound.upper, 1e-12 * bound.upper);
+      EXPECT_TRUE(std::isfinite(bound.local_length));  // (step 1's straightening, scaled too)
       EXPECT_NEAR(scaled_bound.slope, bound.slope, 1e-12);
       for (int v = 0; v < mesh.num_vertices(); ++v) {
         const double h = bound.at(local[v]), hk = scaled_bound.at(local[v]);
@@ -301,6 +316,62 @@ TEST(TargetBound, OptionsAreChecked) {
   WindowSearchOptions w;
   w.target_bound.min_detour = std::nan("");
   EXPECT_THROW(shortest_path_by_windows(mesh, wm, 0, 24, w), ConfigError);
+}
+
+// Step 1's straightened path: a surface path's length, so never below the distance (CGAL), never
+// above the graph path's, and on these meshes usually the distance itself; the search below it
+// finds the same distances as the A* search without it, with fewer windows.
+TEST(TargetBound, StraightenedPathBoundsTheDistanceFromAbove) {
+  for (const auto& [mesh, what] :
+       {std::pair<Mesh, const char*>{Mesh(test::rough_torus(0.03, 11)), "rough torus"},
+        std::pair<Mesh, const char*>{Mesh(test::hills(40, 6.0)), "hills"},
+        std::pair<Mesh, const char*>{Mesh(test::torus(2.0, 0.7, 48, 20)), "torus"}}) {
+    const WindowMesh wm = prepare_window_mesh(mesh);
+    ExactGeodesic cgal(mesh);
+    std::mt19937 rng(23);
+    std::uniform_int_distribution<int> pick(0, mesh.num_vertices() - 1);
+    TargetBoundOptions graph_only;
+    graph_only.straighten_upper = false;
+    WindowSearchOptions a_star;
+    a_star.target_bound = graph_only;
+    TargetBound straightened, graph;
+    int pairs = 0, finite = 0, exact = 0;
+    long with_windows = 0, without_windows = 0;
+    for (int i = 0; i < 30; ++i) {
+      const int s = pick(rng), t = pick(rng);
+      if (s == t) continue;
+      ++pairs;
+      const std::vector<int>& local = wm.order.vertex_to_local;
+      const double kInf = std::numeric_limits<double>::infinity();
+      build_target_bound(wm, local[s], local[t], kInf, {}, &straightened);
+      build_target_bound(wm, local[s], local[t], kInf, graph_only, &graph);
+      EXPECT_FALSE(std::isfinite(graph.local_length)) << what;
+      const double D =
+          cgal.distances(SurfacePoint::at_vertex(s), {SurfacePoint::at_vertex(t)}).front();
+      const double l = straightened.local_length;
+      if (std::isfinite(l)) {
+        ++finite;
+        EXPECT_GE(l, D * (1.0 - 1e-12)) << what << " " << s << " -> " << t;
+        EXPECT_LT(l, graph.upper) << what << " " << s << " -> " << t;
+        EXPECT_EQ(straightened.upper, std::min(graph.upper, l * (1.0 + 1e-9))) << what;
+        exact += l <= D * (1.0 + 1e-9);
+      } else {
+        EXPECT_EQ(straightened.upper, graph.upper) << what;
+      }
+      const WindowSearchResult below = shortest_path_by_windows(mesh, wm, s, t);
+      const WindowSearchResult plain = shortest_path_by_windows(mesh, wm, s, t, a_star);
+      ASSERT_TRUE(below.found && plain.found) << what << " " << s << " -> " << t;
+      EXPECT_NEAR(below.distance, D, 1e-9 * D) << what << " " << s << " -> " << t;
+      EXPECT_NEAR(plain.distance, D, 1e-9 * D) << what << " " << s << " -> " << t;
+      with_windows += below.windows;
+      without_windows += plain.windows;
+    }
+    std::printf("%s: %d pairs, %d straightened, %d of them to the distance; windows %ld, A* %ld\n",
+                what, pairs, finite, exact, with_windows, without_windows);
+    EXPECT_GE(finite, pairs * 9 / 10) << what;
+    EXPECT_GE(exact, finite / 2) << what;
+    EXPECT_LT(with_windows, without_windows) << what;
+  }
 }
 
 // The bound changes the work, never the answer: the same distances with and without it, and
