@@ -43,9 +43,18 @@ static double thread_ms() {
 int main(int argc, char** argv) {
   namespace gc = geometrycentral::surface;
   std::vector<std::pair<int, int>> pairs;
-  { std::ifstream in(argv[2]); int s, t; while (in >> s >> t) pairs.push_back({s, t}); }
+  {
+    std::ifstream in(argv[2]);
+    int s, t;
+    while (in >> s >> t) pairs.push_back({s, t});
+  }
   std::vector<double> mmp;
-  { std::ifstream in(argv[3]); int s, t; double d; while (in >> s >> t >> d) mmp.push_back(d); }
+  {
+    std::ifstream in(argv[3]);
+    int s, t;
+    double d;
+    while (in >> s >> t >> d) mmp.push_back(d);
+  }
   const int rounds = std::atoi(argv[4]);
   const int n = static_cast<int>(pairs.size());
   // FlipOut as in flipout_pairs.cpp
@@ -58,7 +67,8 @@ int main(int argc, char** argv) {
   network.posGeom = geom.get();
   auto flipout = [&](int s, int t, double* len) {
     const double c1 = thread_ms();
-    std::vector<gc::Halfedge> path = gc::shortestEdgePath(*geom, fmesh->vertex(s), fmesh->vertex(t));
+    std::vector<gc::Halfedge> path =
+        gc::shortestEdgePath(*geom, fmesh->vertex(s), fmesh->vertex(t));
     network.reinitializePath({path});
     network.iterativeShorten();
     *len = network.length();
@@ -79,13 +89,21 @@ int main(int argc, char** argv) {
     *len = r.summary.final_length;
     return c;
   };
-  { double l; flipout(pairs[0].first, pairs[0].second, &l); wp(pairs[0].first, pairs[0].second, &l); }  // warm-up
+  {
+    double l;
+    flipout(pairs[0].first, pairs[0].second, &l);
+    wp(pairs[0].first, pairs[0].second, &l);
+  }  // warm-up
   std::vector<double> bf(n, 1e300), bw(n, 1e300), lf(n), lw(n);
   const bool blocks = argc > 5 && std::string(argv[5]) == "blocks";
   for (int r = 0; r < rounds && blocks; ++r) {
     for (int k = 0; k < 2; ++k) {
-      if ((r + k) % 2 == 0) for (int i = 0; i < n; ++i) bf[i] = std::min(bf[i], flipout(pairs[i].first, pairs[i].second, &lf[i]));
-      else for (int i = 0; i < n; ++i) bw[i] = std::min(bw[i], wp(pairs[i].first, pairs[i].second, &lw[i]));
+      if ((r + k) % 2 == 0)
+        for (int i = 0; i < n; ++i)
+          bf[i] = std::min(bf[i], flipout(pairs[i].first, pairs[i].second, &lf[i]));
+      else
+        for (int i = 0; i < n; ++i)
+          bw[i] = std::min(bw[i], wp(pairs[i].first, pairs[i].second, &lw[i]));
     }
   }
   for (int r = 0; r < rounds && !blocks; ++r) {
@@ -104,17 +122,23 @@ int main(int argc, char** argv) {
   for (int i = 0; i < n; ++i) {
     ef += std::abs(lf[i] - mmp[i]) <= 1e-9 * mmp[i];
     ew += std::abs(lw[i] - mmp[i]) <= 1e-9 * mmp[i];
-    std::printf("%d %d %.17g %.17g %.6f %.6f\n", pairs[i].first, pairs[i].second, lw[i], lf[i], bw[i], bf[i]);
+    std::printf("%d %d %.17g %.17g %.6f %.6f\n", pairs[i].first, pairs[i].second, lw[i], lf[i],
+                bw[i], bf[i]);
   }
   auto stats = [](std::vector<double> v, double* med, double* mean, double* p90) {
     std::sort(v.begin(), v.end());
     *med = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-    double s = 0; for (double x : v) s += x; *mean = s / v.size();
+    double s = 0;
+    for (double x : v) s += x;
+    *mean = s / v.size();
     *p90 = v[std::min(v.size() - 1, static_cast<size_t>(std::ceil(0.9 * v.size())) - 1)];
   };
   double wm, wmean, wp90, fm, fmean, fp90;
   stats(bw, &wm, &wmean, &wp90);
   stats(bf, &fm, &fmean, &fp90);
-  std::fprintf(stderr, "%s rounds %d | windplan %.3f / %.3f / %.3f ms exact %d/%d | FlipOut %.3f / %.3f / %.3f ms exact %d/%d | ratio median %.3f mean %.3f\n",
-               argv[1], rounds, wm, wmean, wp90, ew, n, fm, fmean, fp90, ef, n, wm / fm, wmean / fmean);
+  std::fprintf(stderr,
+               "%s rounds %d | windplan %.3f / %.3f / %.3f ms exact %d/%d | FlipOut %.3f / %.3f / "
+               "%.3f ms exact %d/%d | ratio median %.3f mean %.3f\n",
+               argv[1], rounds, wm, wmean, wp90, ew, n, fm, fmean, fp90, ef, n, wm / fm,
+               wmean / fmean);
 }

@@ -26,12 +26,12 @@
 // then propagated after the shorter windows that may cut it). A search to one target with the
 // target bound gets one before it starts: the bound's graph path straightened into a locally
 // shortest geodesic, usually D itself (geometry/geodesic/target_bound.h, step 1; 8-14 % fewer
-// windows than A* on the benchmark meshes, bench/README.md, session 23). The queue holds halfedges, each
-// at the smallest key of the windows queued on it, and a halfedge out of the queue propagates
-// all of them at once (Qin et al.'s list at a time, "Fast and exact discrete geodesic
-// computation based on triangle-oriented wavefront propagation", SIGGRAPH 2016): its data is
-// read once while in cache (bench/README.md, session 12: 2-7 % more windows, 9-13 % less time
-// per path at the median, 16-25 % at the mean).
+// windows than A* on the benchmark meshes, bench/README.md, session 23).
+// The queue holds halfedges, each at the smallest key of the windows queued on it, and a
+// halfedge out of the queue propagates all of them at once (Qin et al.'s list at a time, "Fast
+// and exact discrete geodesic computation based on triangle-oriented wavefront propagation",
+// SIGGRAPH 2016): its data is read once while in cache (bench/README.md, session 12: 2-7 % more
+// windows, 9-13 % less time per path at the median, 16-25 % at the mean).
 // The queue is a radix heap (geometry/geodesic/radix_queue.h): both orders are monotone.
 // Euclidean metric only (the geodesic core uses it for Euclidean queries between vertices; see
 // geodesic_between in geometry/geodesic/geodesic.h). No CGAL: geometry/geodesic/exact_geodesic.h is

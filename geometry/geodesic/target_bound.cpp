@@ -75,8 +75,8 @@ double straightened_length(const WindowMesh& wm, int source, int target,
   for (int v = source; v != target;) {
     if (vertices.size() > static_cast<std::size_t>(mesh.num_vertices())) return kInf;
     const int j = parent_entry[v];
-    const int u = static_cast<int>(std::upper_bound(graph.offsets.begin(), graph.offsets.end(), j) -
-                                   graph.offsets.begin()) - 1;
+    const auto row = std::upper_bound(graph.offsets.begin(), graph.offsets.end(), j);
+    const int u = static_cast<int>(row - graph.offsets.begin()) - 1;  // the entry's vertex
     vertices.push_back(u);
     via.push_back(graph.via.empty() || graph.via[j] < 0 ? -1 : mesh.twin(graph.via[j]));
     v = u;
@@ -86,8 +86,8 @@ double straightened_length(const WindowMesh& wm, int source, int target,
   GeodesicOptions options;
   options.max_iterations = 100;
   try {
-    const SurfacePath strip = strip_from_vertex_path(mesh, SurfacePoint::at_vertex(source), vertices,
-                                                     SurfacePoint::at_vertex(target), &via);
+    const SurfacePath strip = strip_from_vertex_path(
+        mesh, SurfacePoint::at_vertex(source), vertices, SurfacePoint::at_vertex(target), &via);
     const double length = refine_path(mesh, strip, {}, options).summary.final_length;
     return length > 0.0 ? length : kInf;
   } catch (const Error&) {

@@ -77,8 +77,8 @@ struct WindowMesh;  // geometry/geodesic/geodesic_windows.h
 
 struct TargetBoundOptions {
   /// Built only when U (the length of a path along edges and diagonals, about 1 % above the
-  /// geodesic's, or that path straightened) is at least this many times the straight distance |s t|
-  /// (dimensionless): below, the straight distance is already within this factor of the
+  /// geodesic's, or that path straightened) is at least this many times the straight distance
+  /// |s t| (dimensionless): below, the straight distance is already within this factor of the
   /// geodesic's and the field would cost more than it saves (bench/README.md, sessions 15-16:
   /// 1.1 when U ran along edges only, a few per cent longer).
   double min_detour = 1.08;
