@@ -40,6 +40,8 @@ WindowMesh prepare_window_mesh(const Mesh& original) {
   }
   const int nh = mesh.num_interior_halfedges();
   w.frame.resize(nh);
+  w.corner_angle.resize(nh);
+  for (int h = 0; h < nh; ++h) w.corner_angle[h] = mesh.corner_angle(h);
   const auto inside = [&](int h) { return mesh.is_boundary_halfedge(h) ? -1 : h; };
   for (int h = 0; h < nh; ++h) {
     HalfedgeFrame& f = w.frame[h];

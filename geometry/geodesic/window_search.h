@@ -294,7 +294,7 @@ class Search {
     corner_.resize(n + 1);
     corner_[0] = 0.0;
     for (std::size_t i = 0; i < n; ++i)
-      corner_[i + 1] = corner_[i] + mesh_.corner_angle(outgoing_[i]);
+      corner_[i + 1] = corner_[i] + window_mesh_.corner_angle[outgoing_[i]];
     const double total = corner_[n];
     // The angle, counter-clockwise from outgoing_[0], of the direction back along the arrival.
     double back = -1.0;

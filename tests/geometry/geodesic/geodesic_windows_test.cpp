@@ -70,8 +70,8 @@ void expect_equal_to_cgal(const Mesh& mesh, int count, unsigned seed, const std:
 
 // The per-halfedge frames the search reads instead of the mesh (one cache line each) agree with
 // the renumbered copy's navigation and geometry: on hills (a boundary) and a rough torus, every
-// interior halfedge's vertices, twin, outgoing neighbours (-1 across the boundary), edge lengths
-// and the opposite corner's place in its frame.
+// interior halfedge's vertices, twin, outgoing neighbours (-1 across the boundary), edge lengths,
+// the opposite corner's place in its frame and the corner angle at its start.
 TEST(WindowSearch, HalfedgeFramesAgreeWithTheMesh) {
   for (const bool torus : {false, true}) {
     const WindowMesh wm =
@@ -99,7 +99,11 @@ TEST(WindowSearch, HalfedgeFramesAgreeWithTheMesh) {
       EXPECT_GE(f.cy, 0.0);
       EXPECT_NEAR(std::hypot(f.cx, f.cy), (c - a).norm(), 1e-12);
       EXPECT_NEAR(std::hypot(f.cx - f.len, f.cy), (c - b).norm(), 1e-12);
+      // The corner angle at from(h), read in the frame: towards to(h) along x, the corner at
+      // (cx, cy).
+      EXPECT_NEAR(wm.corner_angle[h], std::atan2(f.cy, f.cx), 1e-12);
     }
+    ASSERT_EQ(wm.corner_angle.size(), wm.frame.size());
     EXPECT_EQ(boundary > 0, !torus);
   }
 }
