@@ -41,7 +41,6 @@ WindowMesh prepare_window_mesh(const Mesh& original) {
   const int nh = mesh.num_interior_halfedges();
   w.frame.resize(nh);
   w.corner_angle.resize(nh);
-  for (int h = 0; h < nh; ++h) w.corner_angle[h] = mesh.corner_angle(h);
   const auto inside = [&](int h) { return mesh.is_boundary_halfedge(h) ? -1 : h; };
   for (int h = 0; h < nh; ++h) {
     HalfedgeFrame& f = w.frame[h];
@@ -59,6 +58,7 @@ WindowMesh prepare_window_mesh(const Mesh& original) {
     f.twin = mesh.twin(h);
     f.out_prev = inside(mesh.twin(mesh.prev(h)));
     f.out_next = inside(mesh.twin(mesh.next(h)));
+    w.corner_angle[h] = mesh.corner_angle(h);
     w.max_edge = std::max(w.max_edge, f.len);
   }
   w.ring_start.assign(mesh.num_vertices() + 1, 0);
