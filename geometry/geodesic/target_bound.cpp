@@ -20,6 +20,10 @@ bool TargetBoundOptions::is_valid(std::string* why) const {
     if (why) *why = "min_edges must be >= 0 (longest edges; +inf: by min_detour alone)";
     return false;
   }
+  if (!(clamp_slope == 0.0 || (clamp_slope >= 1.0 && std::isfinite(clamp_slope)))) {
+    if (why) *why = "clamp_slope must be 0 (no clamp) or a finite slope >= 1 (dimensionless)";
+    return false;
+  }
   return true;
 }
 
@@ -134,6 +138,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   b->vertices = 0;
   b->faces = 0;
   b->faces_out = 0;
+  b->clamped = 0;
   b->local_length = kInf;
   if (source == target) return;
   using State = TargetBound::State;
@@ -321,6 +326,43 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   // and psi may be any function for 3). (Until session 16 it reached U + 4 max_edge: the same
   // windows, 2-5 % more time per path.)
   const double reach = U + 2.0 * wm.max_edge;
+  const double clamp = options.clamp_slope;
+  // The clamp's test of a face: |g|^2 > clamp^2 as in 3 (num > clamp^2 den), with a margin far
+  // beyond round-off (a face lowered to the limit tests at it again).
+  const double clamp_check = clamp * clamp * (1.0 + 1e-9);
+  long clamped = 0;
+  // 2's clamp at v, just accepted: with v at the origin of a face's frame and its other corners'
+  // values fixed, psi's gradient is affine in v's value x, g = a + x b, and |g| <= clamp on an
+  // interval of x (|b|^2 x^2 + 2 (a . b) x + |a|^2 - clamp^2 <= 0). v's value falls to the
+  // least of the intervals' tops when some face is steeper than the limit and the intervals
+  // meet below it; otherwise it stays. Returns whether it fell.
+  const auto clamp_value = [&](int v, State& sv) -> bool {
+    const double x = sv.value;
+    double lo = -kInf, hi = kInf;
+    bool steep_face = false;
+    for (int i = ring_start[v]; i < ring_start[v + 1]; ++i) {
+      const RingCorner& c = ring[i];
+      const State& sb = state[c.next];
+      const State& sc = state[c.after];
+      if (!(sb.mark == stamp && sb.accepted && sc.mark == stamp && sc.accepted)) continue;
+      if (c.next == target || c.after == target) continue;
+      if (!(c.cy > 0.0 && c.len > 0.0)) continue;
+      const double d1 = sb.value - x, d2 = sc.value - x;
+      const double p = d1 * c.cy, q = d2 * c.len - d1 * c.cx, area = c.len * c.cy;
+      steep_face = steep_face || p * p + q * q > clamp_check * (area * area);
+      const double ax = sb.value / c.len, ay = (sc.value - ax * c.cx) / c.cy;
+      const double bx = -1.0 / c.len, by = (c.cx / c.len - 1.0) / c.cy;
+      const double bb = bx * bx + by * by, ab = ax * bx + ay * by, aa = ax * ax + ay * ay;
+      const double disc = ab * ab - bb * (aa - clamp * clamp);
+      if (!(disc >= 0.0 && bb > 0.0)) return false;  // no value of v's makes it mild
+      const double root = std::sqrt(disc);
+      lo = std::max(lo, (-ab - root) / bb);
+      hi = std::min(hi, (-ab + root) / bb);
+    }
+    if (!(steep_face && hi < x && lo <= hi && std::isfinite(hi))) return false;
+    sv.value = hi;
+    return true;
+  };
   queue.reset(bucket);
   auto& order = b->order_;
   order.clear();
@@ -335,6 +377,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     if (sv.accepted) continue;
     sv.accepted = 1;
     order.push_back(v);
+    if (clamp > 0.0 && v != target) clamped += clamp_value(v, sv);
     const double uv = sv.value;
     for (int i = ring_start[v]; i < ring_start[v + 1]; ++i) {
       // v at the origin, B = next at (len, 0), C = after at (cx, cy).
@@ -369,6 +412,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     if (k + 1 < kRadii) steepest[k] = std::max(steepest[k], steepest[k + 1]);
   }
   b->vertices = static_cast<long>(order.size());
+  b->clamped = clamped;
   if (!(state[source].mark == stamp && state[source].accepted)) return;
   const double us = state[source].value;
   b->faces = faces;

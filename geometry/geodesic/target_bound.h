@@ -21,6 +21,14 @@
 //   2. psi: fast marching from the target (point-source updates, each face placing the source
 //      from its two known corners, exact where the surface unfolds flat) over the
 //      vertices near that ellipsoid: an approximate distance, no bound by itself.
+//      Its values are rough: a face's corners reached from different faces make a quarter of
+//      the faces of the 20K bunny steeper than 1.01, and 3 divides the whole bound by its L.
+//      So each vertex, as the marching accepts it, is lowered to the largest value that keeps
+//      every face it completes (its other two corners accepted) at most 1.02 steep, when one
+//      value does for all of them (TargetBoundOptions::clamp_slope; the target's own faces,
+//      steep as a cone's apex, are left to 4). L then falls to about 1.02, and h(s) on the
+//      hardest pairs at 20K from 0.93-0.95 of D to 0.96-0.98: 6-28 % fewer windows on the
+//      four benchmark meshes (bench/README.md, session 24). Any values make a bound (3).
 //   3. What makes it a bound: psi is linear on each face, with slope g_f there. Along a shortest
 //      path from x to t, which crosses each face at most once in a segment of length l_f, psi
 //      changes by at most min(g_f l_f, spread_f) per face (spread_f: psi's range over the
@@ -50,8 +58,9 @@
 //      its value + that spread + E and h stays linear along edges; E(p) is tabulated in 256
 //      levels, each face counted one level early. 4-6 % fewer windows on the four benchmark
 //      meshes (bench/README.md, session 20).
-//   On the bunnies h(s) is 0.95-0.98 of the distance, against 0.64 for the straight distance on
-//   the longest pair at 100K faces (bench/README.md, sessions 15 and 16).
+//   On the 20K bunny h(s) is 0.94-0.98 of the distance (median 0.97 over the benchmark's pairs
+//   with a bound; 0.93-0.98 and 0.95 without 2's clamp), against 0.64 for the straight distance
+//   on the longest pair at 100K faces (bench/README.md, sessions 15, 16 and 24).
 // The window search keys a window with max(straight bound, this bound), exact as before: the
 // bound holds on the shortest path, which is all the A* stop needs (a window off it keyed too
 // high is dropped, and no shortest path passes through it). h is not 1-Lipschitz where a
@@ -89,6 +98,11 @@ struct TargetBoundOptions {
   /// Straighten the path of step 1 into a locally shortest geodesic of its corridor and take
   /// its length as U (step 1). False: U is the graph path's length, and the search runs as A*.
   bool straighten_upper = true;
+  /// Step 2's clamp (dimensionless, >= 1; 0: none): as the marching accepts a vertex, its value
+  /// is lowered to the largest that keeps every face it completes at most this steep, where
+  /// that is possible for all of them (faces round the target excepted). 1.02 made the fewest
+  /// windows on the benchmark meshes (1.015 and 1.03 more: bench/README.md, session 24).
+  double clamp_slope = 1.02;
 
   bool is_valid(std::string* why) const;
 };
@@ -104,6 +118,7 @@ struct TargetBound {
   long vertices = 0;    ///< vertices given a value by the fast marching
   long faces = 0;       ///< faces whose slopes entered L and E
   long faces_out = 0;   ///< steep faces step 5 found on no shortest path (left out of L and E)
+  long clamped = 0;     ///< vertices whose value step 2's clamp lowered
   /// The length of the straightened path of step 1 (mesh units; +infinity: none, e.g. the
   /// option is off or the straightening failed). A surface path's length, so >= D.
   double local_length = std::numeric_limits<double>::infinity();
