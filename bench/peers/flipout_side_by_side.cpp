@@ -6,7 +6,7 @@
 //   g++ -O3 -DNDEBUG -std=c++17 -I. -I$GC/include -I$GC/deps/happly -I$GC/deps/nanoflann/include \
 //     -I$GC/deps/nanort/include -isystem /usr/include/eigen3 bench/peers/flipout_side_by_side.cpp \
 //     -o /tmp/side_by_side $L $L $GC/build/src/libgeometry-central.a -ltbb -lgmp -lmpfr -lpthread
-//   taskset -c 1 /tmp/side_by_side MESH PAIRS REFERENCE ROUNDS [blocks]
+//   taskset -c 1 /tmp/side_by_side MESH PAIRS REFERENCE ROUNDS [blocks] [local]
 // FlipOut: the calls of ../shared/tools/flipout_pairs.cpp (one FlipEdgeNetwork per mesh with
 // supportRewinding; per pair shortestEdgePath, reinitializePath, iterativeShorten, length,
 // rewind). windplan: geodesic_between on a GeodesicContext with default options, the call
@@ -80,7 +80,12 @@ int main(int argc, char** argv) {
   // windplan as bench_geodesic
   const windplan::Mesh mesh = windplan::build_mesh(windplan::read_mesh(argv[1]), false);
   const windplan::GeodesicContext ctx(mesh);
-  const windplan::GeodesicOptions options;
+  windplan::GeodesicOptions options;
+  // `local`: windplan's local mode (exact_windows off: the locally shortest geodesic from the
+  // local starts, no window search), the mode planners use from a good start.
+  for (int i = 5; i < argc; ++i) {
+    if (std::string(argv[i]) == "local") options.exact_windows = false;
+  }
   auto wp = [&](int s, int t, double* len) {
     const double c1 = thread_ms();
     const auto r = windplan::geodesic_between(ctx, windplan::SurfacePoint::at_vertex(s),
@@ -95,7 +100,8 @@ int main(int argc, char** argv) {
     wp(pairs[0].first, pairs[0].second, &l);
   }  // warm-up
   std::vector<double> bf(n, 1e300), bw(n, 1e300), lf(n), lw(n);
-  const bool blocks = argc > 5 && std::string(argv[5]) == "blocks";
+  bool blocks = false;
+  for (int i = 5; i < argc; ++i) blocks = blocks || std::string(argv[i]) == "blocks";
   for (int r = 0; r < rounds && blocks; ++r) {
     for (int k = 0; k < 2; ++k) {
       if ((r + k) % 2 == 0)
