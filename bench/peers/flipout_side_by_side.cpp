@@ -83,7 +83,9 @@ int main(int argc, char** argv) {
   windplan::GeodesicOptions options;
   // `local`: windplan's local mode (exact_windows off: the locally shortest geodesic from the
   // local starts, no window search), the mode planners use from a good start.
+  bool blocks = false;
   for (int i = 5; i < argc; ++i) {
+    blocks = blocks || std::string(argv[i]) == "blocks";
     if (std::string(argv[i]) == "local") options.exact_windows = false;
   }
   auto wp = [&](int s, int t, double* len) {
@@ -100,8 +102,6 @@ int main(int argc, char** argv) {
     wp(pairs[0].first, pairs[0].second, &l);
   }  // warm-up
   std::vector<double> bf(n, 1e300), bw(n, 1e300), lf(n), lw(n);
-  bool blocks = false;
-  for (int i = 5; i < argc; ++i) blocks = blocks || std::string(argv[i]) == "blocks";
   for (int r = 0; r < rounds && blocks; ++r) {
     for (int k = 0; k < 2; ++k) {
       if ((r + k) % 2 == 0)

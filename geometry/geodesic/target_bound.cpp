@@ -333,24 +333,32 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
   long clamped = 0;
   // 2's clamp at v, just accepted: with v at the origin of a face's frame and its other corners'
   // values fixed, psi's gradient is affine in v's value x, g = a + x b, and |g| <= clamp on an
-  // interval of x (|b|^2 x^2 + 2 (a . b) x + |a|^2 - clamp^2 <= 0). v's value falls to the
-  // least of the intervals' tops when some face is steeper than the limit and the intervals
-  // meet below it; otherwise it stays. Returns whether it fell.
+  // interval of x (|b|^2 x^2 + 2 (a . b) x + |a|^2 - clamp^2 <= 0). When some face v completes
+  // is steeper than the limit (tested first, without divisions: most vertices have none), v's
+  // value falls to the least of the intervals' tops if the intervals meet below it; otherwise it
+  // stays. Returns whether it fell.
+  const auto completes = [&](const RingCorner& c) {
+    const State& sb = state[c.next];
+    const State& sc = state[c.after];
+    return sb.mark == stamp && sb.accepted && sc.mark == stamp && sc.accepted &&
+           c.next != target && c.after != target && c.cy > 0.0 && c.len > 0.0;
+  };
   const auto clamp_value = [&](int v, State& sv) -> bool {
     const double x = sv.value;
-    double lo = -kInf, hi = kInf;
     bool steep_face = false;
+    for (int i = ring_start[v]; i < ring_start[v + 1] && !steep_face; ++i) {
+      const RingCorner& c = ring[i];
+      if (!completes(c)) continue;
+      const double d1 = state[c.next].value - x, d2 = state[c.after].value - x;
+      const double p = d1 * c.cy, q = d2 * c.len - d1 * c.cx, area = c.len * c.cy;
+      steep_face = p * p + q * q > clamp_check * (area * area);
+    }
+    if (!steep_face) return false;
+    double lo = -kInf, hi = kInf;
     for (int i = ring_start[v]; i < ring_start[v + 1]; ++i) {
       const RingCorner& c = ring[i];
-      const State& sb = state[c.next];
-      const State& sc = state[c.after];
-      if (!(sb.mark == stamp && sb.accepted && sc.mark == stamp && sc.accepted)) continue;
-      if (c.next == target || c.after == target) continue;
-      if (!(c.cy > 0.0 && c.len > 0.0)) continue;
-      const double d1 = sb.value - x, d2 = sc.value - x;
-      const double p = d1 * c.cy, q = d2 * c.len - d1 * c.cx, area = c.len * c.cy;
-      steep_face = steep_face || p * p + q * q > clamp_check * (area * area);
-      const double ax = sb.value / c.len, ay = (sc.value - ax * c.cx) / c.cy;
+      if (!completes(c)) continue;
+      const double ax = state[c.next].value / c.len, ay = (state[c.after].value - ax * c.cx) / c.cy;
       const double bx = -1.0 / c.len, by = (c.cx / c.len - 1.0) / c.cy;
       const double bb = bx * bx + by * by, ab = ax * bx + ay * by, aa = ax * ax + ay * ay;
       const double disc = ab * ab - bb * (aa - clamp * clamp);
@@ -359,7 +367,7 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
       lo = std::max(lo, (-ab - root) / bb);
       hi = std::min(hi, (-ab + root) / bb);
     }
-    if (!(steep_face && hi < x && lo <= hi && std::isfinite(hi))) return false;
+    if (!(hi < x && lo <= hi && std::isfinite(hi))) return false;
     sv.value = hi;
     return true;
   };

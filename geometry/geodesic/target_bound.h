@@ -27,7 +27,7 @@
 //      every face it completes (its other two corners accepted) at most 1.02 steep, when one
 //      value does for all of them (TargetBoundOptions::clamp_slope; the target's own faces,
 //      steep as a cone's apex, are left to 4). L then falls to about 1.02, and h(s) on the
-//      hardest pairs at 20K from 0.93-0.95 of D to 0.96-0.98: 6-28 % fewer windows on the
+//      hardest pairs at 20K from 0.93-0.95 of D to 0.96-0.98: 5-28 % fewer windows on the
 //      four benchmark meshes (bench/README.md, session 24). Any values make a bound (3).
 //   3. What makes it a bound: psi is linear on each face, with slope g_f there. Along a shortest
 //      path from x to t, which crosses each face at most once in a segment of length l_f, psi
