@@ -1,6 +1,6 @@
 // The bucket queue (geometry/geodesic/bucket_queue.h): every item out once, bucket by bucket,
-// low keys taken into the current bucket, far keys into the ring's last, and a reset after a
-// search that stopped early.
+// low keys taken into the current bucket, far keys into the ring's last, peek, and a reset after
+// a search that stopped early.
 #include "geometry/geodesic/bucket_queue.h"
 
 #include <algorithm>
@@ -64,6 +64,30 @@ TEST(BucketQueue, LastInFirstOutWithinABucketAndLowKeysInTheCurrentOne) {
   EXPECT_EQ(q.pop().index, 0);
   EXPECT_EQ(q.pop().index, 2);
   EXPECT_TRUE(q.empty());
+}
+
+TEST(BucketQueue, PeekShowsTheNextPopWithinTheCurrentBucket) {
+  BucketQueue<Item> q;
+  q.reset(1.0);
+  EXPECT_EQ(q.peek(), nullptr);  // empty
+  q.push({0.2, 0});
+  q.push({0.7, 1});
+  q.push({3.5, 2});
+  ASSERT_NE(q.peek(), nullptr);
+  EXPECT_EQ(q.peek()->index, 1);  // what pop returns next
+  EXPECT_EQ(q.pop().index, 1);
+  ASSERT_NE(q.peek(), nullptr);
+  EXPECT_EQ(q.peek()->index, 0);
+  EXPECT_EQ(q.pop().index, 0);
+  EXPECT_EQ(q.peek(), nullptr);  // the next item lies beyond the current bucket
+  EXPECT_EQ(q.size(), 1u);       // and peek did not move to it
+  EXPECT_EQ(q.pop().index, 2);
+  q.push({3.9, 3});
+  ASSERT_NE(q.peek(), nullptr);  // now in the current bucket
+  EXPECT_EQ(q.peek()->index, 3);
+  EXPECT_EQ(q.pop().index, 3);
+  EXPECT_TRUE(q.empty());
+  EXPECT_EQ(q.peek(), nullptr);
 }
 
 TEST(BucketQueue, KeysBeyondTheRingWaitInItsLastBucket) {
