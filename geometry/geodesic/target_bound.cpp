@@ -197,7 +197,8 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     if (sv.closed) continue;
     sv.closed = 1;
     // The states of the next vertex's neighbours, fetched while this one is expanded (with 2's
-    // prefetch, 1-4 % less time per path on the benchmark meshes: bench/README.md, session 25).
+    // prefetch, about 1 % less time per path on the benchmark meshes, at the edge of the
+    // paired runs' noise: bench/README.md, session 25).
     if (const TargetBound::Item* next = queue.peek()) {
       for (int j = graph.offsets[next->v]; j < graph.offsets[next->v + 1]; ++j)
         __builtin_prefetch(state + graph.neighbors[j]);
