@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "geometry/base/errors.h"
 #include "geometry/geodesic/edge_path.h"
@@ -393,11 +394,14 @@ void build_target_bound(const WindowMesh& wm, int source, int target, double upp
     sv.accepted = 1;
     order.push_back(v);
     // The next vertex's faces (a few cache lines: the first reading of a vertex's ring was the
-    // marching's costliest load), fetched while this one is marched.
+    // marching's costliest load), fetched while this one is marched: every 64-byte line the
+    // ring touches, from the line its first byte lies in.
     if (const TargetBound::Item* next = queue.peek()) {
-      const char* line = reinterpret_cast<const char*>(ring + ring_start[next->v]);
-      const char* end = reinterpret_cast<const char*>(ring + ring_start[next->v + 1]);
-      for (; line < end; line += 64) __builtin_prefetch(line);
+      const std::uintptr_t end = reinterpret_cast<std::uintptr_t>(ring + ring_start[next->v + 1]);
+      for (std::uintptr_t line = reinterpret_cast<std::uintptr_t>(ring + ring_start[next->v]) &
+                                 ~std::uintptr_t{63};
+           line < end; line += 64)
+        __builtin_prefetch(reinterpret_cast<const void*>(line));
     }
     if (clamp > 0.0 && v != target) clamped += clamp_value(v, sv);
     const double uv = sv.value;
